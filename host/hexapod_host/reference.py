@@ -1,0 +1,54 @@
+"""Float reference kinematics: the host-side test oracle (never shipped to a board).
+
+Same conventions as firmware/hexapod/leg.py, written the textbook way with floats: the
+law of cosines with acos (seed 003 eq. 1-9) for IK, and two independent forward
+kinematics: seed 004's closed form (eq. 5-7) and the product of its DH matrices (eq. 1-4).
+Lengths in the same unit in and out; angles in degrees.
+"""
+
+import math
+
+
+def ik(x, y, z, coxa, femur, tibia, femur_offset=0.0):
+    """(theta1, theta2, theta3) in degrees, knee down; None when out of reach."""
+    t1 = math.degrees(math.atan2(y, x))
+    h = math.hypot(x, y) - coxa
+    v = z - femur_offset
+    c = math.hypot(h, v)
+    if c > femur + tibia or c < abs(femur - tibia) or c == 0.0:
+        return None
+    cos_b = (femur * femur + c * c - tibia * tibia) / (2 * femur * c)
+    cos_g = (femur * femur + tibia * tibia - c * c) / (2 * femur * tibia)
+    b = math.acos(max(-1.0, min(1.0, cos_b)))
+    g = math.acos(max(-1.0, min(1.0, cos_g)))
+    t2 = math.degrees(math.atan2(v, h) + b)
+    if t2 > 180.0:
+        t2 -= 360.0
+    return t1, t2, math.degrees(g) - 180.0
+
+
+def fk(t1, t2, t3, coxa, femur, tibia, femur_offset=0.0):
+    """Seed 004 eq. 5-7: foot (x, y, z) of joint angles in degrees."""
+    a1, a2, a23 = math.radians(t1), math.radians(t2), math.radians(t2 + t3)
+    rho = coxa + femur * math.cos(a2) + tibia * math.cos(a23)
+    return rho * math.cos(a1), rho * math.sin(a1), femur_offset + femur * math.sin(a2) + tibia * math.sin(a23)
+
+
+def _dh(theta, d, a, alpha):
+    ct, st = math.cos(theta), math.sin(theta)
+    ca, sa = math.cos(alpha), math.sin(alpha)
+    return [[ct, -st * ca, st * sa, a * ct], [st, ct * ca, -ct * sa, a * st], [0.0, sa, ca, d], [0, 0, 0, 1.0]]
+
+
+def _mul(m, n):
+    return [[sum(m[i][k] * n[k][j] for k in range(4)) for j in range(4)] for i in range(4)]
+
+
+def fk_dh(t1, t2, t3, coxa, femur, tibia, femur_offset=0.0):
+    """Seed 004 eq. 1-4: the same foot from the product of the three DH matrices (Table 2)."""
+    m = _mul(
+        _mul(_dh(math.radians(t1), femur_offset, coxa, math.pi / 2), _dh(math.radians(t2), 0.0, femur, 0.0)),
+        _dh(math.radians(t3), 0.0, tibia, 0.0),
+    )
+    # DH frame 1 has z1 along the femur axis: with alpha1 = +90 the chain's z comes out up.
+    return m[0][3], m[1][3], m[2][3]
