@@ -15,6 +15,7 @@ intermediate stays within MicroPython's small-int range (tests/test_leg_ranges.p
 from micropython import const
 
 from hexapod.fixmath import ONE, atan2, cos, isqrt, mul_q15, sin, to_cdeg
+from hexapod.units import format_fixed
 
 OK = const(0)
 TOO_FAR = const(1)
@@ -174,9 +175,13 @@ class Leg:
         t2 = atan2(v << 16, h) + atan2(yb, xb)
         if t2 > _DEG180:
             t2 -= _DEG360
-        return self._limit(to_cdeg(atan2(y, x)), to_cdeg(t2), to_cdeg(t3), out, i)
+        return self.accept(to_cdeg(atan2(y, x)), to_cdeg(t2), to_cdeg(t3), out, i)
 
-    def _limit(self, t1, t2, t3, out, i):
+    def accept(self, t1, t2, t3, out, i=0):
+        """Store angles (cdeg) into out[i:i+3] when every joint is inside its limits.
+
+        Returns OK, or the first limit broken with `excess` set; out is untouched then.
+        """
         lim = self.limits
         if t1 < lim[0]:
             self.excess = lim[0] - t1
@@ -237,28 +242,19 @@ def describe(code, excess):
     if code == OK:
         return "ok"
     if code == TOO_FAR:
-        return "too far: %s mm beyond the reach" % _decimal(excess, 10)
+        return "too far: %s mm beyond the reach" % format_fixed(excess, 1)
     if code == TOO_CLOSE:
-        return "too close: %s mm inside the minimum reach" % _decimal(excess, 10)
+        return "too close: %s mm inside the minimum reach" % format_fixed(excess, 1)
     if code == OUT_OF_RANGE:
         return "out of range: a coordinate is %s mm past the +-%s mm accepted" % (
-            _decimal(excess, 10),
-            _decimal(COORD_MAX, 10),
+            format_fixed(excess, 1),
+            format_fixed(COORD_MAX, 1),
         )
     if COXA_LOW <= code <= TIBIA_HIGH:
         k = code - COXA_LOW
         return "%s %s its limit by %s deg" % (
             _JOINTS[k >> 1],
             "above" if k & 1 else "below",
-            _decimal(excess, 100),
+            format_fixed(excess, 2),
         )
     return "unknown reason %d" % code
-
-
-def _decimal(value, scale):
-    """value / scale (scale 10 or 100) as a decimal string: 1234, 100 -> '12.34'."""
-    sign = "-" if value < 0 else ""
-    value = -value if value < 0 else value
-    if scale == 10:
-        return "%s%d.%d" % (sign, value // 10, value % 10)
-    return "%s%d.%02d" % (sign, value // 100, value % 100)

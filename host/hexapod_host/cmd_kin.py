@@ -1,0 +1,113 @@
+"""`hexapod ik` and `hexapod fk`: one leg's kinematics at the edge, in mm and degrees."""
+
+import io
+import os
+import sys
+
+from hexapod.leg import COXA_MAX, DEFAULT_LIMITS, LINK_MAX, OFFSET_MAX, Leg
+from hexapod.units import parse_fixed
+from hexapod_host import mpvm
+from hexapod_host.cli import UsageError
+from hexapod_host.vm import kin
+
+KIN_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(kin.__file__)), "kin.py")
+
+# Seed 004's leg (Table 3: a1 = 3, d1 = 3.2, a2 = 8.5, a3 = 12.5 cm) is the default.
+DEFAULTS = {"coxa": "30", "femur": "85", "tibia": "125", "femur_offset": "32"}
+
+
+def _add_leg_options(p):
+    g = p.add_argument_group("leg geometry (mm) and joint limits (degrees)")
+    g.add_argument("--coxa", default=DEFAULTS["coxa"], help="coxa length, mm (default 30)")
+    g.add_argument("--femur", default=DEFAULTS["femur"], help="femur length, mm (default 85)")
+    g.add_argument("--tibia", default=DEFAULTS["tibia"], help="tibia length, mm (default 125)")
+    g.add_argument(
+        "--femur-offset", default=DEFAULTS["femur_offset"], help="femur joint height above the coxa origin, mm"
+    )
+    g.add_argument(
+        "--limits",
+        nargs=6,
+        metavar=("CMIN", "CMAX", "FMIN", "FMAX", "TMIN", "TMAX"),
+        help="joint limits in degrees (default -90 90 -90 90 -180 0)",
+    )
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.add_argument(
+        "--runtime",
+        choices=("cpython", "micropython"),
+        default="cpython",
+        help="run the firmware code here or inside the MicroPython VM (identical output)",
+    )
+
+
+def register(sub):
+    p = sub.add_parser("ik", help="joint angles (degrees) of a foot position (mm, leg frame)")
+    p.add_argument("values", nargs="*", metavar="X Y Z", help="foot position, mm")
+    p.add_argument("--batch", action="store_true", help="read 'x y z' lines from stdin, one answer per line")
+    _add_leg_options(p)
+    p.set_defaults(func=run_ik)
+    p = sub.add_parser("fk", help="foot position (mm, leg frame) of joint angles (degrees)")
+    p.add_argument("values", nargs="*", metavar="T1 T2 T3", help="coxa, femur, tibia angles, degrees")
+    _add_leg_options(p)
+    p.set_defaults(func=run_fk)
+
+
+def _fixed(name, text, places, lo, hi, unit):
+    try:
+        value = parse_fixed(text, places)
+    except ValueError as err:
+        raise UsageError("--%s: %s" % (name, err)) from None
+    if value < lo or value > hi:
+        scale = 10**places
+        raise UsageError(
+            "--%s: %s %s is outside the allowed %g..%g %s" % (name, text, unit, lo / scale, hi / scale, unit)
+        )
+    return value
+
+
+def geometry_words(args):
+    """The leg options as the kin engine's integer words; UsageError names a bad one."""
+    g = [
+        _fixed("coxa", args.coxa, 1, 0, COXA_MAX, "mm"),
+        _fixed("femur", args.femur, 1, 1, LINK_MAX, "mm"),
+        _fixed("tibia", args.tibia, 1, 1, LINK_MAX, "mm"),
+        _fixed("femur-offset", args.femur_offset, 1, -OFFSET_MAX, OFFSET_MAX, "mm"),
+    ]
+    if args.limits is None:
+        g += list(DEFAULT_LIMITS)
+    else:
+        g += [_fixed("limits", w, 2, -18000, 18000, "deg") for w in args.limits]
+    try:
+        Leg(coxa=g[0], femur=g[1], tibia=g[2], femur_offset=g[3], limits=g[4:])
+    except ValueError as err:
+        raise UsageError(str(err)) from None
+    return [str(v) for v in g]
+
+
+def _run(mode, args):
+    if mode != "ik-batch" and len(args.values) != 3:
+        raise UsageError("need 3 numbers, got %d: %s" % (len(args.values), " ".join(args.values) or "none"))
+    if mode == "ik-batch" and args.values:
+        raise UsageError("--batch reads stdin; drop the values %s" % " ".join(args.values))
+    argv = [mode, "1" if args.json else "0"] + geometry_words(args) + list(args.values)
+    if args.runtime == "cpython":
+        return kin.run(argv, sys.stdin, sys.stdout, sys.stderr)
+    stdin = sys.stdin.buffer.read() if mode == "ik-batch" else b""
+    status, out, err = mpvm.run_script_status(KIN_SCRIPT, argv, stdin)
+    sys.stdout.write(out)
+    sys.stderr.write(err)
+    return status
+
+
+def run_ik(args):
+    return _run("ik-batch" if args.batch else "ik", args)
+
+
+def run_fk(args):
+    return _run("fk", args)
+
+
+def run_in_process(argv_words, stdin_text=""):
+    """Test helper: the engine's (status, stdout, stderr) on CPython for given words."""
+    out, err = io.StringIO(), io.StringIO()
+    status = kin.run(argv_words, io.StringIO(stdin_text), out, err)
+    return status, out.getvalue(), err.getvalue()

@@ -1,0 +1,8 @@
+"""Stub of MicroPython's `machine` module for CPython and the MicroPython unix VM.
+
+Placed first on sys.path, it overrides the VM's built-in module. The pieces live in
+sibling modules so that each hardware edge can grow on its own:
+  _stub_clock.py  virtual clock (ticks_us, ticks_ms, ticks_diff, sleep)
+  _stub_pins.py   Pin, time_pulse_us, WDT, freq, reset_cause, unique_id
+  _stub_i2c.py    I2C, SoftI2C on a bus model to which chip models attach
+"""
