@@ -678,12 +678,15 @@ def atan2(y, x):
     # 2**15 for ay << 15 to fit, and it is shifted down with rounding when it is not.
     if ay >= 32768:
         k = 1
-        while (ay >> k) >= 32768:
+        while (ay >> k) >= 32767:  # 32767 leaves room for the rounding carry
             k += 1
-        half = 1 << (k - 1)
-        ay = (ay + half) >> k
-        ax = (ax + half) >> k
-    t = ((ay << 15) + (ax >> 1)) // ax
+        # Round half up; the dropped top bit is added back, so no sum passes 2**30.
+        ay = (ay >> k) + ((ay >> (k - 1)) & 1)
+        ax = (ax >> k) + ((ax >> (k - 1)) & 1)
+    num = ay << 15
+    t = num // ax
+    if num - t * ax >= ax - (num - t * ax):  # round to nearest without forming num + ax / 2
+        t += 1
     i = t >> _ATAN_SHIFT
     if i >= 256:
         a = _ATAN[256]
@@ -694,7 +697,8 @@ def atan2(y, x):
         a = _DEG90 - a
     if x < 0:
         a = _DEG180 - a
-    return -a if y < 0 else a
+    # -180 and +180 degrees are one direction: report it as +180.
+    return -a if y < 0 and a != _DEG180 else a
 
 
 def to_cdeg(a):

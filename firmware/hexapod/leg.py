@@ -40,7 +40,6 @@ DEFAULT_LIMITS = (-9000, 9000, -9000, 9000, -18000, 0)
 _DEG180 = const(1800000)  # 180 degrees in fixmath.ANGLE_UNIT
 _DEG360 = const(3600000)
 _TWO28 = const(268435456)
-_TWO29 = const(536870912)
 
 _JOINTS = ("coxa", "femur", "tibia")
 
@@ -50,8 +49,10 @@ def _sqrt12(vi, vf):
     # Scale by the largest even power of two that fits: a small value (near full
     # extension or the minimum reach) keeps all 16 fraction bits of vf.
     s = 16
-    while (vi << s) >= _TWO29:
+    lim = 8192  # 2**29 >> s: compare before shifting, so no product passes 2**30
+    while vi >= lim:
         s -= 2
+        lim <<= 2
     n = (vi << s) + (vf >> (16 - s))
     r = isqrt(n)
     # 4 to 10 more bits from one Newton step on the remainder (rem <= 2r < 2**16).
