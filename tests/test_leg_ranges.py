@@ -96,7 +96,7 @@ def probe_points(g, rnd):
         for z in (0, g.femur_offset + g.reach, g.femur_offset - g.reach, 30000, -30000, 30001, g.femur_offset):
             yield x, y, z
     for c in (g.reach, g.reach - 1, g.min_reach, g.min_reach + 1, g.reach // 2):
-        for k in range(40):
+        for _k in range(40):
             a = rnd.uniform(-math.pi, math.pi)
             p = rnd.uniform(-math.pi / 2, math.pi / 2)
             r = max(0.0, c * math.cos(p) + g.coxa)

@@ -16,6 +16,24 @@ import pytest
 
 from hexapod_host import mpvm
 
+# Source text for VM scripts: heap_bytes(fn, arg) runs fn(arg) with the collector off and
+# returns the heap bytes it left allocated. Locals only: a new global would grow the
+# module dict inside the measurement.
+HEAP_PROBE = """
+import gc
+
+
+def heap_bytes(fn, arg):
+    fn(arg)
+    gc.collect()
+    gc.disable()
+    before = gc.mem_alloc()
+    fn(arg)
+    after = gc.mem_alloc()
+    gc.enable()
+    return after - before
+"""
+
 
 class CPythonRuntime:
     name = "cpython"

@@ -1,0 +1,119 @@
+"""Decimal text <-> fixed point (both runtimes), and the servo pulse map."""
+
+import pytest
+
+from hexapod.servo import ABOVE_MAX, BELOW_MIN, OK, ServoMap
+from hexapod.units import format_fixed, parse_fixed
+
+PARSE = """
+from hexapod.units import parse_fixed, format_fixed
+for text, places in CASES:
+    try:
+        v = parse_fixed(text, places)
+        print(v, format_fixed(v, places))
+    except ValueError as err:
+        print("error", err)
+"""
+
+CASES = [
+    ("12.34", 2),
+    ("-0.005", 2),
+    ("0.004", 2),
+    ("+7", 1),
+    (".5", 1),
+    ("5.", 1),
+    ("-12.35", 1),
+    ("999999999", 0),
+    ("1234567890", 0),
+    ("abc", 2),
+    ("1e5", 2),
+    ("nan", 2),
+    ("-inf", 2),
+    ("", 1),
+    ("-", 1),
+    ("1.2.3", 1),
+    ("--1", 1),
+    ("0x10", 1),
+    ("1_000", 1),
+    (" 3.25 ", 2),
+]
+
+
+def test_parse_and_format_identical_in_both_runtimes(rt):
+    out = rt.run("CASES = %r\n%s" % (CASES, PARSE)).splitlines()
+    assert out[:9] == [
+        "1234 12.34",
+        "-1 -0.01",
+        "0 0.00",
+        "70 7.0",
+        "5 0.5",
+        "50 5.0",
+        "-124 -12.4",
+        "999999999 999999999",
+        "error '1234567890' is too large",
+    ]
+    assert all(line.startswith("error ") and "is not a number" in line for line in out[9:19]), out[9:19]
+    assert out[19] == "325 3.25"
+
+
+def test_format_fixed_round_trips():
+    for v in range(-30000, 30001, 7):
+        for places in (0, 1, 2, 3):
+            assert parse_fixed(format_fixed(v, places), places) == v
+
+
+def test_seed001_pulse_map():
+    s = ServoMap()
+    out = [0]
+    for cdeg, us in ((-9000, 600), (0, 1500), (9000, 2400), (4550, 1955), (-1, 1500), (5, 1501)):
+        assert s.pulse(cdeg, out, 0) == OK and out[0] == us, cdeg
+    r = ServoMap(direction=-1, centre_us=1450, min_us=700, max_us=2300)
+    assert r.raw(4000) == 1050 and r.angle(1050) == 4000
+    out[0] = 1234
+    assert r.pulse(9000, out, 0) == BELOW_MIN and r.excess == 150 and out[0] == 1234  # out untouched
+    assert r.pulse(-9000, out, 0) == ABOVE_MAX and r.excess == 50
+    assert r.clamp(3000) == 2300 and r.clamp(10) == 700 and r.clamp(1500) == 1500
+
+
+@pytest.mark.parametrize(
+    "kwargs,message",
+    [
+        ({"centre_us": 400}, "centre_us: 400 is outside 500..2500 us"),
+        ({"min_us": 2600}, "min_us: 2600 is outside"),
+        ({"max_us": 499}, "max_us: 499 is outside"),
+        ({"min_us": 1600}, "need min_us <= centre_us <= max_us"),
+        ({"max_us": 1400}, "need min_us <= centre_us <= max_us"),
+        ({"direction": 0}, "direction: 0, allowed 1 or -1"),
+        ({"direction": 2}, "direction: 2, allowed 1 or -1"),
+        ({"us_per_degree": 0}, "us_per_degree: 0 is outside 100..5000"),
+        ({"us_per_degree": 10.0}, "us_per_degree: 10.0 is outside"),
+        ({"centre_us": 1500.5}, "centre_us: 1500.5 is outside"),
+        ({"min_us": "600"}, "min_us: '600' is outside"),
+    ],
+)
+def test_bad_servo_calibration_is_refused(kwargs, message):
+    with pytest.raises(ValueError, match=message.replace("(", r"\(").replace(".", r"\.")):
+        ServoMap(**kwargs)
+
+
+@pytest.mark.parametrize(
+    "kwargs,message",
+    [
+        ({"coxa": -1}, "coxa: -1 is outside the allowed 0..1500"),
+        ({"femur": 0}, "femur: 0 is outside the allowed 1..2500"),
+        ({"tibia": 2501}, "tibia: 2501 is outside"),
+        ({"tibia": 12.5}, "tibia: need a whole number, got 12.5"),
+        ({"femur": True}, "femur: need a whole number, got True"),
+        ({"femur_offset": 1501}, "femur_offset: 1501 is outside"),
+        ({"limits": (0, 1, 2)}, "limits: need 6 values"),
+        ({"limits": (100, -100, 0, 0, -100, 0)}, "coxa min 100 cdeg is above its max -100 cdeg"),
+        ({"limits": (0, 0, 0, 0, 0, 18001)}, "tibia max limit: 18001 is outside"),
+        ({"limits": (0, 0, "a", 0, 0, 0)}, "femur min limit: need a whole number"),
+    ],
+)
+def test_bad_leg_geometry_is_refused(kwargs, message):
+    from hexapod.leg import Leg
+
+    args = {"coxa": 300, "femur": 850, "tibia": 1250, **kwargs}
+    with pytest.raises(ValueError, match=message.replace("(", r"\(").replace(".", r"\.")):
+        Leg(**args)
