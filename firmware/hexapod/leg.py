@@ -12,6 +12,9 @@ the solve stays well-conditioned near full extension and near the minimum reach.
 intermediate stays within MicroPython's small-int range (tests/test_leg_ranges.py checks).
 """
 
+import sys
+from array import array
+
 from micropython import const
 
 from hexapod.fixmath import ONE, atan2, cos, isqrt, mul_q15, sin, to_cdeg
@@ -42,6 +45,23 @@ _DEG360 = const(3600000)
 _TWO28 = const(268435456)
 
 _JOINTS = ("coxa", "femur", "tibia")
+
+# Slots of a leg's solver array: geometry in (0.1 mm, 0.1 mm^2), result out (0.1 mm, cdeg).
+# The geometry slots hold no negative number: viper's ptr32 loads are unsigned.
+G_COXA = const(0)
+G_OFFSET_UP = const(1)  # femur_offset when above the coxa origin, else 0
+G_OFFSET_DOWN = const(2)  # -femur_offset when below it, else 0
+G_REACH = const(3)
+G_MIN_REACH = const(4)
+G_SUM2 = const(5)  # (femur + tibia)^2
+G_DIF2 = const(6)  # (femur - tibia)^2
+G_FEMUR2 = const(7)
+G_TIBIA2 = const(8)
+G_EXCESS = const(9)
+G_T1 = const(10)
+G_T2 = const(11)
+G_T3 = const(12)
+G_SIZE = const(13)
 
 
 def _sqrt12(vi, vf):
@@ -94,89 +114,32 @@ class Leg:
         self.limits = tuple(limits)
         self.reach = femur + tibia  # longest femur-joint-to-foot distance, 0.1 mm
         self.min_reach = femur - tibia if femur > tibia else tibia - femur
-        self._sum2 = self.reach * self.reach
-        self._dif2 = self.min_reach * self.min_reach
-        self._ab2 = femur * femur - tibia * tibia
         self.excess = 0  # by how much the last refused solve missed: 0.1 mm or cdeg
+        # The solver's own geometry and result slots (G_*), made once: the solve allocates nothing.
+        g = array("i", [0] * G_SIZE)
+        g[G_COXA] = coxa
+        g[G_OFFSET_UP] = femur_offset if femur_offset > 0 else 0
+        g[G_OFFSET_DOWN] = -femur_offset if femur_offset < 0 else 0
+        g[G_REACH] = self.reach
+        g[G_MIN_REACH] = self.min_reach
+        g[G_SUM2] = self.reach * self.reach
+        g[G_DIF2] = self.min_reach * self.min_reach
+        g[G_FEMUR2] = femur * femur
+        g[G_TIBIA2] = tibia * tibia
+        self._g = g
+        self._solver = solve if _solve_fast is None else _solve_fast
 
     def ik(self, x, y, z, out, i=0):
         """Joint angles (cdeg) of the foot at (x, y, z), 0.1 mm, into out[i:i+3].
 
         Returns OK, or a reason code with `excess` set; out is untouched on refusal.
         """
-        if x > COORD_MAX or x < -COORD_MAX or y > COORD_MAX or y < -COORD_MAX or z > COORD_MAX or z < -COORD_MAX:
-            m = x if x >= 0 else -x
-            if y > m or -y > m:
-                m = y if y >= 0 else -y
-            if z > m or -z > m:
-                m = z if z >= 0 else -z
-            self.excess = m - COORD_MAX
-            return OUT_OF_RANGE
-        a1 = self.coxa
-        reach = self.reach
-        v = z - self.femur_offset
-        big = a1 + reach
-        if x > big or x < -big or y > big or y < -big or v > reach or v < -reach:
-            return self._far(x, y, v)
-        r2 = x * x + y * y
-        # r = sqrt(r2) = (rj + fk / 2**16) / 2**j, with r2 scaled into [2**28, 2**30).
-        j = 0
-        rj = 0
-        fk = 0
-        if r2:
-            n = r2
-            while n < _TWO28:
-                n <<= 2
-                j += 1
-            rj = isqrt(n)
-            rem = n - rj * rj
-            d = rj << 1
-            # f = rem / (2 rj + f): divide by the denominator with f's first guess in it,
-            # 16 quotient bits in two steps of 8 so that no numerator passes 2**29.
-            d4 = (d << 4) + (rem << 4) // d
-            num = rem << 12
-            q = num // d4
-            fk = (q << 8) + (((num - q * d4) << 8) // d4)
-        # 2 * coxa * r = ti + tf / 2**16, exactly to 16 fraction bits.
-        mm = (a1 * rj) << 1
-        ti = mm >> j
-        tf = ((mm - (ti << j)) << (16 - j)) + (((a1 * fk) << 1) >> j)
-        ti += tf >> 16
-        tf &= 65535
-        # c^2 = ci - tf / 2**16: squared distance from the femur joint to the foot.
-        ci = r2 + a1 * a1 + v * v - ti
-        pi = self._sum2 - ci  # P = (femur + tibia)^2 - c^2 = pi + tf / 2**16
-        if pi < 0:
-            self.excess = isqrt(ci - 1) + 1 - reach
-            return TOO_FAR
-        qi = ci - self._dif2  # Q = c^2 - (femur - tibia)^2 = qi + qf / 2**16
-        qf = 0
-        if tf:
-            qi -= 1
-            qf = 65536 - tf
-        if qi < 0:
-            self.excess = self.min_reach - isqrt(ci)
-            return TOO_CLOSE
-        sp = _sqrt12(pi, tf)
-        sq = _sqrt12(qi, qf)
-        # Knee: tan(gamma / 2) = sqrt(Q / P); theta3 = gamma - 180 degrees.
-        t3 = (atan2(sq, sp) << 1) - _DEG180
-        # Femur-joint angle between femur and foot line: atan2(sqrt(PQ), a^2 + c^2 - b^2),
-        # both at scale 2**4 (sqrt(PQ) has scale 2**(24 - e) with e <= 20).
-        e1 = _bits_over_15(sp)
-        e2 = _bits_over_15(sq)
-        g = 20 - e1 - e2
-        yb = (sp >> e1) * (sq >> e2)
-        if g > 0:
-            yb = (yb + (1 << (g - 1))) >> g
-        xb = ((self._ab2 + ci) << 4) - (tf >> 12)
-        # Foot line seen from the femur joint: h = r - coxa and v at scale 2**16 (both are
-        # below 2**13 here). h is formed at scale 2**j first, so it stays exact when small.
-        h = ((rj - (a1 << j)) << (16 - j)) + (fk >> j)
-        t2 = atan2(v << 16, h) + atan2(yb, xb)
-        if t2 > _DEG180:
-            t2 -= _DEG360
-        return self.accept(to_cdeg(atan2(y, x)), to_cdeg(t2), to_cdeg(t3), out, i)
+        g = self._g
+        code = self._solver(x, y, z, g)
+        if code:
+            self.excess = g[G_EXCESS]
+            return code
+        return self.accept(g[G_T1], g[G_T2], g[G_T3], out, i)
 
     def accept(self, t1, t2, t3, out, i=0):
         """Store angles (cdeg) into out[i:i+3] when every joint is inside its limits.
@@ -207,19 +170,6 @@ class Leg:
         out[i + 2] = t3
         return OK
 
-    def _far(self, x, y, v):
-        """TOO_FAR for a point past the coarse bounds; excess to within about 0.5 mm."""
-        # Quartered coordinates keep the squares of points up to COORD_MAX below 2**30.
-        xs = x >> 2
-        ys = y >> 2
-        h = (isqrt(xs * xs + ys * ys) << 2) - self.coxa
-        hs = h >> 2
-        vs = v >> 2
-        self.excess = (isqrt(hs * hs + vs * vs) << 2) - self.reach
-        if self.excess < 1:
-            self.excess = 1
-        return TOO_FAR
-
     def fk(self, t1, t2, t3, out, i=0):
         """Foot position (x, y, z), 0.1 mm, of joint angles in cdeg, into out[i:i+3]."""
         t23 = t2 + t3
@@ -229,6 +179,107 @@ class Leg:
         out[i + 1] = (mul_q15(rho, sin(t1)) + 16384) >> 15
         out[i + 2] = self.femur_offset + ((zq + 16384) >> 15)
         return OK
+
+
+def solve(x, y, z, g):
+    """IK of one foot (0.1 mm, leg frame) with the geometry in g (G_* slots).
+
+    Returns OK with theta1..3 (cdeg) in g[G_T1..G_T3], or TOO_FAR, TOO_CLOSE or
+    OUT_OF_RANGE with g[G_EXCESS] (0.1 mm); joint limits are the caller's (Leg.accept).
+    """
+    if x > COORD_MAX or x < -COORD_MAX or y > COORD_MAX or y < -COORD_MAX or z > COORD_MAX or z < -COORD_MAX:
+        m = x if x >= 0 else -x
+        if y > m or -y > m:
+            m = y if y >= 0 else -y
+        if z > m or -z > m:
+            m = z if z >= 0 else -z
+        g[G_EXCESS] = m - COORD_MAX
+        return OUT_OF_RANGE
+    a1 = g[G_COXA]
+    reach = g[G_REACH]
+    v = z - g[G_OFFSET_UP] + g[G_OFFSET_DOWN]
+    big = a1 + reach
+    if x > big or x < -big or y > big or y < -big or v > reach or v < -reach:
+        # Far outside: quartered coordinates keep the squares below 2**30 (excess +-0.5 mm).
+        xs = x >> 2
+        ys = y >> 2
+        hs = ((isqrt(xs * xs + ys * ys) << 2) - a1) >> 2
+        vs = v >> 2
+        m = (isqrt(hs * hs + vs * vs) << 2) - reach
+        g[G_EXCESS] = m if m > 0 else 1
+        return TOO_FAR
+    r2 = x * x + y * y
+    # r = sqrt(r2) = (rj + fk / 2**16) / 2**j, with r2 scaled into [2**28, 2**30).
+    j = 0
+    rj = 0
+    fk = 0
+    if r2:
+        n = r2
+        while n < _TWO28:
+            n <<= 2
+            j += 1
+        rj = isqrt(n)
+        rem = n - rj * rj
+        d = rj << 1
+        # f = rem / (2 rj + f): divide by the denominator with f's first guess in it,
+        # 16 quotient bits in two steps of 8 so that no numerator passes 2**29.
+        d4 = (d << 4) + (rem << 4) // d
+        num = rem << 12
+        q = num // d4
+        fk = (q << 8) + (((num - q * d4) << 8) // d4)
+    # 2 * coxa * r = ti + tf / 2**16, exactly to 16 fraction bits.
+    mm = (a1 * rj) << 1
+    ti = mm >> j
+    tf = ((mm - (ti << j)) << (16 - j)) + (((a1 * fk) << 1) >> j)
+    ti += tf >> 16
+    tf &= 65535
+    # c^2 = ci - tf / 2**16: squared distance from the femur joint to the foot.
+    ci = r2 + a1 * a1 + v * v - ti
+    pi = g[G_SUM2] - ci  # P = (femur + tibia)^2 - c^2 = pi + tf / 2**16
+    if pi < 0:
+        g[G_EXCESS] = isqrt(ci - 1) + 1 - reach
+        return TOO_FAR
+    qi = ci - g[G_DIF2]  # Q = c^2 - (femur - tibia)^2 = qi + qf / 2**16
+    qf = 0
+    if tf:
+        qi -= 1
+        qf = 65536 - tf
+    if qi < 0:
+        g[G_EXCESS] = g[G_MIN_REACH] - isqrt(ci)
+        return TOO_CLOSE
+    sp = _sqrt12(pi, tf)
+    sq = _sqrt12(qi, qf)
+    # Knee: tan(gamma / 2) = sqrt(Q / P); theta3 = gamma - 180 degrees.
+    t3 = (atan2(sq, sp) << 1) - _DEG180
+    # Femur-joint angle between femur and foot line: atan2(sqrt(PQ), a^2 + c^2 - b^2),
+    # both at scale 2**4 (sqrt(PQ) has scale 2**(24 - e) with e <= 20).
+    e1 = _bits_over_15(sp)
+    e2 = _bits_over_15(sq)
+    e = 20 - e1 - e2
+    yb = (sp >> e1) * (sq >> e2)
+    if e > 0:
+        yb = (yb + (1 << (e - 1))) >> e
+    xb = ((g[G_FEMUR2] - g[G_TIBIA2] + ci) << 4) - (tf >> 12)
+    # Foot line seen from the femur joint: h = r - coxa and v at scale 2**16 (both are
+    # below 2**13 here). h is formed at scale 2**j first, so it stays exact when small.
+    h = ((rj - (a1 << j)) << (16 - j)) + (fk >> j)
+    t2 = atan2(v << 16, h) + atan2(yb, xb)
+    if t2 > _DEG180:
+        t2 -= _DEG360
+    g[G_T1] = to_cdeg(atan2(y, x))
+    g[G_T2] = to_cdeg(t2)
+    g[G_T3] = to_cdeg(t3)
+    return OK
+
+
+# The same solve compiled by the viper emitter where MicroPython has one (hexapod/_ikfast.py,
+# proven equal to `solve` by tests/test_ikfast.py); CPython and CircuitPython use `solve`.
+_solve_fast = None
+if sys.implementation.name == "micropython":
+    try:
+        from hexapod._ikfast import solve as _solve_fast
+    except Exception:  # no viper emitter on this build
+        _solve_fast = None
 
 
 def _check_int(name, value, lo, hi):

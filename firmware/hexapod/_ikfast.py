@@ -1,0 +1,202 @@
+"""hexapod.leg.solve compiled by MicroPython's viper emitter: the same integer steps, run as
+machine code. Imported by leg.py only on MicroPython, and only if the port has viper.
+
+Viper integers are machine words (32 bits on a board); every value here stays below 2**30
+(tests/test_leg_ranges.py) and tests/test_ikfast.py proves this file returns exactly what
+the plain `solve` returns, code, excess and angles, on well over 100,000 feet.
+"""
+
+from array import array
+
+import micropython
+from micropython import const
+
+from hexapod.fixmath import _ATAN
+
+# Reason codes and solver slots as in hexapod.leg (viper folds only local consts).
+_OK = const(0)
+_TOO_FAR = const(1)
+_TOO_CLOSE = const(2)
+_OUT_OF_RANGE = const(9)
+_COORD_MAX = const(30000)
+_G_COXA = const(0)
+_G_OFFSET_UP = const(1)
+_G_OFFSET_DOWN = const(2)
+_G_REACH = const(3)
+_G_MIN_REACH = const(4)
+_G_SUM2 = const(5)
+_G_DIF2 = const(6)
+_G_FEMUR2 = const(7)
+_G_TIBIA2 = const(8)
+_G_EXCESS = const(9)
+_G_T1 = const(10)
+_G_T2 = const(11)
+_G_T3 = const(12)
+
+_ATAN_WORDS = array("i", _ATAN)
+
+
+@micropython.viper
+def _isqrt(n: int) -> int:
+    if n <= 0:
+        return 0
+    x = 32768
+    if n < 67108864:
+        x = 8192
+        if n < 4194304:
+            x = 2048
+            if n < 262144:
+                x = 512
+                if n < 16384:
+                    x = 128
+                    if n < 1024:
+                        x = 32
+    y = (x + n // x) >> 1
+    while y < x:
+        x = y
+        y = (x + n // x) >> 1
+    return x
+
+
+@micropython.viper
+def _atan2(y: int, x: int) -> int:
+    if x == 0 and y == 0:
+        return 0
+    ax = x if x >= 0 else 0 - x
+    ay = y if y >= 0 else 0 - y
+    steep = 0
+    if ay > ax:
+        steep = 1
+        t = ax
+        ax = ay
+        ay = t
+    if ay >= 32768:
+        k = 1
+        while (ay >> k) >= 32767:
+            k += 1
+        ay = (ay >> k) + ((ay >> (k - 1)) & 1)
+        ax = (ax >> k) + ((ax >> (k - 1)) & 1)
+    num = ay << 15
+    t = num // ax
+    if num - t * ax >= ax - (num - t * ax):
+        t += 1
+    table = ptr32(_ATAN_WORDS)  # noqa: F821 (a viper built-in)
+    i = t >> 7
+    if i >= 256:
+        a = table[256]
+    else:
+        lo = table[i]
+        a = lo + (((table[i + 1] - lo) * (t & 127) + 64) >> 7)
+    if steep:
+        a = 900000 - a
+    if x < 0:
+        a = 1800000 - a
+    if y < 0 and a != 1800000:
+        return 0 - a
+    return a
+
+
+@micropython.viper
+def _sqrt12(vi: int, vf: int) -> int:
+    s = 16
+    lim = 8192
+    while vi >= lim:
+        s -= 2
+        lim <<= 2
+    n = (vi << s) + (vf >> (16 - s))
+    r = int(_isqrt(n))
+    k = 12 - (s >> 1)
+    return (r << k) + (((n - r * r) << k) // ((r << 1) + 1))
+
+
+@micropython.viper
+def _bits_over_15(v: int) -> int:
+    e = 0
+    while (v >> e) >= 32768:
+        e += 1
+    return e
+
+
+@micropython.viper
+def solve(x: int, y: int, z: int, gbuf) -> int:
+    g = ptr32(gbuf)  # noqa: F821 (a viper built-in)
+    if x > _COORD_MAX or x < 0 - _COORD_MAX or y > _COORD_MAX or y < 0 - _COORD_MAX:
+        return int(_out_of_range(x, y, z, gbuf))
+    if z > _COORD_MAX or z < 0 - _COORD_MAX:
+        return int(_out_of_range(x, y, z, gbuf))
+    a1 = g[_G_COXA]
+    reach = g[_G_REACH]
+    v = z - g[_G_OFFSET_UP] + g[_G_OFFSET_DOWN]
+    big = a1 + reach
+    if x > big or x < 0 - big or y > big or y < 0 - big or v > reach or v < 0 - reach:
+        xs = x >> 2
+        ys = y >> 2
+        hs = ((int(_isqrt(xs * xs + ys * ys)) << 2) - a1) >> 2
+        vs = v >> 2
+        m = (int(_isqrt(hs * hs + vs * vs)) << 2) - reach
+        g[_G_EXCESS] = m if m > 0 else 1
+        return _TOO_FAR
+    r2 = x * x + y * y
+    j = 0
+    rj = 0
+    fk = 0
+    if r2:
+        n = r2
+        while n < 268435456:
+            n <<= 2
+            j += 1
+        rj = int(_isqrt(n))
+        rem = n - rj * rj
+        d = rj << 1
+        d4 = (d << 4) + (rem << 4) // d
+        num = rem << 12
+        q = num // d4
+        fk = (q << 8) + (((num - q * d4) << 8) // d4)
+    mm = (a1 * rj) << 1
+    ti = mm >> j
+    tf = ((mm - (ti << j)) << (16 - j)) + (((a1 * fk) << 1) >> j)
+    ti += tf >> 16
+    tf &= 65535
+    ci = r2 + a1 * a1 + v * v - ti
+    pi = g[_G_SUM2] - ci
+    if pi < 0:
+        g[_G_EXCESS] = int(_isqrt(ci - 1)) + 1 - reach
+        return _TOO_FAR
+    qi = ci - g[_G_DIF2]
+    qf = 0
+    if tf:
+        qi -= 1
+        qf = 65536 - tf
+    if qi < 0:
+        g[_G_EXCESS] = g[_G_MIN_REACH] - int(_isqrt(ci))
+        return _TOO_CLOSE
+    sp = int(_sqrt12(pi, tf))
+    sq = int(_sqrt12(qi, qf))
+    t3 = (int(_atan2(sq, sp)) << 1) - 1800000
+    e1 = int(_bits_over_15(sp))
+    e2 = int(_bits_over_15(sq))
+    e = 20 - e1 - e2
+    yb = (sp >> e1) * (sq >> e2)
+    if e > 0:
+        yb = (yb + (1 << (e - 1))) >> e
+    xb = ((g[_G_FEMUR2] - g[_G_TIBIA2] + ci) << 4) - (tf >> 12)
+    h = ((rj - (a1 << j)) << (16 - j)) + (fk >> j)
+    t2 = int(_atan2(v << 16, h)) + int(_atan2(yb, xb))
+    if t2 > 1800000:
+        t2 -= 3600000
+    g[_G_T1] = (int(_atan2(y, x)) + 50) // 100
+    g[_G_T2] = (t2 + 50) // 100
+    g[_G_T3] = (t3 + 50) // 100
+    return _OK
+
+
+@micropython.viper
+def _out_of_range(x: int, y: int, z: int, gbuf) -> int:
+    g = ptr32(gbuf)  # noqa: F821 (a viper built-in)
+    m = x if x >= 0 else 0 - x
+    if y > m or 0 - y > m:
+        m = y if y >= 0 else 0 - y
+    if z > m or 0 - z > m:
+        m = z if z >= 0 else 0 - z
+    g[_G_EXCESS] = m - _COORD_MAX
+    return _OUT_OF_RANGE
