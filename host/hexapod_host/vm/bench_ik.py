@@ -5,6 +5,7 @@ import json
 import math
 import time
 
+from hexapod import leg as leg_module
 from hexapod.leg import Leg
 
 COXA, FEMUR, TIBIA, OFFSET = 300, 850, 1250, 320  # seed 004's leg, 0.1 mm
@@ -46,32 +47,48 @@ def six_float(leg, out):
         i += 3
 
 
-def measure(fn, leg, out, rounds):
+def heap_bytes(fn, leg, out):
     fn(leg, out)
     gc.collect()
     gc.disable()
     before = gc.mem_alloc()
     fn(leg, out)
-    heap = gc.mem_alloc() - before
+    after = gc.mem_alloc()
     gc.enable()
+    return after - before
+
+
+def time_us(fn, leg, out, rounds):
     gc.collect()
-    best = None
-    for _ in range(5):
-        t0 = time.ticks_us()
-        for _ in range(rounds):
-            fn(leg, out)
-        us = time.ticks_diff(time.ticks_us(), t0)
-        if best is None or us < best:
-            best = us
-    return best / rounds, heap
+    t0 = time.ticks_us()
+    for _ in range(rounds):
+        fn(leg, out)
+    return time.ticks_diff(time.ticks_us(), t0) / rounds
+
+
+def best_interleaved(cases, rounds, repeats=7):
+    """Best time per call of each case; cases take turns, so machine load hits all alike."""
+    best = [None] * len(cases)
+    for _ in range(repeats):
+        for k in range(len(cases)):
+            us = time_us(cases[k][0], cases[k][1], cases[k][2], rounds)
+            if best[k] is None or us < best[k]:
+                best[k] = us
+    return best
 
 
 def main(rounds=2000):
     leg = Leg(coxa=COXA, femur=FEMUR, tibia=TIBIA, femur_offset=OFFSET)
     out_fixed = [0] * 18
     out_float = [0] * 18
-    fixed_us, fixed_bytes = measure(six_fixed, leg, out_fixed, rounds)
-    float_us, float_bytes = measure(six_float, leg, out_float, rounds)
+    # The same solve without the viper emitter, as CircuitPython and ports without viper run it.
+    viper = leg._solver is not leg_module.solve
+    plain = Leg(coxa=COXA, femur=FEMUR, tibia=TIBIA, femur_offset=OFFSET)
+    plain._solver = leg_module.solve
+    out_plain = [0] * 18
+    cases = ((six_fixed, leg, out_fixed), (six_float, leg, out_float), (six_fixed, plain, out_plain))
+    fixed_bytes, float_bytes, plain_bytes = (heap_bytes(*c) for c in cases)
+    fixed_us, float_us, plain_us = best_interleaved(cases, rounds)
     worst = 0
     for k in range(18):
         d = abs(out_fixed[k] - out_float[k])
@@ -86,6 +103,10 @@ def main(rounds=2000):
                 "fixed_us": round(fixed_us, 2),
                 "float_us": round(float_us, 2),
                 "ratio": round(fixed_us / float_us, 3),
+                "viper": viper,
+                "plain_us": round(plain_us, 2),
+                "plain_bytes": plain_bytes,
+                "plain_ratio": round(plain_us / float_us, 3),
                 "fixed_bytes": fixed_bytes,
                 "float_bytes": float_bytes,
                 "max_diff_cdeg": worst,
