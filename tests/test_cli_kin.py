@@ -46,11 +46,11 @@ def test_fk_inverts_ik(capsys):
 
 def test_json_and_geometry_options(capsys):
     status, out, _ = run(
-        capsys, "ik", "0", "13.7", "0", "--coxa", "3", "--femur", "4.5", "--tibia", "6.2", "--femur-offset", "0"
+        capsys, "ik", "0", "137", "0", "--coxa", "30", "--femur", "45", "--tibia", "62", "--femur-offset", "0"
     )
     assert status == 0 and out.split() == ["90.00", "0.00", "0.00"]
     status, out, _ = run(
-        capsys, "ik", "0", "13.7", "0", "--coxa=3", "--femur=4.5", "--tibia=6.2", "--femur-offset=0", "--json"
+        capsys, "ik", "0", "137", "0", "--coxa=30", "--femur=45", "--tibia=62", "--femur-offset=0", "--json"
     )
     assert json.loads(out) == {"reachable": True, "theta1_deg": 90.0, "theta2_deg": 0.0, "theta3_deg": 0.0}
     status, out, _ = run(capsys, "fk", "10", "20", "-30", "--json")
@@ -80,7 +80,7 @@ BAD = [
     (("ik", "1", "NaN", "3"), "y: 'NaN' is not a number"),
     (("ik", "1", "2", "inf"), "z: 'inf' is not a number"),
     (("ik", "1", "2", "1e3"), "z: '1e3' is not a number"),
-    (("ik", "1", "2", "3", "--femur", "-85"), "--femur: -85 mm is outside the allowed 0.1..250 mm"),
+    (("ik", "1", "2", "3", "--femur", "-85"), "--femur: -85 mm is outside the allowed 10..250 mm"),
     (("ik", "1", "2", "3", "--tibia", "0"), "--tibia: 0 mm is outside"),
     (("ik", "1", "2", "3", "--coxa", "-1"), "--coxa: -1 mm is outside"),
     (("ik", "1", "2", "3", "--coxa", "x"), "--coxa: 'x' is not a number"),

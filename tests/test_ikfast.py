@@ -15,8 +15,8 @@ from hexapod import _ikfast as F
 
 geoms = []
 for coxa in (0, 300, 1500):
-    for femur in (1, 450, 850, 2500):
-        for tibia in (1, 620, 1250, 2500):
+    for femur in (100, 450, 850, 2500):
+        for tibia in (100, 620, 1250, 2500):
             for off in (-1500, -320, 0, 320, 1500):
                 geoms.append((coxa, femur, tibia, off))
 legs = [L.Leg(coxa=c, femur=f, tibia=t, femur_offset=o) for c, f, t, o in geoms]

@@ -84,7 +84,10 @@ def test_instrumentation_catches_an_overflow():
 
 def extreme_legs(lg):
     for coxa, femur, tibia, off in itertools.product(
-        (0, lg.COXA_MAX), (1, 700, lg.LINK_MAX), (1, 1300, lg.LINK_MAX), (-lg.OFFSET_MAX, 0, lg.OFFSET_MAX)
+        (0, lg.COXA_MAX),
+        (lg.LINK_MIN, 700, lg.LINK_MAX),
+        (lg.LINK_MIN, 1300, lg.LINK_MAX),
+        (-lg.OFFSET_MAX, 0, lg.OFFSET_MAX),
     ):
         yield lg.Leg(coxa=coxa, femur=femur, tibia=tibia, femur_offset=off, limits=(-18000, 18000) * 3)
 

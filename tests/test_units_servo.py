@@ -100,7 +100,7 @@ def test_bad_servo_calibration_is_refused(kwargs, message):
     "kwargs,message",
     [
         ({"coxa": -1}, "coxa: -1 is outside the allowed 0..1500"),
-        ({"femur": 0}, "femur: 0 is outside the allowed 1..2500"),
+        ({"femur": 99}, "femur: 99 is outside the allowed 100..2500"),
         ({"tibia": 2501}, "tibia: 2501 is outside"),
         ({"tibia": 12.5}, "tibia: need a whole number, got 12.5"),
         ({"femur": True}, "femur: need a whole number, got True"),

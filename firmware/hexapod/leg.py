@@ -33,6 +33,7 @@ OUT_OF_RANGE = const(9)
 
 COORD_MAX = const(30000)  # largest |x|, |y|, |z| accepted, 0.1 mm (3 m)
 COXA_MAX = const(1500)  # longest coxa, 0.1 mm
+LINK_MIN = const(100)  # shortest femur or tibia, 0.1 mm (10 mm: no servo link is shorter)
 LINK_MAX = const(2500)  # longest femur or tibia, 0.1 mm
 OFFSET_MAX = const(1500)  # largest |femur_offset|, 0.1 mm
 ANGLE_MAX = const(18000)  # joint limits lie within +-180 degrees, centidegrees
@@ -94,8 +95,8 @@ class Leg:
     def __init__(self, *, coxa, femur, tibia, femur_offset=0, limits=DEFAULT_LIMITS):
         """Lengths in 0.1 mm; limits = (coxa_min, coxa_max, femur_min, ..., tibia_max), cdeg."""
         _check_int("coxa", coxa, 0, COXA_MAX)
-        _check_int("femur", femur, 1, LINK_MAX)
-        _check_int("tibia", tibia, 1, LINK_MAX)
+        _check_int("femur", femur, LINK_MIN, LINK_MAX)
+        _check_int("tibia", tibia, LINK_MIN, LINK_MAX)
         _check_int("femur_offset", femur_offset, -OFFSET_MAX, OFFSET_MAX)
         if len(limits) != 6:
             raise ValueError("limits: need 6 values (min, max for coxa, femur, tibia), got %d" % len(limits))

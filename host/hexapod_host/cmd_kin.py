@@ -4,7 +4,7 @@ import io
 import os
 import sys
 
-from hexapod.leg import COXA_MAX, DEFAULT_LIMITS, LINK_MAX, OFFSET_MAX, Leg
+from hexapod.leg import COXA_MAX, DEFAULT_LIMITS, LINK_MAX, LINK_MIN, OFFSET_MAX, Leg
 from hexapod.units import parse_fixed
 from hexapod_host import mpvm
 from hexapod_host.cli import UsageError
@@ -68,8 +68,8 @@ def geometry_words(args):
     """The leg options as the kin engine's integer words; UsageError names a bad one."""
     g = [
         _fixed("coxa", args.coxa, 1, 0, COXA_MAX, "mm"),
-        _fixed("femur", args.femur, 1, 1, LINK_MAX, "mm"),
-        _fixed("tibia", args.tibia, 1, 1, LINK_MAX, "mm"),
+        _fixed("femur", args.femur, 1, LINK_MIN, LINK_MAX, "mm"),
+        _fixed("tibia", args.tibia, 1, LINK_MIN, LINK_MAX, "mm"),
         _fixed("femur-offset", args.femur_offset, 1, -OFFSET_MAX, OFFSET_MAX, "mm"),
     ]
     if args.limits is None:
