@@ -24,8 +24,8 @@ MAX_RANGE = const(40000)  # 4 m
 TRIGGER_US = const(10)
 MIN_CYCLE_US = const(60000)  # datasheet: >= 60 ms between pings of one module
 RISE_US = const(1000)  # allowance for the 8-cycle 40 kHz burst before echo rises
-_SHIFT = const(13)
-_HALF = const(4096)  # rounding for >> _SHIFT
+_SHIFT = const(14)
+_HALF = const(8192)  # rounding for >> _SHIFT
 
 FRONT = const(0)
 LEFT_FRONT = const(1)
@@ -71,8 +71,8 @@ class MedianRanger:
         """Air temperature in 0.01 degC; recomputes the scale and the timeout (not for the tick)."""
         _check_int("temp_centi_c", temp_centi_c, -4000, 6000, "(0.01 degC)")
         self.temp_centi_c = temp_centi_c
-        # 0.1 mm per us of echo = c[0.01 mm/s] / 2e7; kept as a 2**13 fixed-point factor so that
-        # echo_us * k stays below 2**30 for any echo up to 4 m (about 24000 us * 14600).
+        # 0.1 mm per us of echo = c[0.01 mm/s] / 2e7, as a 2**14 fixed-point factor: echo_us * k
+        # stays below 2**30 (a small int on a 32-bit board) up to the 4 m timeout at -40..60 degC.
         self._k = (speed_x100(temp_centi_c) * (1 << _SHIFT) + 10000000) // 20000000
         rt = round_trip_us(self.max_range, temp_centi_c)
         self.timeout_us = rt + rt // 16 + RISE_US  # per phase of time_pulse_us
