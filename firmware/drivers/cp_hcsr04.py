@@ -30,6 +30,10 @@ class HCSR04(MedianRanger):
     """One HC-SR04 on CircuitPython; trigger_pin/echo_pin are `board` pins, clock is `time`."""
 
     def __init__(self, trigger_pin, echo_pin, clock, *, max_range=10000, temp_centi_c=2000, samples=5, timeout_s=None):
+        if timeout_s is not None and (
+            not isinstance(timeout_s, (int, float)) or isinstance(timeout_s, bool) or not 0.001 <= timeout_s <= 1
+        ):
+            raise ValueError("timeout_s: %r, allowed 0.001..1 s" % (timeout_s,))
         self._clock = clock
         self._last_ns = 0
         self._fired = False
@@ -37,8 +41,6 @@ class HCSR04(MedianRanger):
         MedianRanger.__init__(self, samples, max_range, temp_centi_c)
         if timeout_s is None:
             self._timeout_s = max(ADAFRUIT_MIN_TIMEOUT_S, self.timeout_us / 1000000)
-        elif not isinstance(timeout_s, (int, float)) or not 0.001 <= timeout_s <= 1:
-            raise ValueError("timeout_s: %r, allowed 0.001..1 s" % (timeout_s,))
         self.max_block_us = self._block_us()
         self.sonar = adafruit_hcsr04.HCSR04(trigger_pin, echo_pin, timeout=self._timeout_s)
 

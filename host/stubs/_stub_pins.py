@@ -87,6 +87,11 @@ def _next_change(w, t_us):
     return w.model.next_change(w.pin_id, t_us)
 
 
+def next_edge(pin_id, t_us):
+    """Unwrapped us of the line's next level change after t_us, -1 if none (for fake peripherals)."""
+    return _next_change(_wire(pin_id), t_us)
+
+
 def level(pin_id):
     """The level on pin_id now, as the board would read it (for tests)."""
     return _read(_wire(pin_id), clock.now_us())
