@@ -28,7 +28,7 @@ class _Check:
 
     def __init__(self, board):
         self.name = "?"
-        if isinstance(board, dict) and isinstance(board.get("name"), str):
+        if isinstance(board, dict) and isinstance(board.get("name"), str) and board["name"]:
             self.name = board["name"]
 
     def fail(self, where, msg):
