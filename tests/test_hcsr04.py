@@ -292,9 +292,10 @@ def test_round_robin_plan_is_valid_and_shortest(rt, n, tick_ms, neighbours, cycl
     assert len(slots) == shortest_cycle(n, tick_ms, neighbours, cycle_ms, crosstalk_ms)
 
 
-def test_five_sensors_in_the_loop_read_right_without_breaking_any_rule(rt):
+@pytest.mark.parametrize("start", [0, PERIOD - 250000])
+def test_five_sensors_in_the_loop_read_right_without_breaking_any_rule(rt, start):
     src = (
-        rig()
+        rig(start=start)
         + """
 rr = drv.RoundRobin(sensors)
 worst = run(rr, 100)
