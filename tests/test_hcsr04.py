@@ -444,6 +444,9 @@ except ValueError as e:
         ("sensors, tick_ms=0", "tick_ms: 0"),
         ("sensors, neighbours=((0, 5),)", "neighbours: (0, 5)"),
         ("sensors, neighbours=((2, 2),)", "neighbours: (2, 2)"),
+        ("sensors, neighbours=(3,)", "neighbours: 3"),
+        ("sensors, crosstalk_ms=1000", "no round robin of 5 sensors fits neighbours 1000 ms apart"),
+        ("sensors, neighbours=((0, 1.5),)", "neighbours: (0, 1.5)"),
         ("[]", "at least one"),
         ("sensors, tick_ms=10", "lower max_range"),
         (

@@ -222,7 +222,13 @@ class RoundRobin:
         _check_int("cycle_ms", cycle_ms, 0, 10000, "ms")
         _check_int("crosstalk_ms", crosstalk_ms, 0, 10000, "ms")
         for pair in neighbours:
-            if len(pair) != 2 or pair[0] == pair[1] or not (0 <= pair[0] < n and 0 <= pair[1] < n):
+            if (
+                not isinstance(pair, (tuple, list))
+                or len(pair) != 2
+                or pair[0] not in range(n)
+                or pair[1] not in range(n)
+                or pair[0] == pair[1]
+            ):
                 raise ValueError("neighbours: %r, allowed pairs of two different indices 0..%d" % (pair, n - 1))
         worst = 0
         for s in sensors:
