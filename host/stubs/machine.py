@@ -6,3 +6,21 @@ sibling modules so that each hardware edge can grow on its own:
   _stub_pins.py   Pin, time_pulse_us, WDT, freq, reset_cause, unique_id
   _stub_i2c.py    I2C, SoftI2C on a bus model to which chip models attach
 """
+
+from _stub_pins import (  # noqa: F401  (re-exported: this module is the board's `machine`)
+    DEEPSLEEP_RESET,
+    HARD_RESET,
+    PWRON_RESET,
+    SOFT_RESET,
+    WDT,
+    WDT_RESET,
+    Pin,
+    disable_irq,
+    enable_irq,
+    freq,
+    idle,
+    lightsleep,
+    reset_cause,
+    time_pulse_us,
+    unique_id,
+)

@@ -1,0 +1,50 @@
+"""ESP32 DevKit (ESP32-WROOM-32) on MicroPython: two PCA9685 boards on I2C0, five HC-SR04.
+
+Pins are GPIO numbers. Triggers on output-capable pins away from the boot straps (0, 2, 5,
+12, 15) and the flash (6..11); echoes on input-only 34, 35, 36 (VP), 39 (VN) and on 32.
+The ESP32 is 3.3 V only: every echo line goes through a 1k/2k divider (docs/wiring.md).
+Calibration rows are the seed 001 defaults: measure your own servos and replace them.
+"""
+
+BOARD = {
+    "name": "esp32_devkit",
+    "runtime": "micropython",
+    "i2c": {"id": 0, "sda": 21, "scl": 22, "freq": 400000},
+    "pca9685": {
+        "pwm_hz": 50,
+        "chips": (  # osc_hz: each chip's measured oscillator (nominal 25 MHz, often a few % off)
+            {"address": 0x40, "osc_hz": 25000000},  # right legs 1-3
+            {"address": 0x41, "osc_hz": 25000000},  # left legs 4-6 (A0 jumper bridged)
+        ),
+    },
+    # Femur and tibia servos of the left side are mounted mirrored, hence direction -1.
+    "servos": (
+        # leg, joint, chip, channel, centre_us, direction, min_us, max_us
+        (1, "coxa", 0x40, 0, 1500, 1, 600, 2400),
+        (1, "femur", 0x40, 1, 1500, 1, 600, 2400),
+        (1, "tibia", 0x40, 2, 1500, 1, 600, 2400),
+        (2, "coxa", 0x40, 3, 1500, 1, 600, 2400),
+        (2, "femur", 0x40, 4, 1500, 1, 600, 2400),
+        (2, "tibia", 0x40, 5, 1500, 1, 600, 2400),
+        (3, "coxa", 0x40, 6, 1500, 1, 600, 2400),
+        (3, "femur", 0x40, 7, 1500, 1, 600, 2400),
+        (3, "tibia", 0x40, 8, 1500, 1, 600, 2400),
+        (4, "coxa", 0x41, 0, 1500, 1, 600, 2400),
+        (4, "femur", 0x41, 1, 1500, -1, 600, 2400),
+        (4, "tibia", 0x41, 2, 1500, -1, 600, 2400),
+        (5, "coxa", 0x41, 3, 1500, 1, 600, 2400),
+        (5, "femur", 0x41, 4, 1500, -1, 600, 2400),
+        (5, "tibia", 0x41, 5, 1500, -1, 600, 2400),
+        (6, "coxa", 0x41, 6, 1500, 1, 600, 2400),
+        (6, "femur", 0x41, 7, 1500, -1, 600, 2400),
+        (6, "tibia", 0x41, 8, 1500, -1, 600, 2400),
+    ),
+    "sensors": (
+        # name, trigger pin, echo pin, x, y (0.1 mm, body frame), heading (0.01 deg, 0 = forward, left +)
+        ("front", 25, 34, 1300, 0, 0),
+        ("left_front", 26, 35, 700, 650, 9000),
+        ("left_rear", 27, 36, -700, 650, 9000),
+        ("right_front", 14, 39, 700, -650, -9000),
+        ("right_rear", 33, 32, -700, -650, -9000),
+    ),
+}

@@ -1,0 +1,241 @@
+"""Board files and their validation: the three boards pass; many mutations of them fail with a clear
+ValueError naming the board, the place and the rule, identically on CPython and MicroPython."""
+
+import pytest
+
+BOARDS = ("pico", "esp32_devkit", "feather_rp2040")
+DELETE = "<delete>"
+APPEND = "<append>"
+
+PRELUDE = """
+from hexapod import board as hb
+import boards.pico
+import boards.esp32_devkit
+import boards.feather_rp2040
+GOOD = {"pico": boards.pico.BOARD, "esp32_devkit": boards.esp32_devkit.BOARD,
+        "feather_rp2040": boards.feather_rp2040.BOARD}
+
+
+def thaw(o):
+    if isinstance(o, dict):
+        return dict((k, thaw(v)) for k, v in o.items())
+    if isinstance(o, (tuple, list)):
+        return [thaw(v) for v in o]
+    return o
+
+
+def mutated(name, path, value):
+    b = thaw(GOOD[name])
+    if not path:
+        return value
+    o = b
+    for k in path[:-1]:
+        o = o[k]
+    if value == "<delete>":
+        del o[path[-1]]
+    elif isinstance(value, tuple) and value and value[0] == "<append>":
+        o[path[-1]].append(value[1])
+    else:
+        o[path[-1]] = value
+    return b
+
+
+def check(b):
+    try:
+        hb.validate(b)
+        return "accepted"
+    except ValueError as e:
+        return str(e)
+"""
+
+P, E, F = BOARDS
+# (board, path, new value, fragment the message must contain)
+MUTATIONS = [
+    (P, (), [], "board '?': board: expected a dict, got list"),
+    (P, ("i2cc",), {}, "unknown key 'i2cc'"),
+    (P, ("servos",), DELETE, "board: missing key 'servos'"),
+    (P, ("name",), "", "name: '', allowed a non-empty identifier"),
+    (P, ("name",), 5, "name: 5, allowed"),
+    (P, ("runtime",), "cpython", "runtime: 'cpython', allowed micropython or circuitpython"),
+    (P, ("i2c",), None, "i2c: expected a dict, got NoneType"),
+    (P, ("i2c", "id"), -1, "i2c.id: -1, allowed 0..9"),
+    (P, ("i2c", "id"), None, "i2c.id: None, allowed 0..9"),
+    (P, ("i2c", "freq"), 5000000, "i2c.freq: 5000000, allowed 10000..1000000 Hz"),
+    (P, ("i2c", "freq"), 400000.0, "i2c.freq: 400000.0"),
+    (P, ("i2c", "sda"), 5, "i2c.scl: pin 5 is already used as i2c.sda"),
+    (P, ("i2c", "scl"), DELETE, "i2c: missing key 'scl'"),
+    (P, ("i2c", "baud"), 1, "i2c: unknown key 'baud' (allowed: id, sda, scl, freq)"),
+    (P, ("i2c", "sda"), 99, "i2c.sda: 99, allowed a GPIO number 0..63 or a pin name"),
+    (P, ("i2c", "sda"), "4x-", "i2c.sda: '4x-', allowed a GPIO number"),
+    (P, ("i2c", "sda"), True, "i2c.sda: True, allowed"),
+    (F, ("i2c", "sda"), 3, "i2c.sda: 3, allowed a `board` pin name such as 'D5'"),
+    (F, ("i2c", "id"), "0", "i2c.id: '0', allowed 0..9"),
+    (P, ("pca9685", "pwm_hz"), 1000, "pca9685.pwm_hz: 1000, allowed 40..333 Hz"),
+    (P, ("pca9685", "chips"), [], "pca9685.chips: no chip given"),
+    (P, ("pca9685", "chips"), 0x40, "pca9685.chips: expected a tuple of chip dicts, got int"),
+    (P, ("pca9685", "chips", 1, "address"), 0x40, "pca9685.chips[1].address: 0x40 is listed twice"),
+    (P, ("pca9685", "chips", 1, "address"), 0x70, "0x70 is the PCA9685 all-call address"),
+    (P, ("pca9685", "chips", 0, "address"), 0x20, "pca9685.chips[0].address: 32, allowed 64..127"),
+    (P, ("pca9685", "chips", 0, "osc_hz"), 30000000, "pca9685.chips[0].osc_hz: 30000000, allowed 22500000..27500000"),
+    (P, ("pca9685", "chips", 0), (0x40, 25000000), "pca9685.chips[0]: expected a dict, got tuple"),
+    (P, ("pca9685", "chips", 0, "trim"), 1, "pca9685.chips[0]: unknown key 'trim'"),
+    (P, ("pca9685", "chips", 1), DELETE, "servos[9] (leg 4 coxa) address: 65 is not one of the chips (0x40)"),
+    (P, ("servos", 1, 3), 0, "servos[1] (leg 1 femur): chip 0x40 channel 0 already drives leg 1 coxa"),
+    (E, ("servos", 17, 3), 0, "servos[17] (leg 6 tibia): chip 0x41 channel 0 already drives leg 4 coxa"),
+    (P, ("servos", 17), DELETE, "servos: missing servo leg 6 tibia"),
+    (P, ("servos",), [], "servos: missing servo leg 1 coxa"),
+    (P, ("servos", 4, 0), 1, "servos[4] (leg 1 femur): listed twice (first at servos[1])"),
+    (P, ("servos", 0, 0), 7, "servos[0] leg: 7, allowed 1..6"),
+    (P, ("servos", 0, 0), "1", "servos[0] leg: '1', allowed 1..6"),
+    (P, ("servos", 0, 1), "knee", "servos[0] joint: 'knee', allowed coxa, femur, tibia"),
+    (P, ("servos", 0, 2), 0x42, "servos[0] (leg 1 coxa) address: 66 is not one of the chips (0x40, 0x41)"),
+    (P, ("servos", 0, 2), True, "servos[0] (leg 1 coxa) address: True is not one of the chips"),
+    (P, ("servos", 0, 3), 16, "servos[0] (leg 1 coxa) channel: 16, allowed 0..15"),
+    (P, ("servos", 0, 3), -1, "channel: -1, allowed 0..15"),
+    (P, ("servos", 0, 6), 400, "servos[0] (leg 1 coxa): min_us: 400 is outside 500..2500 us"),
+    (P, ("servos", 0, 7), 2600, "servos[0] (leg 1 coxa): max_us: 2600 is outside 500..2500 us"),
+    (P, ("servos", 3, 4), 2450, "servos[3] (leg 2 coxa): need min_us <= centre_us <= max_us, got 600, 2450, 2400"),
+    (P, ("servos", 3, 4), 100, "centre_us: 100 is outside 500..2500 us"),
+    (P, ("servos", 0, 5), 0, "servos[0] (leg 1 coxa): direction: 0, allowed 1 or -1"),
+    (P, ("servos", 0, 4), "1500", "servos[0] (leg 1 coxa) centre_us: '1500', allowed an integer"),
+    (P, ("servos", 0, 6), 500.0, "servos[0] (leg 1 coxa) min_us: 500.0, allowed an integer"),
+    (P, ("servos", 0, 5), True, "direction: True, allowed an integer"),
+    (P, ("servos", 0), [1, "coxa", 0x40, 0], "servos[0]: expected 8 items (leg, joint, address, channel,"),
+    (P, ("servos", 0), "coxa", "servos[0]: expected a tuple (leg, joint"),
+    (P, ("servos",), (APPEND, (7, "coxa", 0x41, 9, 1500, 1, 600, 2400)), "servos[18] leg: 7, allowed 1..6"),
+    (P, ("servos",), (APPEND, (6, "coxa", 0x41, 9, 1500, 1, 600, 2400)), "servos[18] (leg 6 coxa): listed twice"),
+    (P, ("servos",), None, "servos: expected a tuple of servo tuples, got NoneType"),
+    (P, ("sensors",), None, "sensors: expected a tuple of sensor tuples, got NoneType"),
+    (P, ("sensors", 0, 2), DELETE, "sensors[0]: expected 6 items (name, trigger, echo, x, y, heading), got 5"),
+    (P, ("sensors", 2, 2), None, "sensor left_rear echo: no pin given"),
+    (P, ("sensors", 2, 1), None, "sensor left_rear trigger: no pin given"),
+    (P, ("sensors", 1, 1), 7, "sensor left_front trigger: pin 7 is already used as sensor front echo"),
+    (P, ("sensors", 0, 1), 4, "sensor front trigger: pin 4 is already used as i2c.sda"),
+    (E, ("sensors", 3, 2), 34, "sensor right_front echo: pin 34 is already used as sensor front echo"),
+    (F, ("sensors", 4, 1), "SCL", "sensor right_rear trigger: pin 'SCL' is already used as i2c.scl"),
+    (F, ("sensors", 0, 1), 6, "sensor front trigger: 6, allowed a `board` pin name"),
+    (P, ("sensors", 0, 2), [7], "sensor front echo: [7], allowed a GPIO number"),
+    (P, ("sensors", 0, 0), "rear", "sensors[0] name: 'rear', allowed front, left_front, left_rear"),
+    (P, ("sensors", 1, 0), "front", "sensor front: listed twice"),
+    (P, ("sensors", 4), DELETE, "sensors: missing sensor right_rear"),
+    (P, ("sensors", 0, 5), 20000, "sensor front heading: 20000, allowed -18000..18000 (0.01 deg)"),
+    (P, ("sensors", 0, 3), 20000, "sensor front x: 20000, allowed -10000..10000 (0.1 mm)"),
+    (P, ("sensors", 0, 4), 1.5, "sensor front y: 1.5, allowed"),
+    (P, ("sensors", 0), ("front", 6, 7), "sensors[0]: expected 6 items"),
+    (P, ("sensors", 0), {}, "sensors[0]: expected a tuple (name, trigger"),
+]
+
+
+def run_mutations(rt, mutations):
+    src = PRELUDE + "print([check(mutated(n, p, v)) for n, p, v in %r])" % ([m[:3] for m in mutations],)
+    return rt.value(src)
+
+
+def test_the_three_boards_pass_and_unchanged_copies_pass_too(rt):
+    src = (
+        PRELUDE
+        + """
+out = []
+for n in %r:
+    out.append((hb.load(n) is GOOD[n], check(GOOD[n]), check(thaw(GOOD[n])), len(hb.servo_table(GOOD[n]))))
+out.append(check(mutated("pico", ("notes",), "spare servo in the drawer")))
+print(out)
+"""
+        % (BOARDS,)
+    )
+    assert rt.value(src) == [(True, "accepted", "accepted", 18)] * 3 + ["accepted"]
+
+
+def test_many_bad_boards_each_fail_with_a_clear_value_error(rt):
+    messages = run_mutations(rt, MUTATIONS)
+    for (name, path, value, fragment), msg in zip(MUTATIONS, messages, strict=True):
+        assert fragment in msg, (name, path, value, msg)
+        if path:
+            assert msg.startswith("board %r: " % (name if path != ("name",) else "?")), msg
+    assert len(set(messages)) == len(messages)  # every mutation is told apart
+
+
+def test_messages_are_identical_on_both_runtimes(both_runtimes):
+    src = PRELUDE + "print([check(mutated(n, p, v)) for n, p, v in %r])" % ([m[:3] for m in MUTATIONS],)
+    cpython, micropython = both_runtimes(src)
+    assert cpython == micropython
+
+
+@pytest.mark.parametrize("name", BOARDS)
+def test_every_channel_and_pin_mutation_is_caught(rt, name):
+    # systematic: each servo moved onto every other servo's channel, each sensor pin onto every other pin
+    src = (
+        PRELUDE
+        + """
+b = GOOD[%r]
+out = []
+for i in range(18):
+    for j in range(18):
+        if i != j:
+            m = mutated(%r, ("servos", i, 2), b["servos"][j][2])
+            m["servos"][i][3] = b["servos"][j][3]
+            out.append("already drives" in check(m))
+pins = [b["i2c"]["sda"], b["i2c"]["scl"]]
+for s in b["sensors"]:
+    pins += [s[1], s[2]]
+for k in range(5):
+    for col in (1, 2):
+        for p in pins:
+            if p != b["sensors"][k][col]:
+                out.append("is already used as" in check(mutated(%r, ("sensors", k, col), p)))
+print((len(out), out.count(True)))
+"""
+        % (name, name, name)
+    )
+    total, caught = rt.value(src)
+    assert total == 18 * 17 + 10 * 11
+    assert caught == total
+
+
+def test_a_failing_validation_changes_nothing(rt):
+    src = (
+        PRELUDE
+        + """
+b = mutated("pico", ("servos", 1, 3), 0)
+before = repr(b)
+r = check(b)
+print((repr(b) == before, "already drives" in r, repr(GOOD["pico"]) == repr(boards.pico.BOARD)))
+"""
+    )
+    assert rt.value(src) == (True, True, True)
+
+
+@pytest.mark.parametrize(
+    "name,fragment",
+    [("nope", "board 'nope': no boards/nope.py"), ("../pico", "allowed a file name"), (5, "board name 5")],
+)
+def test_loading_an_unknown_board_is_a_value_error(rt, name, fragment):
+    src = (
+        PRELUDE
+        + """
+try:
+    hb.load(%r)
+    print(repr("accepted"))
+except ValueError as e:
+    print(repr(str(e)))
+"""
+        % (name,)
+    )
+    assert fragment in rt.value(src)
+
+
+def test_tables_come_out_in_leg_joint_and_driver_order(rt):
+    src = (
+        PRELUDE
+        + """
+from drivers import hcsr04
+b = GOOD["pico"]
+t = hb.servo_table(b)
+print(([(a, c, m.direction, m.min_us) for a, c, m in t], hb.sensor_pins(b), hcsr04.SENSOR_NAMES == hb.SENSORS))
+"""
+    )
+    table, sensor_pins, same_order = rt.value(src)
+    assert same_order
+    assert table[0] == (0x40, 0, 1, 600) and table[17] == (0x41, 8, -1, 600)
+    assert [row[:2] for row in table] == [(0x40 if k < 9 else 0x41, k % 9) for k in range(18)]
+    assert sensor_pins == ((6, 7), (8, 9), (10, 11), (12, 13), (14, 15))
