@@ -6,3 +6,5 @@ sibling modules so that each hardware edge can grow on its own:
   _stub_pins.py   Pin, time_pulse_us, WDT, freq, reset_cause, unique_id
   _stub_i2c.py    I2C, SoftI2C on a bus model to which chip models attach
 """
+
+from _stub_i2c import I2C, SoftI2C  # noqa: F401
