@@ -101,7 +101,7 @@ class I2CBus:
         if kind not in _KINDS:
             raise ValueError("fault kind %r, allowed: nack, timeout, reset" % (kind,))
         if byte < 0 or count < 1:
-            raise ValueError("fault needs byte >= 0 and count >= 1, got byte=%r count=%r" % (byte, count))
+            raise ValueError("fault byte=%r count=%r, allowed byte >= 0 and count >= 1" % (byte, count))
         self._fault_addr = address
         self._fault_kind = _KINDS[kind]
         self._fault_byte = byte
