@@ -40,7 +40,9 @@ def test_absent_address_raises_like_micropython(rt, ctor, expect):
 
 
 def test_data_nack_softi2c_returns_short_count_hardware_raises(rt):
-    src = PRE + """
+    src = (
+        PRE
+        + """
 soft = machine.SoftI2C(bus=bus)
 hw = machine.I2C(0, bus=bus, port='rp2')
 res = []
@@ -52,6 +54,7 @@ res.append(list(chip.regs[6:10]))
 res.append(err(soft.writeto, 0x40, bytes([0xFE])))
 print(res)
 """
+    )
     soft, hw, regs, ok = rt.value(src)
     assert soft == ("ok", 2)  # pointer + one data byte acknowledged, the third byte NACKed
     assert hw == ("OSError", 5)
@@ -61,7 +64,9 @@ print(res)
 
 
 def test_timeout_raises_etimedout_and_reset_fault_resets_chip(rt):
-    src = PRE + """
+    src = (
+        PRE
+        + """
 i2c = machine.I2C(0, bus=bus)
 bus.fault(0x40, 'timeout', byte=0)
 a = err(i2c.writeto, 0x40, b'\\x00\\x20')
@@ -71,15 +76,19 @@ bus.fault(0x40, 'reset')
 c = err(i2c.readfrom_mem, 0x40, 0, 1)
 print([a, b, c[0], c[1][0], chip.resets - before, bus.timeouts])
 """
+    )
     assert rt.value(src) == [("OSError", 110), ("ok", 2), "ok", 0x11, 1, 1]
 
 
 def test_fault_count_covers_consecutive_transfers(rt):
-    src = PRE + """
+    src = (
+        PRE
+        + """
 i2c = machine.I2C(0, bus=bus)
 bus.fault(0x40, 'nack', byte=0, count=2)
 print([err(i2c.writeto, 0x40, b'\\x00') for _ in range(3)])
 """
+    )
     assert rt.value(src) == [("OSError", 19), ("OSError", 19), ("ok", 1)]
 
 
@@ -90,7 +99,9 @@ def bits_write(n_data):
 
 @pytest.mark.parametrize("freq, t_buf", [(400000, 1300), (100000, 4700), (1000000, 500)])
 def test_wire_figures_follow_the_documented_formula(rt, freq, t_buf):
-    src = PRE + """
+    src = (
+        PRE
+        + """
 i2c = machine.I2C(0, %d, bus=bus)
 bus.reset_stats()
 i2c.writeto(0x40, bytearray(65))
@@ -100,7 +111,9 @@ buf = bytearray(2)
 i2c.readfrom_mem_into(0x40, 0, buf)
 b = bus.stats()
 print([a['transactions'], a['bytes'], a['bits'], a['time_ns'], b['transactions'], b['bytes'], b['bits'], b['time_ns']])
-""" % freq
+"""
+        % freq
+    )
     ta, ya, ba, na, tb, yb, bb, nb = rt.value(src)
     assert (ta, ya, ba) == (1, 66, bits_write(65))
     assert na == ba * 10**9 // freq + t_buf
@@ -110,7 +123,9 @@ print([a['transactions'], a['bytes'], a['bits'], a['time_ns'], b['transactions']
 
 
 def test_mem_calls_writevto_and_addrsize(rt):
-    src = PRE + """
+    src = (
+        PRE
+        + """
 i2c = machine.SoftI2C(bus=bus)
 i2c.writeto_mem(0x40, 0x00, b'\\x30')
 i2c.writevto(0x40, (b'\\x06', b'\\x01\\x02', b'\\x03\\x04'))
@@ -119,6 +134,7 @@ bus.reset_stats()
 i2c.readfrom_mem(0x40, 0x0006, 1, addrsize=16)
 print([list(a), bus.bytes, chip.regs[0]])
 """
+    )
     regs, nbytes, mode1 = rt.value(src)
     assert regs == [1, 2, 3, 4]  # MODE1 0x30 sets AI: the burst walked LED0_ON_L..LED0_OFF_H
     assert nbytes == 1 + 2 + 1 + 1  # address, two memory address bytes, address again, data
@@ -162,7 +178,9 @@ print([machine.I2C(1).scan(), machine.I2C(0).scan()])
 
 
 def test_transfers_allocate_nothing(mp):
-    src = PRE + """
+    src = (
+        PRE
+        + """
 import gc
 i2c = machine.I2C(0, bus=bus)
 buf = bytearray(65); buf[0] = 2  # SUBADR1: no violation to record
@@ -179,4 +197,5 @@ for _ in range(10):
     go()
 print(gc.mem_alloc() - a)
 """
+    )
     assert mp.value(src) == 0

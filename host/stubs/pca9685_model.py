@@ -268,7 +268,7 @@ class PCA9685Model:
         r = self.regs
         old = r[MODE1]
         now = self._now()
-        new = (v & 0x3F) | (old & EXTCLK)
+        new = (v & 0x7F) | (old & EXTCLK)  # EXTCLK is sticky: only a reset clears it
         if v & EXTCLK and not old & EXTCLK and not (old & SLEEP and v & SLEEP):
             self._flag(_EXTCLK_AWAKE, "EXTCLK set without SLEEP set first")
         restart = old & RESTART
