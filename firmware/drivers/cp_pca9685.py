@@ -9,11 +9,10 @@ channel per transaction (18 for 18 servos) and rounds through a float duty cycle
 """
 
 import adafruit_pca9685
-from adafruit_bus_device.i2c_device import I2CDevice
 from micropython import const
 
 from drivers import pca9685
-from drivers.pca9685 import FAILED, OFFLINE, OK, RETRIED, REINIT, ServoBank  # noqa: F401  (one import for callers)
+from drivers.pca9685 import FAILED, OFFLINE, OK, REINIT, RETRIED, ServoBank  # noqa: F401  (one import for callers)
 
 _MODE1 = const(0x00)
 _AI = const(0x20)
@@ -39,7 +38,7 @@ class PCA9685(pca9685.PCA9685):
             pca.frequency = self.freq_hz
             pca.mode2_reg = _OUTDRV | _OCH
             prescale = pca.prescale_reg
-            ok = pca.mode1_reg & 0x7F == _AI and 3 <= prescale
+            ok = pca.mode1_reg & 0x7F == _AI and prescale >= 3
         except (OSError, ValueError):  # ValueError: I2CDevice's probe found nobody at the address
             ok = False
         if ok:

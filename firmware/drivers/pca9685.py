@@ -60,8 +60,9 @@ class PCA9685:
         sleep_us=None,
         ext_clock=False,
     ):
-        if not isinstance(address, int) or not 0x08 <= address <= 0x77:
-            raise ValueError("address: %r, allowed 0x08..0x77 (PCA9685: 0x40..0x7F less 0x70)" % (address,))
+        if not isinstance(address, int) or not 0x08 <= address <= 0x77 or address == 0x70:
+            # 0x70 is every PCA9685's power-on ALLCALL address: a chip strapped there collides at boot.
+            raise ValueError("address: %r, allowed 0x08..0x77 except 0x70 (PCA9685 boards: 0x40..0x6F)" % (address,))
         top = 50000000 if ext_clock else 30000000
         if not isinstance(osc_hz, int) or not 20000000 <= osc_hz <= top or osc_hz % 1000:
             raise ValueError("osc_hz: %r, allowed a whole kHz in 20000000..%d Hz" % (osc_hz, top))
@@ -85,10 +86,12 @@ class PCA9685:
         self.channels = channels
         self._set_prescale(prescale)
         step = self.count(stagger_us)
-        if (channels - 1) * step + self.count(PULSE_MAX_US) > 4095:
+        room = 4095 - self.count(PULSE_MAX_US)  # counts left for the last channel's ON time
+        if (channels - 1) * step > room:
+            top = ((room // (channels - 1) + 1) * self._den2 - self._den - 1) // self._num2
             raise ValueError(
-                "stagger_us %d: the last channel's %d us pulse would run past the %d us period"
-                % (stagger_us, PULSE_MAX_US, 1000000 // freq_hz)
+                "stagger_us: %d, allowed 0..%d us for %d channels (a %d us pulse must end inside the period)"
+                % (stagger_us, top, channels, PULSE_MAX_US)
             )
         self._on = [ch * step for ch in range(channels)]  # ON count of each channel
         self._retries = retries
