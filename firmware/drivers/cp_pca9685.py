@@ -14,7 +14,6 @@ from micropython import const
 from drivers import pca9685
 from drivers.pca9685 import FAILED, OFFLINE, OK, REINIT, RETRIED, ServoBank  # noqa: F401  (one import for callers)
 
-_MODE1 = const(0x00)
 _AI = const(0x20)
 _OCH = const(0x08)
 _OUTDRV = const(0x04)
