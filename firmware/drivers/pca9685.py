@@ -38,6 +38,14 @@ REINIT = const(4)  # the chip had reset (brownout) or came back, and was initial
 OFFLINE = const(8)  # the chip does not answer start-up: frames skipped, start-up retried
 
 
+def describe(status):
+    """Status bits as words, e.g. 'retried, reinit' (allocates: for logs, not the tick)."""
+    if not status:
+        return "ok"
+    names = ("retried", "failed", "reinit", "offline")
+    return ", ".join(names[i] for i in range(4) if status & (1 << i))
+
+
 def prescale_for(osc_hz, freq_hz):
     """PRE_SCALE for an update rate: round(osc_hz / (4096 * freq_hz)) - 1 (data sheet 7.3.5)."""
     return (osc_hz + 2048 * freq_hz) // (4096 * freq_hz) - 1
@@ -299,9 +307,13 @@ class ServoBank:
 
     def write(self, pulses_us):
         """pulses_us[k] (us) to servo k, each forced into its calibrated min..max; status bits."""
-        if len(pulses_us) != self._n:
-            raise ValueError("%d pulses for %d servos" % (len(pulses_us), self._n))
-        for k in range(self._n):
+        n = self._n
+        if len(pulses_us) != n:
+            raise ValueError("%d pulses for %d servos" % (len(pulses_us), n))
+        for k in range(n):  # refuse a bad list before staging any of it
+            if type(pulses_us[k]) is not int:
+                raise ValueError("servo %d: pulse_us %r, allowed an int (us)" % (k, pulses_us[k]))
+        for k in range(n):
             p = pulses_us[k]
             q = self._maps[k].clamp(p)
             if q != p:
