@@ -128,12 +128,12 @@ def test_adafruit_within_one_count_and_why(theirs):
         assert d in (0, 1)  # never more than one count, and never above ours
         # Why: Adafruit scales to a 16-bit duty by * 0xFFFF (not 0x10000), truncates with int(),
         # and drops 4 bits with >> 4; each step can only lose, so it floors a slightly smaller
-        # value where we round the exact one. One count apart exactly when that floor falls
-        # below our rounding: the exact count's fraction is >= 1/2, or within the scaling loss
-        # (x / 65536 plus two truncated 16-bit steps = under 1/8 count) above an integer.
+        # value where we round the exact one. The loss is x / 65536 from the scale plus under two
+        # 16-bit steps (1/8 count) from ServoKit's truncated min duty and range. So one count
+        # apart exactly when the exact count's fraction is >= 1/2, or within that loss above an integer.
         frac = x - math.floor(x)
         if d == 1:
-            assert frac >= Fraction(1, 2) or frac < Fraction(1, 8)
+            assert frac >= Fraction(1, 2) or frac < Fraction(1, 8) + x / 65536
         else:
             assert frac < Fraction(1, 2)
     assert 0 in diffs and 1 in diffs  # this pulse set shows both cases
