@@ -199,3 +199,25 @@ print(gc.mem_alloc() - a)
 """
     )
     assert mp.value(src) == 0
+
+
+def test_external_clock_is_what_chips_see(rt):
+    src = """
+import machine
+from i2c_bus import I2CBus
+from pca9685_model import PCA9685Model
+t = [0]
+bus = I2CBus(clock_us=lambda: t[0])
+chip = bus.attach(PCA9685Model(0x40))
+i2c = machine.I2C(0, bus=bus)
+i2c.writeto_mem(0x40, 0, b'\\x20')
+bus.sleep_us(1000)  # the bus's own clock no longer counts
+i2c.writeto_mem(0x40, 0, b'\\xa0')
+a = chip.violation_codes()
+chip.clear_violations()
+i2c.writeto_mem(0x40, 0, b'\\x30'); i2c.writeto_mem(0x40, 0, b'\\x20')
+t[0] += 500
+i2c.writeto_mem(0x40, 0, b'\\xa0')
+print([a, chip.violation_codes(), bus.now_us()])
+"""
+    assert rt.value(src) == [["RESTART_TOO_SOON"], [], 500]

@@ -16,7 +16,10 @@ Counting START and STOP as one SCL period each is the model's rounding of their 
 hold times (0.6 us each in Fast-mode, against a 2.5 us bit). Clock stretching is not modelled.
 
 Time: the bus keeps a clock in ns that wire time advances; sleep_us() advances it too, so a
-driver given bus.sleep_us waits in model time. A device reads it with now_us().
+driver given bus.sleep_us waits in model time. A device reads it with now_us(). Give the bus
+clock_us (a function returning monotonic us, e.g. the virtual clock's ticks_us) and now_us()
+reads that instead, so a driver sleeping on that clock is seen by the chips; wire time is
+then still counted in stats() but does not move that clock.
 
 Faults, armed with fault(address, kind, byte=0, count=1), fire on the next `count` transfers
 to that address:
@@ -52,7 +55,8 @@ def t_buf_ns(freq):
 class I2CBus:
     """Wires, pull-ups and chips: routes bytes to the chips that answer an address."""
 
-    def __init__(self):
+    def __init__(self, clock_us=None):
+        self.clock_us = clock_us
         self._devices = []
         self._selected = [None] * _MAX_SELECTED
         self._n_selected = 0
@@ -112,7 +116,9 @@ class I2CBus:
 
     # -- time -----------------------------------------------------------------------------
     def now_us(self):
-        """Model time in us (wire time plus sleeps)."""
+        """Model time in us (wire time plus sleeps), or clock_us() when the bus was given one."""
+        if self.clock_us is not None:
+            return self.clock_us()
         return self._t_ns // 1000
 
     def sleep_us(self, us):
