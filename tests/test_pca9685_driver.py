@@ -163,6 +163,8 @@ BAD = [
     "PCA9685(i2c, 0x40, freq_hz=10, sleep_us=bus.sleep_us)",
     "PCA9685(i2c, 0x40, freq_hz=50.0, sleep_us=bus.sleep_us)",
     "PCA9685(i2c, 0x40, freq_hz=2000, sleep_us=bus.sleep_us)",
+    "PCA9685(i2c, 0x40, freq_hz=400, sleep_us=bus.sleep_us)",
+    "PCA9685(i2c, 0x40, freq_hz=1526, channels=1, sleep_us=bus.sleep_us)",
     "PCA9685(i2c, 0x40, channels=0, sleep_us=bus.sleep_us)",
     "PCA9685(i2c, 0x40, channels=17, sleep_us=bus.sleep_us)",
     "PCA9685(i2c, 0x40, retries=-1, sleep_us=bus.sleep_us)",

@@ -186,3 +186,22 @@ def test_random_fault_soak_is_safe_and_identical_in_both_runtimes(both_runtimes)
     assert last == 0 and final
     assert errors > 10 and clamped > 100
     assert any(s & 1 for s in sts) and any(s & 2 for s in sts) and any(s & 4 for s in sts)
+
+
+def test_chip_put_to_sleep_and_woken_without_restart_is_recovered(rt):
+    """Someone else's sleep/wake leaves RESTART pending and the outputs stopped: the read-back sees it."""
+    src = (
+        PRE
+        + """
+b = bank(check_every=2)
+b.write(LOW)
+i2c.writeto_mem(0x40, 0, b'\\x30')
+i2c.writeto_mem(0x40, 0, b'\\x20')
+stopped = [m0.running(), m0.pulse_us(0)]
+sts = [b.write(LOW) for _ in range(3)]
+print([stopped, sts, m0.running(), near(outputs(), LOW), unsafe()])
+"""
+    )
+    stopped, sts, running, final, bad = rt.value(src)
+    assert stopped == [False, 0]
+    assert 4 in sts and running and final and bad == []

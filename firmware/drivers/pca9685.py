@@ -95,6 +95,12 @@ class PCA9685:
         self._set_prescale(prescale)
         step = self.count(stagger_us)
         room = 4095 - self.count(PULSE_MAX_US)  # counts left for the last channel's ON time
+        if room < 0:
+            period_us = 4096 * self._den // (self._num2 // 2)
+            raise ValueError(
+                "freq_hz: %d, its %d us period cannot hold a %d us servo pulse (allowed 24 Hz up to a longer period)"
+                % (freq_hz, period_us, PULSE_MAX_US)
+            )
         if (channels - 1) * step > room:
             top = ((room // (channels - 1) + 1) * self._den2 - self._den - 1) // self._num2
             raise ValueError(
@@ -214,12 +220,12 @@ class PCA9685:
         return self.flush()
 
     def check(self):
-        """Read MODE1 back; a chip found reset (SLEEP set, AI clear) is initialised again."""
+        """Read MODE1 back; a chip found reset (SLEEP set, AI clear) or stopped is initialised again."""
         self._since = 0
         mode1 = self._read_reg(_MODE1)
         if mode1 < 0:
             return FAILED
-        if mode1 & 0x7F == _AI | self._ext:
+        if mode1 == _AI | self._ext:  # RESTART set would mean outputs stopped: also a re-init
             return OK
         self.resets_seen += 1
         if self.init():
