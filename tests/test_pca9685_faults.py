@@ -1,7 +1,10 @@
 """Faults on the PCA9685 side: the loop keeps running, the fault is reported, and no channel ever
 outputs a pulse outside its servo's calibrated range (read from the chip model's outputs)."""
 
-from test_pca9685_driver import PRE as DRIVER_PRE
+try:  # tests/ is a package on main, a plain directory before
+    from .test_pca9685_driver import PRE as DRIVER_PRE
+except ImportError:
+    from test_pca9685_driver import PRE as DRIVER_PRE
 
 PRE = (
     DRIVER_PRE
