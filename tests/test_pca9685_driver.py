@@ -86,8 +86,8 @@ def test_counts_are_exact_integer_rounding(rt):
         PRE
         + """
 out = []
-for osc in (25000000, 25750000, 24250000, 26999000):
-    c = PCA9685(i2c, 0x40, osc_hz=osc, sleep_us=bus.sleep_us, check_every=0)
+for osc in (25000000, 25750000, 24250000, 26999000, 25123457, 22500001, 27499999, 49999999):
+    c = PCA9685(i2c, 0x40, osc_hz=osc, sleep_us=bus.sleep_us, check_every=0, ext_clock=osc > 30000000)
     out.append([osc, c.prescale, [c.count(us) for us in range(500, 2501, 7)]])
 print(out)
 """
@@ -157,7 +157,7 @@ BAD = [
     "PCA9685(i2c, 0x80, sleep_us=bus.sleep_us)",
     "PCA9685(i2c, 0x70, sleep_us=bus.sleep_us)",
     "PCA9685(i2c, '0x40', sleep_us=bus.sleep_us)",
-    "PCA9685(i2c, 0x40, osc_hz=25000500, sleep_us=bus.sleep_us)",
+    "PCA9685(i2c, 0x40, osc_hz=25000000.0, sleep_us=bus.sleep_us)",
     "PCA9685(i2c, 0x40, osc_hz=2500000, sleep_us=bus.sleep_us)",
     "PCA9685(i2c, 0x40, osc_hz=40000000, sleep_us=bus.sleep_us)",
     "PCA9685(i2c, 0x40, freq_hz=10, sleep_us=bus.sleep_us)",
@@ -172,6 +172,7 @@ BAD = [
     "PCA9685(i2c, 0x40, check_every=-1, sleep_us=bus.sleep_us)",
     "PCA9685(i2c, 0x40, stagger_us=-5, sleep_us=bus.sleep_us)",
     "PCA9685(i2c, 0x40, stagger_us=1500, sleep_us=bus.sleep_us)",
+    "PCA9685(i2c, 0x40, stagger_us=10**9, sleep_us=bus.sleep_us)",
     "C.stage(16, 1500)",
     "C.stage(-1, 1500)",
     "C.stage(0, 499)",

@@ -1,7 +1,7 @@
 """PCA9685 servo driver over a machine.I2C passed in (MicroPython; CPython with the stubs).
 
-Pulse widths in us in; register counts computed in integers from the board's oscillator
-trim: counts = round(pulse_us * osc_hz / (1e6 * (prescale + 1))). A chip's frame goes out as
+Pulse widths in us in; register counts computed exactly in small integers from the board's
+oscillator trim: counts = round(pulse_us * osc_hz / (1e6 * (prescale + 1))). A chip's frame goes out as
 ONE auto-increment burst from a buffer made once (two transactions for 18 servos on two
 chips), and a frame allocates nothing. I2C errors are retried `retries` times and returned
 as status bits, never raised. MODE1 is read back every `check_every` frames to catch a chip
@@ -72,8 +72,8 @@ class PCA9685:
             # 0x70 is every PCA9685's power-on ALLCALL address: a chip strapped there collides at boot.
             raise ValueError("address: %r, allowed 0x08..0x77 except 0x70 (PCA9685 boards: 0x40..0x6F)" % (address,))
         top = 50000000 if ext_clock else 30000000
-        if not isinstance(osc_hz, int) or not 20000000 <= osc_hz <= top or osc_hz % 1000:
-            raise ValueError("osc_hz: %r, allowed a whole kHz in 20000000..%d Hz" % (osc_hz, top))
+        if not isinstance(osc_hz, int) or not 20000000 <= osc_hz <= top:
+            raise ValueError("osc_hz: %r, allowed an int in 20000000..%d Hz" % (osc_hz, top))
         if not isinstance(freq_hz, int) or not 24 <= freq_hz <= 1526:
             raise ValueError("freq_hz: %r, allowed 24..1526 Hz" % (freq_hz,))
         prescale = prescale_for(osc_hz, freq_hz)
@@ -96,13 +96,20 @@ class PCA9685:
         step = self.count(stagger_us)
         room = 4095 - self.count(PULSE_MAX_US)  # counts left for the last channel's ON time
         if room < 0:
-            period_us = 4096 * self._den // (self._num2 // 2)
+            period_us = 4096 * (prescale + 1) * 1000 // (osc_hz // 1000)
             raise ValueError(
                 "freq_hz: %d, its %d us period cannot hold a %d us servo pulse (allowed 24 Hz up to a longer period)"
                 % (freq_hz, period_us, PULSE_MAX_US)
             )
         if (channels - 1) * step > room:
-            top = ((room // (channels - 1) + 1) * self._den2 - self._den - 1) // self._num2
+            lo, hi = 0, stagger_us  # the largest stagger that fits: count(lo) fits, count(hi) does not
+            while hi - lo > 1:
+                mid = (lo + hi) // 2
+                if (channels - 1) * self.count(mid) > room:
+                    hi = mid
+                else:
+                    lo = mid
+            top = lo
             raise ValueError(
                 "stagger_us: %d, allowed 0..%d us for %d channels (a %d us pulse must end inside the period)"
                 % (stagger_us, top, channels, PULSE_MAX_US)
@@ -132,14 +139,21 @@ class PCA9685:
         self.init()
 
     def _set_prescale(self, prescale):
+        # counts = pulse_us * osc_hz / (1e6 * (prescale + 1)), split so that every intermediate
+        # stays below 2**30 (MicroPython small ints): osc_hz = 1000 * khz + rem.
         self.prescale = prescale
-        self._num2 = 2 * (self.osc_hz // 1000)
+        self._khz = self.osc_hz // 1000
+        self._rem = self.osc_hz % 1000
         self._den = 1000 * (prescale + 1)
-        self._den2 = 2 * self._den
+        self._den1000 = 1000 * self._den
+        self._den2000 = 2000 * self._den
 
     def count(self, pulse_us):
-        """Register counts (ticks of (prescale+1)/osc) for pulse_us, rounded half up."""
-        return (pulse_us * self._num2 + self._den) // self._den2
+        """Register counts (ticks of (prescale+1)/osc_hz) for pulse_us (0..2500 us), rounded half up."""
+        a = pulse_us * self._khz  # <= 2500 * 50000
+        q = a // self._den
+        r = a - q * self._den
+        return q + (2 * (1000 * r + pulse_us * self._rem) + self._den1000) // self._den2000
 
     # -- start-up -------------------------------------------------------------------------
     def init(self):
@@ -175,7 +189,7 @@ class PCA9685:
         if type(pulse_us) is not int or not PULSE_MIN_US <= pulse_us <= PULSE_MAX_US:
             raise ValueError("pulse_us %r, allowed %d..%d us" % (pulse_us, PULSE_MIN_US, PULSE_MAX_US))
         on = self._on[channel]
-        off = on + (pulse_us * self._num2 + self._den) // self._den2
+        off = on + self.count(pulse_us)
         f = self._frame
         i = 1 + 4 * channel
         f[i] = on & 0xFF
