@@ -208,3 +208,21 @@ def test_fake_busio_requires_lock_like_circuitpython():
         i2c.writeto(0x40, b"\x00")
     assert e.value.args[0] == 19
     i2c.unlock()
+
+
+def test_servo_bank_from_board_same_on_both_backends():
+    from drivers.pca9685 import servo_bank
+
+    pca = {"pwm_hz": 50, "chips": tuple({"address": a, "osc_hz": o} for a, o in OSC.items())}
+    table = tuple((0x40 if k < 9 else 0x41, k % 9, ServoMap(min_us=600, max_us=2400)) for k in range(18))
+    results = []
+    for backend in ("micropython", "circuitpython"):
+        bus, models = new_bus()
+        if backend == "micropython":
+            bank = servo_bank(machine.I2C(0, bus=bus), pca, table, sleep_us=bus.sleep_us)
+        else:
+            with fakes_busio.model_time(bus):
+                bank = cp_pca9685.servo_bank(fakes_busio.I2C(bus), pca, table)
+        assert bank.write(PULSES) == 0
+        results.append([models[0x40].counts(k) for k in range(9)] + [models[0x41].counts(k) for k in range(9)])
+    assert results[0] == results[1]

@@ -286,3 +286,32 @@ print([st, c.errors, c.last_errno, c.write([1000] * 16)])
         % ctor
     )
     assert rt.value(src) == [2, 1, errno, 0]
+
+
+BOARD_PRE = """
+PCA = {"pwm_hz": 50, "chips": ({"address": 0x40, "osc_hz": 25750000}, {"address": 0x41, "osc_hz": 25000000})}
+TABLE = tuple((0x40 if k < 9 else 0x41, k % 9, ServoMap(min_us=600, max_us=2400)) for k in range(18))
+from drivers.pca9685 import servo_bank
+"""
+
+
+def test_servo_bank_from_board_layout(rt):
+    """The boards' layout: legs 1-3 on 0x40 channels 0-8, legs 4-6 on 0x41 channels 0-8."""
+    src = (
+        PRE
+        + BOARD_PRE
+        + """
+b = servo_bank(i2c, PCA, TABLE, sleep_us=bus.sleep_us, check_every=0)
+bus.reset_stats()
+st = b.write([1000 + 50 * k for k in range(18)])
+got = m0.pulses_us()[:9] + m1.pulses_us()[:9]
+wire = [bus.transactions, bus.bytes]
+bad = err(servo_bank, i2c, PCA, TABLE[:17] + ((0x42, 0, ServoMap()),), sleep_us=bus.sleep_us)
+print([st] + wire + [[c.channels for c in b.chips], got, bad[0], m0.pulses_us()[9:]])
+"""
+    )
+    st, n, nbytes, channels, got, bad, unused = rt.value(src)
+    assert (st, n, nbytes, channels) == (0, 2, 2 * (2 + 9 * 4), [9, 9])
+    assert all(abs(g - (1000 + 50 * k)) <= 3 for k, g in enumerate(got))
+    assert bad == "ValueError"
+    assert unused == [0] * 7  # channels past the burst stay full OFF

@@ -84,4 +84,9 @@ def _no_sleep(_us):
     pass
 
 
-__all__ = ["PCA9685", "ServoBank", "OK", "RETRIED", "FAILED", "REINIT", "OFFLINE"]
+def servo_bank(i2c, pca, table, **kw):
+    """drivers.pca9685.servo_bank with this backend's chips (busio.I2C in)."""
+    return pca9685.servo_bank(i2c, pca, table, chip_class=PCA9685, **kw)
+
+
+__all__ = ["PCA9685", "ServoBank", "servo_bank", "OK", "RETRIED", "FAILED", "REINIT", "OFFLINE"]

@@ -354,3 +354,20 @@ class ServoBank:
         for c in self.chips:
             status |= c.relax()
         return status
+
+
+def servo_bank(i2c, pca, table, chip_class=None, **kw):
+    """A ServoBank from a board file: pca = BOARD["pca9685"] ({"pwm_hz", "chips": ({"address", "osc_hz"},)}),
+    table = (address, channel, ServoMap) per servo (hexapod.board.servo_table); kw go to each chip."""
+    cls = chip_class or PCA9685
+    chips = []
+    index = {}
+    for c in pca["chips"]:
+        used = [row[1] for row in table if row[0] == c["address"]]
+        n = max(used) + 1 if used else 1
+        index[c["address"]] = len(chips)
+        chips.append(cls(i2c, c["address"], osc_hz=c["osc_hz"], freq_hz=pca["pwm_hz"], channels=n, **kw))
+    for k in range(len(table)):
+        if table[k][0] not in index:
+            raise ValueError("servo %d: address 0x%02x is not one of the board's PCA9685 chips" % (k, table[k][0]))
+    return ServoBank(chips, [(index[row[0]], row[1]) for row in table], [row[2] for row in table])
