@@ -4,6 +4,7 @@ import json
 import os
 
 from hexapod_host import mpvm
+from hexapod_host.bench_i2c import bench_i2c
 from hexapod_host.cli import UsageError
 
 VM_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm")
@@ -16,7 +17,7 @@ def bench_ik(args):
 
 
 # name -> function(args) returning a dict; other modules add theirs here.
-BENCHES = {"ik": bench_ik}
+BENCHES = {"ik": bench_ik, "i2c": bench_i2c}
 
 
 def register(sub):

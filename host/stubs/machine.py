@@ -7,6 +7,7 @@ sibling modules so that each hardware edge can grow on its own:
   _stub_i2c.py    I2C, SoftI2C on a bus model to which chip models attach
 """
 
+from _stub_i2c import I2C, SoftI2C  # noqa: F401
 from _stub_pins import (  # noqa: F401  (re-exported: this module is the board's `machine`)
     DEEPSLEEP_RESET,
     HARD_RESET,
