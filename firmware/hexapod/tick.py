@@ -42,7 +42,8 @@ STANDING = const(3)
 WALKING = const(4)
 MODE_NAMES = ("relaxed", "sitting", "moving", "standing", "walking")
 
-_WRAP = const(0x3FFFFFFF)  # time.ticks_ms() wraps at 2**30
+_WRAP = const(0x3FFFFFFF)
+RHO_MIN = const(50)  # a leg needs a reach disc this wide (0.1 mm) to walk  # time.ticks_ms() wraps at 2**30
 
 
 def describe(code):
@@ -324,6 +325,10 @@ class Robot:
             return BUSY if self.mode == MOVING else NOT_STANDING
         if not self.body.settled():
             return BUSY
+        if vx or vy or yaw_rate:
+            for i in range(6):
+                if self.walker.rho[i] < RHO_MIN:
+                    return UNREACHABLE  # this pose or lift leaves a leg no room to step
         self.walker.command(vx, vy, yaw_rate)
         if self.walker.state != STOPPED:
             self.mode = WALKING
@@ -341,6 +346,12 @@ class Robot:
         vx = (mul_q15(v16, cos(heading)) + 8) >> 4
         vy = (mul_q15(v16, sin(heading)) + 8) >> 4
         return self.walk(vx, vy, yaw_rate)
+
+    def walk_sweeps(self, left, right):
+        """Seed 000's turn: the command that swings the left and right middle coxas by
+        `left` and `right` cdeg per stance (right turn: 4500, 1000); then walk()."""
+        self.walker.sweep_command(left, right, self._leg)
+        return self.walk(self._leg[0], 0, self._leg[1])
 
     def stop(self):
         """Finish the steps under way and set every foot down at neutral."""

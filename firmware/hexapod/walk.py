@@ -26,7 +26,7 @@ no foot is in the air (new swings are held back until then).
 from micropython import const
 
 from hexapod.body import FINE, FINE_SHIFT
-from hexapod.fixmath import ONE, cos, isqrt, mul_q15, sin
+from hexapod.fixmath import atan2, cos, isqrt, mul_q15, sin, to_cdeg
 from hexapod.gait import TICK_MS, TRIPOD, GaitClock, check_cycle_ms, check_gait
 from hexapod.leg import OK
 from hexapod.trajectory import swing_shape
@@ -293,6 +293,80 @@ class Walker:
         out[1] = mul_q15(nx, a[1]) + mul_q15(ny, a[0]) + a[3]
         return out
 
+    def coxa_sweep(self, i, vx, w):
+        """Leg i's coxa travel (cdeg, >= 0) over one stance at (vx, 0, w), no body pose."""
+        g = self.geometry
+        self._aim_for(vx, 0, w)
+        self.target(i, self._xy)
+        a = self._coxa_angle(i, self._xy[0], self._xy[1])
+        self._aim_for(-vx, 0, -w)
+        self.target(i, self._xy)
+        b = self._coxa_angle(i, self._xy[0], self._xy[1])
+        d = a - b
+        if d > 18000:
+            d -= 36000
+        elif d < -18000:
+            d += 36000
+        return d if d >= 0 else -d
+
+    def _coxa_angle(self, i, x, y):
+        g = self.geometry
+        dx = (x >> FINE_SHIFT) - g.mount_x[i]
+        dy = (y >> FINE_SHIFT) - g.mount_y[i]
+        c = g.mount_cos[i]
+        s = g.mount_sin[i]
+        return to_cdeg(atan2(mul_q15(dy, c) - mul_q15(dx, s), mul_q15(dx, c) + mul_q15(dy, s)))
+
+    def sweep_command(self, left, right, out):
+        """(vx, yaw rate) that swings the left middle coxa by `left` and the right one by `right`
+        cdeg per stance, into out[0:2]: seed 000's turns (right turn: left 45, right 10 degrees).
+
+        The body then circles a centre on the side of the smaller sweep, as the paper's robot
+        does; the engine's own turns (yaw_rate alone) pivot about the body centre.
+        """
+        for name, v in (("left", left), ("right", right)):
+            if not _whole(v) or v < 0 or v > 9000:
+                raise ValueError("%s sweep: %r is outside 0..9000 (cdeg)" % (name, v))
+        big = left if left >= right else right
+        small = right if left >= right else left
+        if big == 0:
+            out[0] = out[1] = 0
+            return out
+        # Legs: the middle leg on the big side (leg 5 LM for a right turn) and the other one.
+        ib = 4 if left >= right else 1
+        js = 1 if left >= right else 4
+        sign = -1 if left >= right else 1  # a right turn is clockwise: negative yaw
+        lo = abs(self.geometry.mount_y[js]) + self.geometry.neutral_reach + 10
+        hi = 1000000
+        vx = 0
+        w = 0
+        for _ in range(40):
+            radius = (lo + hi) >> 1
+            # For this turning radius, the forward speed that gives the big sweep.
+            a = 0
+            b = SPEED_MAX
+            for _ in range(24):
+                m = (a + b) >> 1
+                if self.coxa_sweep(ib, m, sign * (m * 5730 // radius)) < big:
+                    a = m
+                else:
+                    b = m
+            vx = b
+            w = sign * (vx * 5730 // radius)
+            if w < -YAW_RATE_MAX or w > YAW_RATE_MAX:
+                lo = radius
+                continue
+            # Too small a sweep on the inner side means too tight a turn.
+            if self.coxa_sweep(js, vx, w) < small:
+                lo = radius
+            else:
+                hi = radius
+            if hi - lo <= 1:
+                break
+        out[0] = vx
+        out[1] = w
+        return out
+
     # -- the tick ----------------------------------------------------------------------
 
     def update(self):
@@ -303,14 +377,19 @@ class Walker:
         v = self.vel
         if self.state == STARTING and v[0] == self.cmd[0] and v[1] == self.cmd[1] and v[2] == self.cmd[2]:
             self.state = WALKING
-        self._move_body()
-        self._aim_for(v[0], v[1], v[2])
         clock = self.clock
         still = not (v[0] or v[1] or v[2])
-        airborne = 0
+        # Lift first: a foot leaving the ground this tick is not carried by the body's move,
+        # so every stance lasts exactly stance_ticks moves (what the touch-down aim assumes).
         for i in range(6):
             if self.su[i] < 0 and clock.swing_tick(i, self.phase) == 0:
                 self._maybe_lift(i, still)
+        self._move_body()
+        # Swings aim for the commanded velocity, not the ramp's: the feet land ready for it.
+        c = self.cmd
+        self._aim_for(c[0], c[1], c[2])
+        airborne = 0
+        for i in range(6):
             if self.su[i] >= 0:
                 self._swing(i, clock.swing_ticks, still)
                 if self.su[i] >= 0:

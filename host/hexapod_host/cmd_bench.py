@@ -16,7 +16,7 @@ def bench_ik(args):
 
 
 # name -> function(args) returning a dict; other modules add theirs here.
-BENCHES = {"ik": bench_ik}
+BENCHES = {"ik": bench_ik, "tick": lambda args: __import__("hexapod_host.tick_bench").tick_bench.bench_tick(args)}
 
 
 def register(sub):
