@@ -426,7 +426,7 @@ class Walker:
             if self.done[i]:
                 return
             # A foot already at neutral stays down: it has finished its step.
-            if (self.fx[i] - self.nx[i]) >> FINE_SHIFT == 0 and (self.fy[i] - self.ny[i]) >> FINE_SHIFT == 0:
+            if self.fx[i] == self.nx[i] and self.fy[i] == self.ny[i]:
                 self.done[i] = 1
                 return
         self.su[i] = 0
@@ -494,6 +494,10 @@ class Walker:
             psi -= _DEG360
         elif psi < 0:
             psi += _DEG360
+        if not (mx or my or dpsi):
+            self.cx = cx
+            self.cy = cy
+            return  # standing still: stance feet keep their exact places (no read-back rounding)
         bx = self.bx + mx
         by = self.by + my
         cd = (psi + 50) // 100
