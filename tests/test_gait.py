@@ -46,7 +46,7 @@ def test_every_leg_swings_once_per_cycle_for_its_duty(tables):
 
 
 def test_tripod_groups_alternate(tables):
-    for gait, _, ticks, swing, _, _, pattern, _ in tables:
+    for gait, _, _, swing, _, _, pattern, _ in tables:
         if gait != 0:
             continue
         for row in pattern:
@@ -69,7 +69,7 @@ def test_ripple_wave_tetrapod_keep_enough_feet_down(tables):
 
 
 def test_wave_and_ripple_run_rear_to_front(tables):
-    for gait, _, ticks, swing, _, _, pattern, _ in tables:
+    for gait, _, ticks, _, _, _, pattern, _ in tables:
         if gait not in (2, 3):
             continue
         first = {leg: next(p for p in range(ticks) if pattern[p][leg] and not pattern[p - 1][leg]) for leg in range(6)}

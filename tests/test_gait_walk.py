@@ -174,9 +174,9 @@ for target in (2, 3, 1, 0):
         n += 1
     print([target, w.clock.gait, n, air, w.phase, sum(1 for i in range(6) if w.su[i] >= 0)])
     run(57)
-"""
+""",
     )
-    for target, now, n, air_before, phase, air_after in rows:
+    for target, now, n, _air_before, phase, air_after in rows:
         assert now == target
         assert n < 200
         # The switch came at the end of a tick with every foot down; the new gait starts
@@ -199,7 +199,7 @@ for L, theta in ((300, 0), (250, 4500), (200, 9000), (280, -13500)):
     while w.su[0] >= 0:
         run(1)
     print([L, theta, half, cmd, w.scale_permille, (w.fx[0] - w.nx[0]) >> 4, (w.fy[0] - w.ny[0]) >> 4])
-"""
+""",
     )
     for L, theta, half, cmd, scale, dx, dy in rows:
         assert scale == 1000
@@ -242,9 +242,9 @@ def test_commands_beyond_reach_are_scaled_not_refused(both_runtimes):
 for cmd in ((3000, 0, 0), (0, -3000, 0), (0, 0, 9000), (2000, 2000, -6000), (500, 0, 0)):
     robot.walk(cmd[0], cmd[1], cmd[2])
     print([list(cmd), w.scale_permille, list(w.cmd), w.step, min(w.rho)])
-"""
+""",
     )
-    for cmd, scale, scaled, step, rho in rows:
+    for cmd, scale, scaled, _step, _rho in rows:
         if cmd == [500, 0, 0]:
             assert scale == 1000 and scaled == cmd
         else:
@@ -284,7 +284,10 @@ BAD_WALKS = [
 
 def test_bad_commands_raise_and_change_nothing(both_runtimes):
     body = "robot.walk(800, 0, 300)\nrun(77)\n"
-    body += "snap = lambda: [robot.mode, w.state, list(w.cmd), w.step, w.lift, w.clock.gait, w.clock.cycle_ms, list(robot.body.target), w.ground]\n"
+    body += (
+        "snap = lambda: [robot.mode, w.state, list(w.cmd), w.step, w.lift, w.clock.gait, w.clock.cycle_ms,"
+        " list(robot.body.target), w.ground]\n"
+    )
     body += "before = snap()\n"
     for call, _ in BAD_WALKS:
         body += "try:\n    %s\n    print('ACCEPTED')\nexcept ValueError as e:\n    print(repr(str(e)))\n" % call

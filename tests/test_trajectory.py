@@ -96,7 +96,9 @@ print([sin90_fine(t, s) for s in (1, 3, 7, 90, 1000) for t in range(-s, s + 1, m
 """
     )
     want = [
-        round(math.sin(math.radians(t * 90 / s)) * 2**40) for s in (1, 3, 7, 90, 1000) for t in range(-s, s + 1, max(1, s // 7))
+        round(math.sin(math.radians(t * 90 / s)) * 2**40)
+        for s in (1, 3, 7, 90, 1000)
+        for t in range(-s, s + 1, max(1, s // 7))
     ]
     assert max(abs(a - b) for a, b in zip(got, want, strict=True)) <= 1
 

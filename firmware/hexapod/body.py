@@ -66,7 +66,7 @@ class Body:
         """True when the pose has reached its target."""
         p = self.pose
         t = self.target
-        for k in range(9):
+        for k in range(9):  # noqa: SIM110 (a generator would allocate in the tick)
             if p[k] != t[k]:
                 return False
         return True

@@ -110,7 +110,8 @@ def from_data(name, data):
         code = leg.ik(g.neutral_reach, 0, -h, out)
         if code != OK:
             raise ValueError(
-                pre + "the neutral foot (NEUTRAL_REACH %d, %s %d) is not reachable: %s"
+                pre
+                + "the neutral foot (NEUTRAL_REACH %d, %s %d) is not reachable: %s"
                 % (g.neutral_reach, label, h, describe(code, leg.excess))
             )
     return g
@@ -130,7 +131,9 @@ def _check_mounts(pre, mounts):
         # Legs 1-3 are on the right (y < 0), 4-6 on the left, and each points to its side.
         right = i < 3
         if (m[1] >= 0) if right else (m[1] <= 0):
-            raise ValueError(pre + leg + ": y %d must be %s" % (m[1], "< 0 (right side)" if right else "> 0 (left side)"))
+            raise ValueError(
+                pre + leg + ": y %d must be %s" % (m[1], "< 0 (right side)" if right else "> 0 (left side)")
+            )
         if (sin(m[2]) >= 0) if right else (sin(m[2]) <= 0):
             raise ValueError(
                 pre + leg + ": angle %d cdeg must point %s" % (m[2], "right (-180..0)" if right else "left (0..180)")
@@ -139,7 +142,8 @@ def _check_mounts(pre, mounts):
     for a, b in ((0, 1), (1, 2), (5, 4), (4, 3)):
         if mounts[a][0] <= mounts[b][0]:
             raise ValueError(
-                pre + "MOUNTS: leg %d (%s) x %d must be ahead of leg %d (%s) x %d"
+                pre
+                + "MOUNTS: leg %d (%s) x %d must be ahead of leg %d (%s) x %d"
                 % (a + 1, LEG_NAMES[a], mounts[a][0], b + 1, LEG_NAMES[b], mounts[b][0])
             )
 

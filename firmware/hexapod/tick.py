@@ -22,7 +22,6 @@ from hexapod.body import FINE_SHIFT, Body
 from hexapod.fixmath import cos, mul_q15, sin
 from hexapod.gait import TICK_MS, TRIPOD, check_cycle_ms, check_gait
 from hexapod.leg import OK
-from hexapod.leg import describe as describe_leg
 from hexapod.posture import Posture
 from hexapod.servo import ServoMap
 from hexapod.walk import STEP_MAX, STOPPED, Walker
@@ -86,7 +85,11 @@ class FrameBuffer:
 class Robot:
     """Geometry + servo calibration + frame sink: commands in, one frame out per tick()."""
 
-    def __init__(self, geometry, servos, frame):
+    def __init__(self, geometry, servos, frame, pulses=None):
+        """servos: 18 ServoMaps; frame: has write_frame(pulses); pulses: an optional list of 18
+        the caller owns, written every frame (else the robot makes its own)."""
+        if pulses is not None and len(pulses) != 18:
+            raise ValueError("pulses: need a list of 18, got %d" % len(pulses))
         if len(servos) != 18:
             raise ValueError("servos: need 18 ServoMaps (legs 1..6 x coxa, femur, tibia), got %d" % len(servos))
         if not hasattr(frame, "write_frame"):
@@ -100,7 +103,7 @@ class Robot:
         self.posture = Posture()
         self.rest_z = -(geometry.sit_height - geometry.foot_clearance) << FINE_SHIFT
         self.angles = [0] * 18  # last joint angles sent, cdeg
-        self.pulses = [0] * 18  # last pulses sent, us
+        self.pulses = [0] * 18 if pulses is None else pulses  # last pulses sent, us
         self._angles = [0] * 18
         self._pulses = [0] * 18
         self._leg = [0, 0, 0]
@@ -147,7 +150,7 @@ class Robot:
         if m == MOVING:
             if not self.posture.step(self.walker):
                 self.mode = self.after
-        elif m == STANDING or m == WALKING:
+        elif m == STANDING or m == WALKING:  # noqa: SIM109 (a tuple test may allocate)
             self.body.slew()
             if m == WALKING and self.walker.update() == STOPPED:
                 self.mode = STANDING
@@ -248,9 +251,7 @@ class Robot:
         if not isinstance(height, int) or isinstance(height, bool):
             raise ValueError("height: need a whole number (0.1 mm), got %r" % (height,))
         if height < g.body_height_min or height > g.body_height_max:
-            raise ValueError(
-                "height: %d is outside %d..%d (0.1 mm)" % (height, g.body_height_min, g.body_height_max)
-            )
+            raise ValueError("height: %d is outside %d..%d (0.1 mm)" % (height, g.body_height_min, g.body_height_max))
         code = self._can_move()
         if code != OK:
             return code

@@ -76,10 +76,7 @@ def combined_step(k, s, out):
     if k <= s:
         out[0] = k
         out[1] = 1
-    elif k < 2 * s:
-        out[0] = 2 * s - k
-        out[1] = 0
-    elif k <= 3 * s:
+    elif k < 2 * s or k <= 3 * s:
         out[0] = 2 * s - k
         out[1] = 0
     else:

@@ -295,7 +295,6 @@ class Walker:
 
     def coxa_sweep(self, i, vx, w):
         """Leg i's coxa travel (cdeg, >= 0) over one stance at (vx, 0, w), no body pose."""
-        g = self.geometry
         self._aim_for(vx, 0, w)
         self.target(i, self._xy)
         a = self._coxa_angle(i, self._xy[0], self._xy[1])

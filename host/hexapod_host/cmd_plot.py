@@ -41,7 +41,9 @@ def _options(args):
     if abs(speed) > SPEED_MAX:
         raise UsageError("--speed: %s mm/s is outside -%d..%d mm/s" % (args.speed, SPEED_MAX // 10, SPEED_MAX // 10))
     if abs(turn) > YAW_RATE_MAX:
-        raise UsageError("--turn: %s deg/s is outside -%d..%d deg/s" % (args.turn, YAW_RATE_MAX // 100, YAW_RATE_MAX // 100))
+        raise UsageError(
+            "--turn: %s deg/s is outside -%d..%d deg/s" % (args.turn, YAW_RATE_MAX // 100, YAW_RATE_MAX // 100)
+        )
     if os.path.exists(args.out) and not os.path.isdir(args.out):
         raise UsageError("--out: %r exists and is not a directory" % args.out)
     return gaits, speed, turn
@@ -167,11 +169,15 @@ def _top(plt, out, name, g, w, rows):
         xs = [r[0][leg][0] for r in half]
         down = [r[1][leg] == 0 for r in half]
         ax.plot(ys, xs, "-", lw=0.8, label=LEGS[leg])
-        ax.plot([y for y, d in zip(ys, down, strict=True) if d], [x for x, d in zip(xs, down, strict=True) if d], ".", ms=3)
+        ax.plot(
+            [y for y, d in zip(ys, down, strict=True) if d], [x for x, d in zip(xs, down, strict=True) if d], ".", ms=3
+        )
         ax.plot([w.ny[leg] / 160.0], [w.nx[leg] / 160.0], "k+")
     ax.invert_xaxis()  # seen from above with x forward: left (+y) is drawn on the left
     ax.set_aspect("equal")
-    ax.set(title="%s: feet over one cycle (dots: on the ground)" % name, xlabel="y, left (mm)", ylabel="x, forward (mm)")
+    ax.set(
+        title="%s: feet over one cycle (dots: on the ground)" % name, xlabel="y, left (mm)", ylabel="x, forward (mm)"
+    )
     ax.legend(fontsize=7, loc="center")
     fig.tight_layout()
     path = os.path.join(out, "top_%s.png" % name)

@@ -30,9 +30,9 @@ def build_mpy(dest):
     return dest
 
 
-def bench_tick(args, ticks=10000):
+def bench_tick(args, ticks=10000, repeats=3):
     """Median and max microseconds per tick, max/median, heap bytes per tick, per gait."""
     with tempfile.TemporaryDirectory() as tmp:
         build_mpy(tmp)
-        out = mpvm.run(script=VM_SCRIPT, heapsize="128k", args=(tmp, str(ticks)))
+        out = mpvm.run(script=VM_SCRIPT, heapsize="128k", args=(tmp, str(ticks), str(repeats)))
     return json.loads(out.strip().splitlines()[-1])
