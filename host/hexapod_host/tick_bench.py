@@ -30,7 +30,7 @@ def build_mpy(dest):
     return dest
 
 
-def bench_tick(args, ticks=10000, repeats=3):
+def bench_tick(args, ticks=10000, repeats=5):
     """Median and max microseconds per tick, max/median, heap bytes per tick, per gait."""
     with tempfile.TemporaryDirectory() as tmp:
         build_mpy(tmp)
