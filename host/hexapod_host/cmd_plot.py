@@ -84,6 +84,19 @@ def record(gait_name, speed, turn, cycles=2):
     return g, w, rows
 
 
+def margin_mm(rows):
+    """Smallest static stability margin (mm) of the body centre over the recorded ticks."""
+    from hexapod.stability import support_margin
+
+    worst = None
+    for feet, swing in rows:
+        xs = [round(f[0] * 10) for f in feet]
+        ys = [round(f[1] * 10) for f in feet]
+        m = support_margin(xs, ys, [1 - s for s in swing])
+        worst = m if worst is None or m < worst else worst
+    return worst / 10.0
+
+
 def run(args):
     gaits, speed, turn = _options(args)
     import matplotlib
@@ -168,15 +181,16 @@ def _top(plt, out, name, g, w, rows):
         ys = [r[0][leg][1] for r in half]
         xs = [r[0][leg][0] for r in half]
         down = [r[1][leg] == 0 for r in half]
-        ax.plot(ys, xs, "-", lw=0.8, label=LEGS[leg])
-        ax.plot(
-            [y for y, d in zip(ys, down, strict=True) if d], [x for x, d in zip(xs, down, strict=True) if d], ".", ms=3
-        )
+        (line,) = ax.plot(ys, xs, "-", lw=0.8, label=LEGS[leg])
+        on_ground = [(y, x) for y, x, d in zip(ys, xs, down, strict=True) if d]
+        ax.plot([p[0] for p in on_ground], [p[1] for p in on_ground], ".", ms=3, color=line.get_color())
         ax.plot([w.ny[leg] / 160.0], [w.nx[leg] / 160.0], "k+")
     ax.invert_xaxis()  # seen from above with x forward: left (+y) is drawn on the left
     ax.set_aspect("equal")
     ax.set(
-        title="%s: feet over one cycle (dots: on the ground)" % name, xlabel="y, left (mm)", ylabel="x, forward (mm)"
+        title="%s: feet over one cycle (dots: on the ground)\nmin stability margin %.1f mm" % (name, margin_mm(rows)),
+        xlabel="y, left (mm)",
+        ylabel="x, forward (mm)",
     )
     ax.legend(fontsize=7, loc="center")
     fig.tight_layout()
