@@ -252,6 +252,18 @@ for cmd in ((3000, 0, 0), (0, -3000, 0), (0, 0, 9000), (2000, 2000, -6000), (500
             assert all(abs(s) <= abs(c) for s, c in zip(scaled, cmd, strict=True))
 
 
+def test_a_leg_without_room_scales_the_walk_to_nothing(rt):
+    got = rt.value(
+        SETUP
+        + """
+w.rho[4] = 0
+w.command(1000, 0, 500)
+print([w.scale_permille, list(w.cmd)])
+"""
+    )
+    assert got == [0, [0, 0, 0]]
+
+
 BAD_WALKS = [
     ("robot.walk(3001, 0, 0)", "vx: 3001 0.1 mm/s is outside -3000..3000"),
     ("robot.walk(0, -3001, 0)", "vy"),

@@ -97,6 +97,13 @@ REFUSALS = [
         "robot.walk(500, 0, 0)",
         "UNREACHABLE",
     ),
+    (
+        "leaning",
+        "stand()\nrobot.set_params(lift_height=100)\nrobot.set_pose(0, 0, -300, 800, 0, 0, 0, 0, 0)\nrun(40)\n"
+        "robot.walk(500, 0, 0)\nrun(10)",
+        "robot.set_params(lift_height=600)",
+        "UNREACHABLE",
+    ),
 ]
 
 
@@ -108,7 +115,7 @@ def test_refusals_move_nothing(rt, state, prep, call, code):
             + prep
             + """
 snap = lambda: [robot.mode, w.state, list(w.cmd), list(robot.body.target), w.ground,
-                list(w.fx), list(w.fz), robot.posture.sets]
+                list(w.fx), list(w.fz), robot.posture.sets, w.lift, w.next_lift, list(w.rho), w.pending]
 before = snap()
 print([%s, tick.%s])
 print([before == snap()])

@@ -41,8 +41,8 @@ STANDING = const(3)
 WALKING = const(4)
 MODE_NAMES = ("relaxed", "sitting", "moving", "standing", "walking")
 
-_WRAP = const(0x3FFFFFFF)
-RHO_MIN = const(50)  # a leg needs a reach disc this wide (0.1 mm) to walk  # time.ticks_ms() wraps at 2**30
+_WRAP = const(0x3FFFFFFF)  # time.ticks_ms() wraps at 2**30
+RHO_MIN = const(50)  # a leg needs a reach disc this wide (0.1 mm) to walk
 
 
 def describe(code):
@@ -315,6 +315,8 @@ class Robot:
         self._probe.set_target(self.body.target)
         self._probe.jump()
         w.compute_rho(self._probe, lift, self._rho)
+        if self.mode == WALKING and not self._roomy(self._rho):
+            return UNREACHABLE  # that lift would leave a walking leg no room to step
         w.configure(self.gait, cycle, lift, step, self._rho)
         self.cycle_ms = cycle
         return OK
@@ -326,14 +328,18 @@ class Robot:
             return BUSY if self.mode == MOVING else NOT_STANDING
         if not self.body.settled():
             return BUSY
-        if vx or vy or yaw_rate:
-            for i in range(6):
-                if self.walker.rho[i] < RHO_MIN:
-                    return UNREACHABLE  # this pose or lift leaves a leg no room to step
+        if (vx or vy or yaw_rate) and not self._roomy(self.walker.rho):
+            return UNREACHABLE  # this pose or lift leaves a leg no room to step
         self.walker.command(vx, vy, yaw_rate)
         if self.walker.state != STOPPED:
             self.mode = WALKING
         return OK
+
+    def _roomy(self, rho):
+        for i in range(6):  # noqa: SIM110 (walk() runs every tick: no generator)
+            if rho[i] < RHO_MIN:
+                return False
+        return True
 
     def walk_heading(self, length, heading, yaw_rate=0):
         """Seed 003's form: step length (0.1 mm) along heading (cdeg): x = L cos, y = L sin."""

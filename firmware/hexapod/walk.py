@@ -242,16 +242,16 @@ class Walker:
         if turn > _HALF_TURN or turn < -_HALF_TURN:
             k = _HALF_TURN * 1000 // (turn if turn > 0 else -turn)
         while k > 0:
-            worst = 0
+            worst = -1
             for i in range(6):
                 e = self.half_stance(i, vx * k // 1000, vy * k // 1000, w * k // 1000)
                 lim = self.rho[i] if self.rho[i] < self.step else self.step
                 if e > lim:
                     # The shortfall sets the next try; rounding can leave it a hair short.
                     kk = k * lim // e
-                    if worst == 0 or kk < worst:
+                    if worst < 0 or kk < worst:
                         worst = kk
-            if worst == 0:
+            if worst < 0:
                 break
             k = worst - 1 if worst >= k else worst
         if k < 0:
