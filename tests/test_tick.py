@@ -283,13 +283,33 @@ for gait in range(4):
     while robot.mode == tick.WALKING:
         run(1)
     print([gait, walk_bytes, robot.faults])
+# The extremes: longest cycle, largest step and lift, the commands at their limits.
+robot.set_params(step_length=600, lift_height=600, cycle_ms=5000)
+for gait in range(4):
+    robot.set_gait(gait)
+    robot.walk(3000, -3000, 9000)
+    run(100)
+    gc.collect()
+    gc.disable()
+    a = gc.mem_alloc()
+    for n in range(300):
+        s = 1 if (n // 50) % 2 else -1
+        robot.walk(3000 * s, -3000, -9000 * s)
+        robot.tick(T[0])
+        T[0] += 20
+    walk_bytes = gc.mem_alloc() - a
+    gc.enable()
+    robot.stop()
+    while robot.mode == tick.WALKING:
+        run(1)
+    print([gait, walk_bytes, robot.faults])
 """
 
 
 def test_steady_tick_allocates_nothing(mp):
     rows = lines(mp.run(ALLOC, heapsize="256k"))
     assert rows[0] == ["stand", 0]
-    assert [r[0] for r in rows[1:]] == [0, 1, 2, 3]
+    assert [r[0] for r in rows[1:]] == [0, 1, 2, 3] * 2
     for gait, walk_bytes, faults in rows[1:]:
         assert walk_bytes == 0, gait
         assert faults == 0
