@@ -23,7 +23,9 @@ from hexapod.fixmath import cos, mul_q15, sin
 from hexapod.gait import TICK_MS, TRIPOD, check_cycle_ms, check_gait
 from hexapod.leg import OK
 from hexapod.posture import Posture
+from hexapod.reach import disc_radii
 from hexapod.servo import ServoMap
+from hexapod.turns import sweep_command
 from hexapod.walk import STEP_MAX, STOPPED, Walker
 
 # Reason codes (leg IK codes 1..9 come through in fault_code with fault_leg).
@@ -121,7 +123,7 @@ class Robot:
         self._timed = False
         self.gait = TRIPOD
         self.cycle_ms = 1000
-        self.walker.compute_rho(self._probe, self.walker.lift, self._rho)
+        disc_radii(self.walker, self._probe, self.walker.lift, self._rho)
         self.walker.configure(TRIPOD, 1000, self.walker.lift, self.walker.step, self._rho)
         # Until told otherwise (assume_angles), the robot rests on its body, feet at neutral.
         for i in range(6):
@@ -261,7 +263,7 @@ class Robot:
         if self.mode == STANDING and not self._feet_reachable(self.body):
             w.ground = old
             return UNREACHABLE
-        w.compute_rho(self.body, w.lift, self._rho)
+        disc_radii(w, self.body, w.lift, self._rho)
         w.configure(self.gait, self.cycle_ms, w.lift, w.step, self._rho)
         if self.mode == STANDING:
             self.posture.to_height(w, w.ground)
@@ -290,7 +292,7 @@ class Robot:
         if not self._feet_reachable(probe):
             return UNREACHABLE
         w = self.walker
-        w.compute_rho(probe, w.lift, self._rho)
+        disc_radii(w, probe, w.lift, self._rho)
         w.configure(self.gait, self.cycle_ms, w.lift, w.step, self._rho)
         self.body.set_target(pose)
         return OK
@@ -314,7 +316,7 @@ class Robot:
         check_cycle_ms(cycle)
         self._probe.set_target(self.body.target)
         self._probe.jump()
-        w.compute_rho(self._probe, lift, self._rho)
+        disc_radii(w, self._probe, lift, self._rho)
         if self.mode == WALKING and not self._roomy(self._rho):
             return UNREACHABLE  # that lift would leave a walking leg no room to step
         w.configure(self.gait, cycle, lift, step, self._rho)
@@ -357,7 +359,7 @@ class Robot:
     def walk_sweeps(self, left, right):
         """Seed 000's turn: the command that swings the left and right middle coxas by
         `left` and `right` cdeg per stance (right turn: 4500, 1000); then walk()."""
-        self.walker.sweep_command(left, right, self._leg)
+        sweep_command(self.walker, left, right, self._leg)
         return self.walk(self._leg[0], 0, self._leg[1])
 
     def stop(self):

@@ -12,7 +12,7 @@ trajectory.swing_shape (seed 003 eq. 12-14 with a smooth touch-down); the target
 the foot must land to pass its neutral point at mid-stance (re-aimed every tick).
 
 Reach: every foot lives in a disc of radius rho[i] around its neutral point, found by leg
-IK (joint limits included) at ground and lift height. Commands are scaled down so half a
+IK (hexapod.reach) at ground and lift height. Commands are scaled down so half a
 stance stays inside the smaller of rho and the step length; a swing target is clamped to
 the disc, and a tick that would push a stance foot out of it holds the body still instead.
 So the planner never asks for a foot the leg cannot reach.
@@ -26,9 +26,8 @@ no foot is in the air (new swings are held back until then).
 from micropython import const
 
 from hexapod.body import FINE, FINE_SHIFT
-from hexapod.fixmath import atan2, cos, isqrt, mul_q15, sin, to_cdeg
+from hexapod.fixmath import cos, isqrt, mul_q15, sin
 from hexapod.gait import TICK_MS, TRIPOD, GaitClock, check_cycle_ms, check_gait
-from hexapod.leg import OK
 from hexapod.trajectory import swing_shape
 
 STOPPED = const(0)
@@ -45,7 +44,6 @@ LIFT_MIN = const(100)  # lift height, 0.1 mm
 LIFT_MAX = const(600)
 SPEED_STEP = const(40)  # most vx or vy changes per tick, 0.1 mm/s (200 mm/s^2)
 YAW_STEP = const(100)  # most the yaw rate changes per tick, cdeg/s
-RHO_CAP = const(1000)  # no disc is searched beyond this radius, 0.1 mm
 _HALF_TURN = const(9000)  # half a stance never turns more than this, cdeg
 _DEG360 = const(3600000)  # in fixmath.ANGLE_UNIT
 _REANCHOR = const(4194304)  # ground-frame fine units before the origin is moved to the body
@@ -96,9 +94,6 @@ class Walker:
         self.next_rho = [0] * 6
         self._shape = [0, 0]
         self._aim = [0, 0, 0, 0, 0, 0]  # cos, sin of half the stance turn, half-stance shift x, y
-        self._leg = [0, 0, 0]
-        self._angles = [0, 0, 0]
-        self._tmp = [0, 0, 0]
         self._xy = [0, 0]
         for i in range(6):
             geometry.neutral_xy(i, self._xy)
@@ -119,36 +114,6 @@ class Walker:
     def set_ground(self, height):
         """Body height above the ground, 0.1 mm (the caller moves the feet there)."""
         self.ground = -height << FINE_SHIFT
-
-    def compute_rho(self, body, lift, out):
-        """Reach disc radius (0.1 mm) of every leg's neutral foot under `body`'s pose, into out."""
-        legs = self.geometry.legs
-        for i in range(6):
-            lo = 0
-            hi = RHO_CAP
-            if not self._disc_ok(body, legs[i], i, 0, lift):
-                out[i] = 0
-                continue
-            while hi - lo > 8:
-                mid = (lo + hi) >> 1
-                if self._disc_ok(body, legs[i], i, mid, lift):
-                    lo = mid
-                else:
-                    hi = mid
-            out[i] = lo - (lo >> 4)  # keep a 6 % margin inside the last radius that passed
-        return out
-
-    def _disc_ok(self, body, leg, i, r, lift):
-        z1 = self.ground + (lift << FINE_SHIFT)
-        for k in range(12):
-            a = k * 3000
-            x = self.nx[i] + ((r * cos(a) + 1024) >> 11)  # r (0.1 mm) * Q15 -> fine units
-            y = self.ny[i] + ((r * sin(a) + 1024) >> 11)
-            for z in (self.ground, (self.ground + z1) >> 1, z1):
-                body.to_leg(i, x, y, z, self._leg, 0)
-                if leg.ik(self._leg[0], self._leg[1], self._leg[2], self._angles, 0) != OK:
-                    return False
-        return True
 
     def check_step(self, step):
         if not isinstance(step, int) or isinstance(step, bool) or step < STEP_MIN or step > STEP_MAX:
@@ -191,11 +156,11 @@ class Walker:
     def check_command(self, vx, vy, yaw_rate):
         """ValueError naming the first of vx, vy (0.1 mm/s), yaw_rate (cdeg/s) out of range."""
         # Written out (no loop over a tuple) so that a valid command allocates nothing.
-        if not _whole(vx) or vx < -SPEED_MAX or vx > SPEED_MAX:
+        if not is_whole(vx) or vx < -SPEED_MAX or vx > SPEED_MAX:
             _bad("vx", vx, SPEED_MAX, "0.1 mm/s")
-        if not _whole(vy) or vy < -SPEED_MAX or vy > SPEED_MAX:
+        if not is_whole(vy) or vy < -SPEED_MAX or vy > SPEED_MAX:
             _bad("vy", vy, SPEED_MAX, "0.1 mm/s")
-        if not _whole(yaw_rate) or yaw_rate < -YAW_RATE_MAX or yaw_rate > YAW_RATE_MAX:
+        if not is_whole(yaw_rate) or yaw_rate < -YAW_RATE_MAX or yaw_rate > YAW_RATE_MAX:
             _bad("yaw_rate", yaw_rate, YAW_RATE_MAX, "cdeg/s")
 
     def command(self, vx, vy, yaw_rate):
@@ -263,13 +228,13 @@ class Walker:
 
     def half_stance(self, i, vx, vy, w):
         """How far (0.1 mm) leg i's touch-down point lies from neutral at this command."""
-        self._aim_for(vx, vy, w)
+        self.aim_for(vx, vy, w)
         self.target(i, self._xy)
         dx = (self._xy[0] - self.nx[i]) >> FINE_SHIFT
         dy = (self._xy[1] - self.ny[i]) >> FINE_SHIFT
         return isqrt(dx * dx + dy * dy)
 
-    def _aim_for(self, vx, vy, w):
+    def aim_for(self, vx, vy, w):
         """Half a stance of body motion at (vx, vy, w): the turn and the shift, into _aim."""
         half_ms = self.clock.stance_ticks * TICK_MS >> 1
         turn = w * half_ms // 1000  # cdeg
@@ -293,79 +258,6 @@ class Walker:
         out[1] = mul_q15(nx, a[1]) + mul_q15(ny, a[0]) + a[3]
         return out
 
-    def coxa_sweep(self, i, vx, w):
-        """Leg i's coxa travel (cdeg, >= 0) over one stance at (vx, 0, w), no body pose."""
-        self._aim_for(vx, 0, w)
-        self.target(i, self._xy)
-        a = self._coxa_angle(i, self._xy[0], self._xy[1])
-        self._aim_for(-vx, 0, -w)
-        self.target(i, self._xy)
-        b = self._coxa_angle(i, self._xy[0], self._xy[1])
-        d = a - b
-        if d > 18000:
-            d -= 36000
-        elif d < -18000:
-            d += 36000
-        return d if d >= 0 else -d
-
-    def _coxa_angle(self, i, x, y):
-        g = self.geometry
-        dx = (x >> FINE_SHIFT) - g.mount_x[i]
-        dy = (y >> FINE_SHIFT) - g.mount_y[i]
-        c = g.mount_cos[i]
-        s = g.mount_sin[i]
-        return to_cdeg(atan2(mul_q15(dy, c) - mul_q15(dx, s), mul_q15(dx, c) + mul_q15(dy, s)))
-
-    def sweep_command(self, left, right, out):
-        """(vx, yaw rate) that swings the left middle coxa by `left` and the right one by `right`
-        cdeg per stance, into out[0:2]: seed 000's turns (right turn: left 45, right 10 degrees).
-
-        The body then circles a centre on the side of the smaller sweep, as the paper's robot
-        does; the engine's own turns (yaw_rate alone) pivot about the body centre.
-        """
-        for name, v in (("left", left), ("right", right)):
-            if not _whole(v) or v < 0 or v > 9000:
-                raise ValueError("%s sweep: %r is outside 0..9000 (cdeg)" % (name, v))
-        big = left if left >= right else right
-        small = right if left >= right else left
-        if big == 0:
-            out[0] = out[1] = 0
-            return out
-        # Legs: the middle leg on the big side (leg 5 LM for a right turn) and the other one.
-        ib = 4 if left >= right else 1
-        js = 1 if left >= right else 4
-        sign = -1 if left >= right else 1  # a right turn is clockwise: negative yaw
-        lo = abs(self.geometry.mount_y[js]) + self.geometry.neutral_reach + 10
-        hi = 1000000
-        vx = 0
-        w = 0
-        for _ in range(40):
-            radius = (lo + hi) >> 1
-            # For this turning radius, the forward speed that gives the big sweep.
-            a = 0
-            b = SPEED_MAX
-            for _ in range(24):
-                m = (a + b) >> 1
-                if self.coxa_sweep(ib, m, sign * (m * 5730 // radius)) < big:
-                    a = m
-                else:
-                    b = m
-            vx = b
-            w = sign * (vx * 5730 // radius)
-            if w < -YAW_RATE_MAX or w > YAW_RATE_MAX:
-                lo = radius
-                continue
-            # Too small a sweep on the inner side means too tight a turn.
-            if self.coxa_sweep(js, vx, w) < small:
-                lo = radius
-            else:
-                hi = radius
-            if hi - lo <= 1:
-                break
-        out[0] = vx
-        out[1] = w
-        return out
-
     # -- the tick ----------------------------------------------------------------------
 
     def update(self):
@@ -386,7 +278,7 @@ class Walker:
         self._move_body()
         # Swings aim for the commanded velocity, not the ramp's: the feet land ready for it.
         c = self.cmd
-        self._aim_for(c[0], c[1], c[2])
+        self.aim_for(c[0], c[1], c[2])
         airborne = 0
         for i in range(6):
             if self.su[i] >= 0:
@@ -537,11 +429,12 @@ class Walker:
             self.by = 0
 
 
-def _whole(v):
+def is_whole(v):
+    """True for an int that is not a bool."""
     return isinstance(v, int) and not isinstance(v, bool)
 
 
 def _bad(name, v, lim, unit):
-    if not _whole(v):
+    if not is_whole(v):
         raise ValueError("%s: need a whole number (%s), got %r" % (name, unit, v))
     raise ValueError("%s: %d %s is outside -%d..%d" % (name, v, unit, lim, lim))
