@@ -308,3 +308,25 @@ def test_bad_commands_raise_and_change_nothing(both_runtimes):
     assert rows[-1] is True
     for (call, message), text in zip(BAD_WALKS, rows[:-1], strict=True):
         assert message in text, (call, text)
+
+
+def test_changes_the_feet_would_not_notice_do_not_wait(rt):
+    got = rt.value(
+        SETUP
+        + """
+robot.walk(1500, 0, 0)
+run(61)
+res = []
+phase = w.phase
+robot.set_gait(0)  # the gait it already walks
+res.append([w.pending, w.phase == phase])
+robot.set_params(step_length=200)  # step length: applies at once, the command rescales
+res.append([w.pending, w.step, w.cmd[0] < 1500])
+robot.set_params(lift_height=400)  # the feet would notice: waits for all feet down
+res.append([w.pending, w.lift, w.next_lift])
+run(60)
+res.append([w.pending, w.lift])
+print(res)
+"""
+    )
+    assert got == [[0, True], [0, 200, True], [1, 300, 400], [0, 400]]

@@ -65,6 +65,17 @@ def check_cycle_ms(cycle_ms):
         raise ValueError("cycle_ms: %d ms is outside %d..%d ms" % (cycle_ms, CYCLE_MS_MIN, CYCLE_MS_MAX))
 
 
+def slot_ticks(gait, cycle_ms):
+    """Ticks per slot a gait gets for a cycle time (ms): the nearest whole number."""
+    slots = _SLOTS[gait]
+    return (cycle_ms + (TICK_MS * slots >> 1)) // (TICK_MS * slots)
+
+
+def actual_cycle_ms(gait, cycle_ms):
+    """The cycle time (ms) a gait really runs for a cycle_ms: whole ticks per slot."""
+    return slot_ticks(gait, cycle_ms) * _SLOTS[gait] * TICK_MS
+
+
 class GaitClock:
     """Tick timing of one gait at one cycle time: slot, swing and stance lengths in ticks."""
 
@@ -78,7 +89,7 @@ class GaitClock:
         check_cycle_ms(cycle_ms)
         slots = _SLOTS[gait]
         self.gait = gait
-        self.slot_ticks = (cycle_ms + (TICK_MS * slots >> 1)) // (TICK_MS * slots)
+        self.slot_ticks = slot_ticks(gait, cycle_ms)
         self.cycle_ticks = self.slot_ticks * slots
         self.cycle_ms = self.cycle_ticks * TICK_MS
         self.swing_ticks = self.slot_ticks * _SWING_SLOTS[gait]

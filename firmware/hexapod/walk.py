@@ -27,7 +27,7 @@ from micropython import const
 
 from hexapod.body import FINE, FINE_SHIFT
 from hexapod.fixmath import cos, isqrt, mul_q15, sin
-from hexapod.gait import TICK_MS, TRIPOD, GaitClock, check_cycle_ms, check_gait
+from hexapod.gait import TICK_MS, TRIPOD, GaitClock, actual_cycle_ms, check_cycle_ms, check_gait
 from hexapod.trajectory import swing_shape
 
 STOPPED = const(0)
@@ -136,8 +136,15 @@ class Walker:
         self.next_lift = lift
         for i in range(6):
             self.next_rho[i] = rho[i]
+        same = gait == self.clock.gait and self.clock.cycle_ms == actual_cycle_ms(gait, cycle_ms) and lift == self.lift
+        for i in range(6):
+            if rho[i] != self.rho[i]:
+                same = False
         if self.state == STOPPED:
             self._apply()
+        elif same:
+            self.pending = 0  # nothing the feet would notice: no need to wait (step applies now)
+            self._rescale()
         else:
             self.pending = 1
             self._rescale()
