@@ -9,6 +9,7 @@ COMMAND_MODULES = (
     "hexapod_host.cmd_kin",
     "hexapod_host.cmd_bench",
     "hexapod_host.cmd_sim",
+    "hexapod_host.cmd_plot",
 )
 
 

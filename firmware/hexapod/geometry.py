@@ -1,0 +1,155 @@
+"""A robot build checked and ready for the core: six Legs, their mounts and the neutral stance.
+
+`load(module)` reads a plain-data module from robots/ (see robots/default.py for the names
+and units: lengths 0.1 mm, angles cdeg) and raises ValueError naming the robot, the field
+and what is allowed when something is wrong, before anything moves.
+"""
+
+from hexapod.fixmath import cos, sin
+from hexapod.leg import OK, Leg, describe
+
+LEG_NAMES = ("RF", "RM", "RR", "LR", "LM", "LF")
+MOUNT_MAX = 5000  # largest |x|, |y| of a coxa axis, 0.1 mm
+HEIGHT_MAX = 3000  # largest body height, 0.1 mm
+_FIELDS = (
+    "COXA",
+    "FEMUR",
+    "TIBIA",
+    "FEMUR_OFFSET",
+    "LIMITS",
+    "MOUNTS",
+    "NEUTRAL_REACH",
+    "BODY_HEIGHT",
+    "BODY_HEIGHT_MIN",
+    "BODY_HEIGHT_MAX",
+    "SIT_HEIGHT",
+    "FOOT_CLEARANCE",
+)
+
+
+class Geometry:
+    """A checked robot build; legs[i] is leg i + 1 (1 RF ... 6 LF)."""
+
+    def __init__(self, name, data):
+        self.name = name
+        self.legs = [
+            Leg(
+                coxa=data["COXA"],
+                femur=data["FEMUR"],
+                tibia=data["TIBIA"],
+                femur_offset=data["FEMUR_OFFSET"],
+                limits=data["LIMITS"],
+            )
+            for _ in range(6)
+        ]
+        m = data["MOUNTS"]
+        self.mount_x = [m[i][0] for i in range(6)]
+        self.mount_y = [m[i][1] for i in range(6)]
+        self.mount_angle = [m[i][2] for i in range(6)]
+        self.mount_cos = [cos(a) for a in self.mount_angle]  # Q15
+        self.mount_sin = [sin(a) for a in self.mount_angle]
+        self.neutral_reach = data["NEUTRAL_REACH"]
+        self.body_height = data["BODY_HEIGHT"]
+        self.body_height_min = data["BODY_HEIGHT_MIN"]
+        self.body_height_max = data["BODY_HEIGHT_MAX"]
+        self.sit_height = data["SIT_HEIGHT"]
+        self.foot_clearance = data["FOOT_CLEARANCE"]
+        self.limits = tuple(data["LIMITS"])
+
+    def neutral_xy(self, i, out, j=0):
+        """Body-frame (x, y) of leg i's neutral foot (0-based i), 0.1 mm, into out[j:j+2]."""
+        r = self.neutral_reach
+        out[j] = self.mount_x[i] + ((r * self.mount_cos[i] + 16384) >> 15)
+        out[j + 1] = self.mount_y[i] + ((r * self.mount_sin[i] + 16384) >> 15)
+        return out
+
+
+def load(module):
+    """A Geometry from a robots/ module (or any object with the same attributes)."""
+    name = getattr(module, "NAME", None) or getattr(module, "__name__", "robot")
+    data = {}
+    for field in _FIELDS:
+        if not hasattr(module, field):
+            raise ValueError("robot %r: %s is missing" % (name, field))
+        data[field] = getattr(module, field)
+    return from_data(name, data)
+
+
+def from_data(name, data):
+    """A Geometry from a dict of the robots/ fields; ValueError names what is wrong."""
+    pre = "robot %r: " % (name,)
+    try:
+        Leg(
+            coxa=data["COXA"],
+            femur=data["FEMUR"],
+            tibia=data["TIBIA"],
+            femur_offset=data["FEMUR_OFFSET"],
+            limits=data["LIMITS"],
+        )
+    except ValueError as err:
+        raise ValueError(pre + str(err)) from None
+    _check_mounts(pre, data["MOUNTS"])
+    reach = data["COXA"] + data["FEMUR"] + data["TIBIA"]
+    _int(pre, "NEUTRAL_REACH", data["NEUTRAL_REACH"], data["COXA"] + 1, reach - 1)
+    _int(pre, "BODY_HEIGHT_MIN", data["BODY_HEIGHT_MIN"], 1, HEIGHT_MAX)
+    _int(pre, "BODY_HEIGHT_MAX", data["BODY_HEIGHT_MAX"], data["BODY_HEIGHT_MIN"], HEIGHT_MAX)
+    _int(pre, "BODY_HEIGHT", data["BODY_HEIGHT"], data["BODY_HEIGHT_MIN"], data["BODY_HEIGHT_MAX"])
+    _int(pre, "SIT_HEIGHT", data["SIT_HEIGHT"], 0, data["BODY_HEIGHT_MIN"] - 1)
+    _int(pre, "FOOT_CLEARANCE", data["FOOT_CLEARANCE"], 0, data["SIT_HEIGHT"])
+    g = Geometry(name, data)
+    # Every height the robot may stand or rest at must be a reachable neutral stance.
+    leg = g.legs[0]
+    out = [0, 0, 0]
+    for label, h in (
+        ("BODY_HEIGHT", g.body_height),
+        ("BODY_HEIGHT_MIN", g.body_height_min),
+        ("BODY_HEIGHT_MAX", g.body_height_max),
+        ("SIT_HEIGHT", g.sit_height),
+        ("SIT_HEIGHT - FOOT_CLEARANCE", g.sit_height - g.foot_clearance),
+    ):
+        code = leg.ik(g.neutral_reach, 0, -h, out)
+        if code != OK:
+            raise ValueError(
+                pre
+                + "the neutral foot (NEUTRAL_REACH %d, %s %d) is not reachable: %s"
+                % (g.neutral_reach, label, h, describe(code, leg.excess))
+            )
+    return g
+
+
+def _check_mounts(pre, mounts):
+    if not isinstance(mounts, (tuple, list)) or len(mounts) != 6:
+        raise ValueError(pre + "MOUNTS: need 6 (x, y, angle) entries, legs 1 RF .. 6 LF")
+    for i in range(6):
+        m = mounts[i]
+        leg = "MOUNTS leg %d (%s)" % (i + 1, LEG_NAMES[i])
+        if not isinstance(m, (tuple, list)) or len(m) != 3:
+            raise ValueError(pre + leg + ": need (x, y, angle), got %r" % (m,))
+        _int(pre, leg + " x", m[0], -MOUNT_MAX, MOUNT_MAX)
+        _int(pre, leg + " y", m[1], -MOUNT_MAX, MOUNT_MAX)
+        _int(pre, leg + " angle", m[2], -18000, 18000)
+        # Legs 1-3 are on the right (y < 0), 4-6 on the left, and each points to its side.
+        right = i < 3
+        if (m[1] >= 0) if right else (m[1] <= 0):
+            raise ValueError(
+                pre + leg + ": y %d must be %s" % (m[1], "< 0 (right side)" if right else "> 0 (left side)")
+            )
+        if (sin(m[2]) >= 0) if right else (sin(m[2]) <= 0):
+            raise ValueError(
+                pre + leg + ": angle %d cdeg must point %s" % (m[2], "right (-180..0)" if right else "left (0..180)")
+            )
+    # Clockwise from above: front legs ahead of the middle ones, middle ahead of the rear.
+    for a, b in ((0, 1), (1, 2), (5, 4), (4, 3)):
+        if mounts[a][0] <= mounts[b][0]:
+            raise ValueError(
+                pre
+                + "MOUNTS: leg %d (%s) x %d must be ahead of leg %d (%s) x %d"
+                % (a + 1, LEG_NAMES[a], mounts[a][0], b + 1, LEG_NAMES[b], mounts[b][0])
+            )
+
+
+def _int(pre, name, value, lo, hi):
+    if not isinstance(value, int) or isinstance(value, bool):
+        raise ValueError(pre + "%s: need a whole number, got %r" % (name, value))
+    if value < lo or value > hi:
+        raise ValueError(pre + "%s: %d is outside the allowed %d..%d" % (name, value, lo, hi))

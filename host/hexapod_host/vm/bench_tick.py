@@ -1,0 +1,148 @@
+# Runs inside the MicroPython VM: times Robot.tick() per gait while walking, turning and
+# changing speed, and counts the heap bytes the ticks allocate. Prints one JSON line.
+# Arguments: [module dir to put first on sys.path (the .mpy build)] [ticks per gait] [repeats].
+#
+# Each gait replays the same command sequence `repeats` times on a fresh robot. "raw" figures
+# are the worst of every pass (host scheduler noise included); the per-tick figures keep,
+# for each tick of the sequence, its fastest pass: what the code costs, without the noise.
+import gc
+import json
+import sys
+import time
+from array import array
+
+TICKS = int(sys.argv[2]) if len(sys.argv) > 2 else 10000
+REPEATS = int(sys.argv[3]) if len(sys.argv) > 3 else 5
+HIST_US = 4000  # longer ticks share the last bucket (the max is kept exactly)
+# The two big buffers come first, while the heap is still in one piece.
+BEST = bytearray(2 * TICKS)  # fastest pass of each tick, us, 16-bit little-endian
+HIST = array("H", bytes(2 * HIST_US))  # tick durations, one bucket per microsecond
+
+if len(sys.argv) > 1 and sys.argv[1]:
+    sys.path.insert(0, sys.argv[1])
+
+import robots.default as robot_file  # noqa: E402
+from hexapod import geometry, tick  # noqa: E402
+from hexapod.gait import NAMES  # noqa: E402
+
+# Commands cycled every 100 ticks: forward, crab, turn in place, arc, back (0.1 mm/s, cdeg/s).
+COMMANDS = ((1200, 0, 0), (600, 600, 0), (0, 0, 3000), (900, -300, -1500), (-800, 200, 1000))
+GEOMETRY = geometry.load(robot_file)
+
+
+ROBOT = tick.Robot(GEOMETRY, tick.default_servos(GEOMETRY), tick.FrameBuffer())
+
+
+def standing_robot(gait):
+    """The one robot, stopped at its neutral stance: each pass replays from the same state."""
+    robot = ROBOT
+    t = 0
+    if robot.mode != tick.STANDING:
+        robot.stand_up()
+    while robot.mode != tick.STANDING:
+        robot.tick(t)
+        t += 20
+    robot.set_gait(gait)
+    robot.walk(1200, 0, 0)
+    for _ in range(200):  # warm up: every code path of the walk has run once
+        robot.tick(t)
+        t += 20
+    return robot, t
+
+
+def one_pass(gait, best, first):
+    """One replay of the sequence; returns (heap bytes, worst raw us, faults)."""
+    robot, t = standing_robot(gait)
+    gc.collect()
+    gc.disable()
+    before = gc.mem_alloc()
+    worst = 0
+    k = 0
+    for n in range(TICKS):
+        if n % 100 == 0:
+            c = COMMANDS[k]
+            k = k + 1 if k + 1 < len(COMMANDS) else 0
+            robot.walk(c[0], c[1], c[2])
+        t0 = time.ticks_us()
+        robot.tick(t)
+        d = time.ticks_diff(time.ticks_us(), t0)
+        if d > 65535:
+            d = 65535
+        if first or d < best[2 * n] | best[2 * n + 1] << 8:
+            best[2 * n] = d & 255  # 16-bit little-endian in a bytearray: no big temporary
+            best[2 * n + 1] = d >> 8
+        if d > worst:
+            worst = d
+        t += 20
+    heap = gc.mem_alloc() - before
+    gc.enable()
+    robot.stop()
+    while robot.mode == tick.WALKING:
+        robot.tick(t)
+        t += 20
+    return heap, worst, robot.faults
+
+
+def percentile(hist, count, num, den):
+    """Smallest bucket (us) at or below which num/den of the count lies."""
+    need = (count * num + den - 1) // den
+    seen = 0
+    for us in range(len(hist)):
+        seen += hist[us]
+        if seen >= need:
+            return us
+    return len(hist) - 1
+
+
+def run_gait(gait, best, hist):
+    heap = 0
+    raw = 0
+    faults = 0
+    for r in range(REPEATS):
+        h, w, f = one_pass(gait, best, r == 0)
+        heap = h if h > heap else heap
+        raw = w if w > raw else raw
+        faults = f
+    for us in range(HIST_US):
+        hist[us] = 0
+    worst = 0
+    for n in range(TICKS):
+        d = best[2 * n] | best[2 * n + 1] << 8
+        hist[d if d < HIST_US - 1 else HIST_US - 1] += 1
+        worst = d if d > worst else worst
+    median = percentile(hist, TICKS, 1, 2)
+    return {
+        "gait": NAMES[gait],
+        "ticks": TICKS,
+        "repeats": REPEATS,
+        "median_us": median,
+        "p99_us": percentile(hist, TICKS, 99, 100),
+        "max_us": worst,
+        "max_over_median": round(worst / median, 3),
+        "raw_max_us": raw,
+        "raw_max_over_median": round(raw / median, 3),
+        "heap_bytes_per_tick": heap / TICKS,
+        "faults": faults,
+    }
+
+
+def main():
+    best = BEST
+    hist = HIST
+    results = [run_gait(gait, best, hist) for gait in range(len(NAMES))]
+    print(
+        json.dumps(
+            {
+                "bench": "tick",
+                "runtime": "micropython",
+                "heap": "128k",
+                "budget_us": 20000,
+                "gaits": results,
+                "worst_max_over_median": max(r["max_over_median"] for r in results),
+                "heap_bytes_per_tick": max(r["heap_bytes_per_tick"] for r in results),
+            }
+        )
+    )
+
+
+main()

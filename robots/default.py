@@ -1,0 +1,34 @@
+"""Default build: seed 004's leg (coxa 30, femur 85, tibia 125 mm, femur joint 32 mm up)
+on a 175 x 155 mm rectangular body like seed 004's. Plain data, read by hexapod.geometry.load.
+
+Units: lengths 0.1 mm, angles centidegrees. Body frame: x forward, y left, z up, origin
+at the body centre at coxa height. Legs 1 RF, 2 RM, 3 RR, 4 LR, 5 LM, 6 LF.
+"""
+
+NAME = "default"
+
+COXA = 300  # coxa axis to femur axis, 0.1 mm (seed 004 a1)
+FEMUR = 850  # femur axis to tibia axis (a2)
+TIBIA = 1250  # tibia axis to the foot (a3)
+FEMUR_OFFSET = 320  # femur axis above the coxa origin (d1)
+
+# Joint limits, cdeg: coxa min, max, femur min, max, tibia min, max (seed 001's 180-degree servos).
+LIMITS = (-9000, 9000, -9000, 9000, -18000, 0)
+
+# Coxa axis (x, y) in the body frame, 0.1 mm, and mount angle (leg's outward direction,
+# counter-clockwise from +x), cdeg: corner legs at the corners, middle legs mid-side.
+MOUNTS = (
+    (875, -775, -4500),  # 1 RF
+    (0, -775, -9000),  # 2 RM
+    (-875, -775, -13500),  # 3 RR
+    (-875, 775, 13500),  # 4 LR
+    (0, 775, 9000),  # 5 LM
+    (875, 775, 4500),  # 6 LF
+)
+
+NEUTRAL_REACH = 1300  # neutral foot: this far out from the coxa axis along the mount, 0.1 mm
+BODY_HEIGHT = 800  # coxa joints above the ground when standing, 0.1 mm
+BODY_HEIGHT_MIN = 600  # allowed range of the body height setting
+BODY_HEIGHT_MAX = 1000
+SIT_HEIGHT = 300  # coxa joints above the ground with the body resting on it, 0.1 mm
+FOOT_CLEARANCE = 100  # how far feet lift off the ground while the body rests, 0.1 mm

@@ -1,0 +1,120 @@
+"""Gait tables on integer ticks: who swings when, duty factors, seed 001's phases."""
+
+import pytest
+
+TABLE = """
+from hexapod.gait import GaitClock, NAMES
+swing = [0] * 6
+for gait in range(len(NAMES)):
+    for cycle_ms in (500, 1000, 2345, 5000):
+        c = GaitClock(gait, cycle_ms)
+        pattern = [list(c.swinging_at(p, swing)) for p in range(c.cycle_ticks)]
+        phases = [[c.phase_of(leg, p) for p in range(c.cycle_ticks)] for leg in range(6)]
+        print([gait, cycle_ms, c.cycle_ticks, c.swing_ticks, c.stance_ticks, c.cycle_ms, pattern, phases])
+"""
+
+
+@pytest.fixture(scope="module")
+def tables():
+    from hexapod_host.testing import CPythonRuntime
+
+    return parse(CPythonRuntime().run(TABLE))
+
+
+def parse(text):
+    import ast
+
+    return [ast.literal_eval(line) for line in text.splitlines() if line.strip()]
+
+
+def test_tables_identical_in_both_runtimes(rt, tables):
+    assert parse(rt.run(TABLE)) == tables
+
+
+def test_every_leg_swings_once_per_cycle_for_its_duty(tables):
+    duty = {0: (1, 2), 1: (1, 3), 2: (1, 3), 3: (1, 6)}  # swing share of the cycle
+    for gait, cycle_ms, ticks, swing, stance, real_ms, pattern, _ in tables:
+        assert swing + stance == ticks and real_ms == 20 * ticks
+        assert abs(real_ms - cycle_ms) <= 20 * {0: 2, 1: 3, 2: 6, 3: 6}[gait] // 2
+        assert swing * duty[gait][1] == ticks * duty[gait][0]
+        for leg in range(6):
+            column = [row[leg] for row in pattern]
+            assert sum(column) == swing
+            # One contiguous swing per cycle (counting the wrap-around).
+            rises = sum(1 for p in range(ticks) if column[p] and not column[p - 1])
+            assert rises == 1
+
+
+def test_tripod_groups_alternate(tables):
+    for gait, _, _, swing, _, _, pattern, _ in tables:
+        if gait != 0:
+            continue
+        for row in pattern:
+            up = [leg + 1 for leg in range(6) if row[leg]]
+            assert up in ([1, 3, 5], [2, 4, 6])  # seed 000: 1-3-5 swing while 2-4-6 push
+        assert [leg + 1 for leg in range(6) if pattern[0][leg]] == [1, 3, 5]
+        assert [leg + 1 for leg in range(6) if pattern[swing][leg]] == [2, 4, 6]
+
+
+def test_ripple_wave_tetrapod_keep_enough_feet_down(tables):
+    for gait, _, _, _, _, _, pattern, _ in tables:
+        for row in pattern:
+            up = [leg for leg in range(6) if row[leg]]
+            if gait == 1:  # tetrapod: a diagonal pair at a time, four feet down
+                assert sorted(up) in ([0, 3], [1, 4], [2, 5])
+            if gait == 2:  # ripple: one leg per side in the air
+                assert len(up) == 2 and sum(1 for leg in up if leg < 3) == 1
+            if gait == 3:  # wave: one leg at a time
+                assert len(up) == 1
+
+
+def test_wave_and_ripple_run_rear_to_front(tables):
+    for gait, _, ticks, _, _, _, pattern, _ in tables:
+        if gait not in (2, 3):
+            continue
+        first = {leg: next(p for p in range(ticks) if pattern[p][leg] and not pattern[p - 1][leg]) for leg in range(6)}
+        assert first[2] < first[1] < first[0]  # right: rear, middle, front
+        if gait == 3:
+            assert first[0] < first[3] < first[4] < first[5]  # then left: rear, middle, front
+
+
+def test_seed_001_phases(tables):
+    # power (stance), then lift, swing, contact in that order, each a third of the swing.
+    for _, _, ticks, swing, _, _, pattern, phases in tables:
+        for leg in range(6):
+            seq = phases[leg]
+            start = next(p for p in range(ticks) if pattern[p][leg] and not pattern[p - 1][leg])
+            run = [seq[(start + k) % ticks] for k in range(ticks)]
+            compact = [run[0]] + [run[k] for k in range(1, ticks) if run[k] != run[k - 1]]
+            assert compact == [1, 2, 3, 0]
+            assert run.count(1) >= swing // 3 and run.count(3) >= swing // 3
+
+
+@pytest.mark.parametrize(
+    "gait,cycle_ms,message",
+    [
+        (4, 1000, "gait: 4 is not one of 0 tripod"),
+        (-1, 1000, "gait"),
+        ("tripod", 1000, "gait"),
+        (True, 1000, "gait"),
+        (0, 499, "cycle_ms: 499 ms is outside 500..5000"),
+        (0, 5001, "cycle_ms"),
+        (0, 1000.0, "cycle_ms: need a whole number"),
+        (0, None, "cycle_ms"),
+    ],
+)
+def test_bad_gait_settings_are_refused(gait, cycle_ms, message):
+    from hexapod.gait import GaitClock
+
+    c = GaitClock(2, 1500)
+    with pytest.raises(ValueError, match=message):
+        c.set(gait, cycle_ms)
+    assert (c.gait, c.cycle_ms) == (2, 1560)  # unchanged
+
+
+def test_gait_names():
+    from hexapod.gait import NAMES, gait_number
+
+    assert [gait_number(n) for n in NAMES] == [0, 1, 2, 3]
+    with pytest.raises(ValueError, match="'trot' is not one of tripod, tetrapod, ripple, wave"):
+        gait_number("trot")

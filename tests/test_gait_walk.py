@@ -1,0 +1,332 @@
+"""The walk on the real tick: straight and arc stances at constant speed, stops, switches, turns.
+
+Every scenario runs on CPython and inside the MicroPython VM; the printed integers must be
+identical, and then the properties are checked on them.
+"""
+
+import ast
+import math
+
+import pytest
+
+SETUP = """
+import robots.default as d
+from hexapod import geometry, tick
+from hexapod.gait import NAMES
+g = geometry.load(d)
+robot = tick.Robot(g, tick.default_servos(g), tick.FrameBuffer())
+w = robot.walker
+T = [0]
+def run(n):
+    for _ in range(n):
+        code = robot.tick(T[0])
+        T[0] += 20
+        if code:
+            print("FAULT", code, robot.fault_leg, robot.fault_code)
+robot.stand_up()
+while robot.mode != tick.STANDING:
+    run(1)
+"""
+
+
+def scenario(both_runtimes, body):
+    cp, mp = both_runtimes(SETUP + body)
+    assert cp == mp
+    assert "FAULT" not in cp
+    return [ast.literal_eval(line) for line in cp.splitlines() if line.strip()]
+
+
+def test_straight_stance_is_constant_speed(both_runtimes):
+    rows = scenario(
+        both_runtimes,
+        """
+robot.walk(1111, 0, 0)
+run(200)
+print(list(w.cmd))
+for _ in range(100):
+    run(1)
+    print([[w.su[i], w.fx[i], w.fy[i], w.fz[i]] for i in range(6)])
+""",
+    )
+    cmd, rows = rows[0], rows[1:]
+    assert cmd == [1111, 0, 0]
+    per_tick = 1111 * 16 * 20 / 1000  # fine units (0.1 mm / 16) per 20 ms
+    for a, b in zip(rows, rows[1:], strict=False):
+        for i in range(6):
+            if a[i][0] < 0 and b[i][0] < 0:  # on the ground both ticks
+                assert -(b[i][1] - a[i][1]) in (math.floor(per_tick), math.ceil(per_tick))
+                assert b[i][2] == a[i][2] and b[i][3] == a[i][3]  # straight back, on the ground
+    # Long-run speed is exact: the carries keep every remainder.
+    stance = [r[0] for r in rows]
+    assert any(s[0] >= 0 for s in stance) and any(s[0] < 0 for s in stance)
+
+
+def test_turning_stance_is_an_arc_at_constant_rate(both_runtimes):
+    vx, yaw = 600, 1100  # 60 mm/s, 11 deg/s: centre of the turn 312.5 mm to the left
+    rows = scenario(
+        both_runtimes,
+        """
+robot.walk(%d, 0, %d)
+run(200)
+print(list(w.cmd))
+for _ in range(80):
+    run(1)
+    print([[w.su[i], w.fx[i], w.fy[i]] for i in range(6)])
+"""
+        % (vx, yaw),
+    )
+    cmd, rows = rows[0], rows[1:]
+    assert cmd == [vx, 0, yaw]
+    cy = vx / math.radians(yaw / 100) * 16  # turn centre on the body's y axis, fine units
+    checked = 0
+    for a, b in zip(rows, rows[1:], strict=False):
+        for i in range(6):
+            if a[i][0] < 0 and b[i][0] < 0:
+                ra = math.hypot(a[i][1], a[i][2] - cy)
+                rb = math.hypot(b[i][1], b[i][2] - cy)
+                assert abs(ra - rb) <= 3  # fine units: 0.02 mm
+                turn = math.atan2(b[i][2] - cy, b[i][1]) - math.atan2(a[i][2] - cy, a[i][1])
+                # 0.22 degree per tick, backwards; the heading is read in whole cdeg (0.01).
+                assert abs(math.degrees(turn) + yaw / 100 / 50) < 0.011
+                checked += 1
+    assert checked > 200
+    # Over a whole stance the rate is exact to the heading's last cdeg.
+    for i in range(6):
+        run = [r[i] for r in rows]
+        k = 0
+        while k < len(run) and run[k][0] >= 0:
+            k += 1
+        j = k
+        while j < len(run) and run[j][0] < 0:
+            j += 1
+        if j - k > 10:
+            a, b = run[k], run[j - 1]
+            turn = math.atan2(b[2] - cy, b[1]) - math.atan2(a[2] - cy, a[1])
+            assert abs(math.degrees(turn) + yaw / 100 / 50 * (j - 1 - k)) < 0.011
+
+
+def test_turn_in_place_pivots_about_the_body_centre(both_runtimes):
+    rows = scenario(
+        both_runtimes,
+        """
+robot.walk(0, 0, -2000)
+run(150)
+for _ in range(60):
+    run(1)
+    print([w.bx, w.by, [[w.su[i], w.fx[i], w.fy[i]] for i in range(6)]])
+""",
+    )
+    for a, b in zip(rows, rows[1:], strict=False):
+        assert a[0] == b[0] == 0 and a[1] == b[1] == 0  # the body centre does not travel
+        for i in range(6):
+            if a[2][i][0] < 0 and b[2][i][0] < 0:
+                assert abs(math.hypot(*a[2][i][1:]) - math.hypot(*b[2][i][1:])) <= 3  # 0.02 mm
+
+
+@pytest.mark.parametrize("gait", [0, 1, 2, 3])
+def test_stop_finishes_the_step_and_lands_at_neutral(both_runtimes, gait):
+    rows = scenario(
+        both_runtimes,
+        """
+robot.set_gait(%d)
+robot.walk(900, -300, 1200)
+states = []
+for _ in range(137):
+    run(1)
+    states.append(w.state)
+robot.stop()
+air = sum(1 for i in range(6) if w.su[i] >= 0)
+n = 0
+while robot.mode == tick.WALKING and n < 1000:
+    run(1)
+    states.append(w.state)
+    n += 1
+print([air, n, w.clock.cycle_ticks])
+print(states)
+print([[w.su[i], w.fx[i] - w.nx[i], w.fy[i] - w.ny[i], w.fz[i] - w.ground] for i in range(6)])
+print([robot.mode, robot.faults])
+"""
+        % gait,
+    )
+    (air, n, cycle), states, feet, (mode, faults) = rows
+    assert air > 0  # the stop came with feet in the air
+    assert n <= 3 * cycle
+    assert feet == [[-1, 0, 0, 0]] * 6  # every foot down, exactly at neutral
+    assert mode == 3 and faults == 0  # standing
+    # STOPPED(0) -> STARTING(1) -> WALKING(2) -> STOPPING(3) -> STOPPED(0), in that order.
+    compact = [states[0]] + [s for k, s in enumerate(states[1:]) if s != states[k]]
+    assert compact == [1, 2, 3, 0]
+
+
+def test_gait_switch_waits_for_all_feet_down(both_runtimes):
+    rows = scenario(
+        both_runtimes,
+        """
+robot.walk(1000, 0, 0)
+run(113)
+for target in (2, 3, 1, 0):
+    robot.set_gait(target)
+    before = w.clock.gait
+    n = 0
+    while w.clock.gait == before:
+        air = sum(1 for i in range(6) if w.su[i] >= 0)
+        run(1)
+        n += 1
+    print([target, w.clock.gait, n, air, w.phase, sum(1 for i in range(6) if w.su[i] >= 0)])
+    run(57)
+""",
+    )
+    for target, now, n, _air_before, phase, air_after in rows:
+        assert now == target
+        assert n < 200
+        # The switch came at the end of a tick with every foot down; the new gait starts
+        # its cycle at phase 0 on the next tick.
+        assert phase == 0 and air_after == 0
+
+
+def test_heading_form_matches_velocity_form(both_runtimes):
+    rows = scenario(
+        both_runtimes,
+        """
+half = w.clock.stance_ticks * 20 // 2
+for L, theta in ((300, 0), (250, 4500), (200, 9000), (280, -13500)):
+    robot.walk_heading(L, theta)
+    cmd = list(w.cmd)
+    run(300)
+    # touch-down point of leg 1 relative to its neutral, in 0.1 mm
+    while w.su[0] < 0:
+        run(1)
+    while w.su[0] >= 0:
+        run(1)
+    print([L, theta, half, cmd, w.scale_permille, (w.fx[0] - w.nx[0]) >> 4, (w.fy[0] - w.ny[0]) >> 4])
+""",
+    )
+    for L, theta, half, cmd, scale, dx, dy in rows:
+        assert scale == 1000
+        a = math.radians(theta / 100)
+        assert abs(cmd[0] - L * math.cos(a) * 1000 / half) <= 1
+        assert abs(cmd[1] - L * math.sin(a) * 1000 / half) <= 1
+        # Seed 003: the foot lands L along the heading: x = L cos(theta), y = L sin(theta).
+        assert abs(dx - L * math.cos(a)) <= 3 and abs(dy - L * math.sin(a)) <= 3
+
+
+@pytest.mark.parametrize("left,right", [(4500, 1000), (1000, 4500)])
+def test_seed_000_turn_coxa_sweeps(both_runtimes, left, right):
+    rows = scenario(
+        both_runtimes,
+        """
+robot.set_params(step_length=600, cycle_ms=2000)
+robot.walk_sweeps(%d, %d)
+print([w.scale_permille, w.cmd[0], w.cmd[2]])
+run(250)
+coxa = {1: [], 4: []}
+for _ in range(w.clock.cycle_ticks):
+    run(1)
+    for i in (1, 4):
+        if w.su[i] < 0:
+            coxa[i].append(robot.angles[3 * i])
+print([max(coxa[4]) - min(coxa[4]), max(coxa[1]) - min(coxa[1])])
+"""
+        % (left, right),
+    )
+    (scale, vx, yaw), (swept_left, swept_right) = rows
+    assert scale == 1000 and vx > 0
+    assert (yaw < 0) == (left > right)  # right turn: clockwise, negative yaw
+    assert abs(swept_left - left) <= 30 and abs(swept_right - right) <= 30  # within 0.3 degree
+
+
+def test_commands_beyond_reach_are_scaled_not_refused(both_runtimes):
+    rows = scenario(
+        both_runtimes,
+        """
+for cmd in ((3000, 0, 0), (0, -3000, 0), (0, 0, 9000), (2000, 2000, -6000), (500, 0, 0)):
+    robot.walk(cmd[0], cmd[1], cmd[2])
+    print([list(cmd), w.scale_permille, list(w.cmd), w.step, min(w.rho)])
+""",
+    )
+    for cmd, scale, scaled, _step, _rho in rows:
+        if cmd == [500, 0, 0]:
+            assert scale == 1000 and scaled == cmd
+        else:
+            assert 0 < scale < 1000
+            assert all(abs(s) <= abs(c) for s, c in zip(scaled, cmd, strict=True))
+
+
+def test_a_leg_without_room_scales_the_walk_to_nothing(rt):
+    got = rt.value(
+        SETUP
+        + """
+w.rho[4] = 0
+w.command(1000, 0, 500)
+print([w.scale_permille, list(w.cmd)])
+"""
+    )
+    assert got == [0, [0, 0, 0]]
+
+
+BAD_WALKS = [
+    ("robot.walk(3001, 0, 0)", "vx: 3001 0.1 mm/s is outside -3000..3000"),
+    ("robot.walk(0, -3001, 0)", "vy"),
+    ("robot.walk(0, 0, 9001)", "yaw_rate: 9001 cdeg/s"),
+    ("robot.walk(1.5, 0, 0)", "vx: need a whole number"),
+    ("robot.walk('1', 0, 0)", "vx"),
+    ("robot.walk(0, True, 0)", "vy: need a whole number"),
+    ("robot.walk_heading(601, 0)", "length"),
+    ("robot.walk_heading(-1, 0)", "length"),
+    ("robot.walk_heading(100, 18001)", "heading"),
+    ("robot.walk_heading(100, 1.0)", "heading"),
+    ("robot.walk_sweeps(9001, 100)", "left sweep"),
+    ("robot.walk_sweeps(100, -1)", "right sweep"),
+    ("robot.set_params(step_length=49)", "step_length: 49 is outside 50..600"),
+    ("robot.set_params(step_length=601)", "step_length"),
+    ("robot.set_params(lift_height=99)", "lift_height"),
+    ("robot.set_params(lift_height=601)", "lift_height"),
+    ("robot.set_params(cycle_ms=499)", "cycle_ms"),
+    ("robot.set_params(cycle_ms=5001)", "cycle_ms"),
+    ("robot.set_params(cycle_ms='1000')", "cycle_ms"),
+    ("robot.set_gait(4)", "gait"),
+    ("robot.set_gait('wave')", "gait"),
+    ("robot.set_height(599)", "height"),
+    ("robot.set_height(1001)", "height"),
+    ("robot.set_height(800.0)", "height"),
+    ("robot.set_pose(x=401)", "pose x"),
+    ("robot.set_pose(roll=-1501)", "pose roll"),
+]
+
+
+def test_bad_commands_raise_and_change_nothing(both_runtimes):
+    body = "robot.walk(800, 0, 300)\nrun(77)\n"
+    body += (
+        "snap = lambda: [robot.mode, w.state, list(w.cmd), w.step, w.lift, w.clock.gait, w.clock.cycle_ms,"
+        " list(robot.body.target), w.ground]\n"
+    )
+    body += "before = snap()\n"
+    for call, _ in BAD_WALKS:
+        body += "try:\n    %s\n    print('ACCEPTED')\nexcept ValueError as e:\n    print(repr(str(e)))\n" % call
+    body += "print(snap() == before)\n"
+    rows = scenario(both_runtimes, body)
+    assert rows[-1] is True
+    for (call, message), text in zip(BAD_WALKS, rows[:-1], strict=True):
+        assert message in text, (call, text)
+
+
+def test_changes_the_feet_would_not_notice_do_not_wait(rt):
+    got = rt.value(
+        SETUP
+        + """
+robot.walk(1500, 0, 0)
+run(61)
+res = []
+phase = w.phase
+robot.set_gait(0)  # the gait it already walks
+res.append([w.pending, w.phase == phase])
+robot.set_params(step_length=200)  # step length: applies at once, the command rescales
+res.append([w.pending, w.step, w.cmd[0] < 1500])
+robot.set_params(lift_height=400)  # the feet would notice: waits for all feet down
+res.append([w.pending, w.lift, w.next_lift])
+run(60)
+res.append([w.pending, w.lift])
+print(res)
+"""
+    )
+    assert got == [[0, True], [0, 200, True], [1, 300, 400], [0, 400]]

@@ -1,0 +1,61 @@
+"""`hexapod plot gait` writes its PNGs; bad options exit 2 and write nothing. And the tick
+bench's VM script runs (a short run: its figures are for `hexapod bench tick`, not a test)."""
+
+import json
+import os
+
+import pytest
+
+from hexapod_host import cli, mpvm
+
+
+def test_plot_gait_writes_pngs(tmp_path, capsys):
+    out = tmp_path / "plots"
+    assert cli.main(["plot", "gait", "--out", str(out), "--gait", "ripple"]) == 0
+    names = sorted(os.listdir(out))
+    assert names == ["phases_ripple.png", "top_ripple.png", "trajectory.png"]
+    for name in names:
+        data = (out / name).read_bytes()
+        assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 5000
+    assert capsys.readouterr().out.split() == [
+        str(out / n) for n in ("trajectory.png", "phases_ripple.png", "top_ripple.png")
+    ]
+
+
+@pytest.mark.parametrize(
+    "argv,message",
+    [
+        (["--gait", "trot"], "--gait: 'trot' is not one of"),
+        (["--speed", "fast"], "--speed/--turn"),
+        (["--speed", "301"], "--speed: 301 mm/s is outside"),
+        (["--turn", "-91"], "--turn"),
+    ],
+)
+def test_plot_bad_options(tmp_path, capsys, argv, message):
+    out = tmp_path / "plots"
+    with pytest.raises(SystemExit) as err:
+        cli.main(["plot", "gait", "--out", str(out)] + argv)
+    assert err.value.code == 2
+    assert message in capsys.readouterr().err
+    assert not out.exists()
+
+
+def test_plot_out_must_be_a_directory(tmp_path, capsys):
+    f = tmp_path / "file"
+    f.write_text("x")
+    with pytest.raises(SystemExit):
+        cli.main(["plot", "gait", "--out", str(f)])
+    assert "not a directory" in capsys.readouterr().err
+
+
+@pytest.mark.skipif(mpvm.executable() is None, reason="no MicroPython VM")
+def test_tick_bench_script_runs_allocation_free():
+    from hexapod_host.tick_bench import bench_tick
+
+    result = bench_tick(None, ticks=300, repeats=1)
+    assert result["bench"] == "tick" and result["heap"] == "128k"
+    assert [g["gait"] for g in result["gaits"]] == ["tripod", "tetrapod", "ripple", "wave"]
+    for g in result["gaits"]:
+        assert g["heap_bytes_per_tick"] == 0 and g["faults"] == 0
+        assert 0 < g["median_us"] <= g["p99_us"] <= g["max_us"] <= g["raw_max_us"]
+    json.dumps(result)

@@ -1,0 +1,129 @@
+"""Seed 003's swing trajectory (eq. 12-14): Table III exactly, in both runtimes, and the gait's swing."""
+
+import math
+
+# Table III (s = 5, x = 2, y = 0, z = 2; cm, six decimals), rows in the paper's order.
+TABLE_III = [
+    (0, 0, 0, 2),
+    (1, 0.618034, 0, 1.902113),
+    (2, 1.175571, 0, 1.618034),
+    (3, 1.618034, 0, 1.175571),
+    (4, 1.902113, 0, 0.618034),
+    (5, 2, 0, 0),
+    (4, 1.902113, 0, 0),
+    (3, 1.618034, 0, 0),
+    (2, 1.175571, 0, 0),
+    (1, 0.618034, 0, 0),
+    (0, 0, 0, 0),
+    (-1, -0.618034, 0, 0),
+    (-2, -1.175571, 0, 0),
+    (-3, -1.618034, 0, 0),
+    (-4, -1.902113, 0, 0),
+    (-5, -2, 0, 0),
+    (-4, -1.902113, 0, 0.618034),
+    (-3, -1.618034, 0, 1.175571),
+    (-2, -1.175571, 0, 1.618034),
+    (-1, -0.618034, 0, 1.902113),
+    (0, 0, 0, 2),
+]
+
+COMBINED = """
+from hexapod.trajectory import FINE_BITS, combined_point, combined_step, sin90_fine
+rows = []
+buf = [0, 0, 0]
+step = [0, 0]
+for k in range(21):
+    combined_step(k, 5, step)
+    t = step[0]
+    # x = z = 2 cm at 1e-6 cm units: the table's sixth decimal is the last digit here.
+    combined_point(k, 5, 2000000, 0, 2000000, buf, sin90_fine, 1 << FINE_BITS)
+    fine = list(buf)
+    combined_point(k, 5, 200, 0, 200, buf)  # the tick's Q15 sine, at 0.1 mm
+    rows.append([t] + fine + list(buf))
+print(rows)
+"""
+
+
+def test_table_iii_exact_in_integers(rt):
+    rows = rt.value(COMBINED)
+    assert len(rows) == len(TABLE_III)
+    for row, (t, fx, fy, fz) in zip(rows, TABLE_III, strict=True):
+        assert row[0] == t
+        # Integer trajectory at 1e-6 cm: every digit of the table.
+        assert row[1:4] == [round(fx * 1e6), round(fy * 1e6), round(fz * 1e6)]
+        # The tick's precision (Q15 sine) at 0.1 mm: the table rounded to 0.1 mm.
+        assert row[4:7] == [round(fx * 100), round(fy * 100), round(fz * 100)]
+
+
+def test_table_iii_float_form():
+    from hexapod.trajectory import combined_step, track_point_float
+
+    step = [0, 0]
+    for k, (t, fx, fy, fz) in enumerate(TABLE_III):
+        combined_step(k, 5, step)
+        assert step[0] == t
+        x, y, z = track_point_float(t, 5, 2.0, 0.0, 2.0 if step[1] else 0.0)
+        assert (round(x, 6), round(y, 6) + 0.0, round(z, 6)) == (fx, fy, fz)
+
+
+def test_heading_form_splits_the_step_like_the_paper(rt):
+    # Seed 003: x = L cos(theta), y = L sin(theta); eq. 12-13 then scale both the same way.
+    rows = rt.value(
+        """
+from hexapod.fixmath import cos, sin, mul_q15
+from hexapod.trajectory import track_point
+out = [0, 0, 0]
+rows = []
+for theta in (0, 1500, 4500, 9000, -3000, 18000):
+    x = mul_q15(400, cos(theta))
+    y = mul_q15(400, sin(theta))
+    track_point(5, 5, x, y, 300, out)
+    rows.append([theta, x, y] + list(out))
+print(rows)
+"""
+    )
+    for theta, x, y, fx, fy, fz in rows:
+        assert abs(x - 400 * math.cos(math.radians(theta / 100))) <= 1
+        assert abs(y - 400 * math.sin(math.radians(theta / 100))) <= 1
+        assert (fx, fy, fz) == (x, y, 0)  # t = s: the full step, foot on the ground
+
+
+def test_fine_sine_against_math(rt):
+    got = rt.value(
+        """
+from hexapod.trajectory import sin90_fine
+print([sin90_fine(t, s) for s in (1, 3, 7, 90, 1000) for t in range(-s, s + 1, max(1, s // 7))])
+"""
+    )
+    want = [
+        round(math.sin(math.radians(t * 90 / s)) * 2**40)
+        for s in (1, 3, 7, 90, 1000)
+        for t in range(-s, s + 1, max(1, s // 7))
+    ]
+    assert max(abs(a - b) for a, b in zip(got, want, strict=True)) <= 1
+
+
+def test_swing_shape(rt):
+    rows = rt.value(
+        """
+from hexapod.trajectory import swing_shape
+out = [0, 0]
+rows = []
+for w in (4, 12, 25, 50):
+    rows.append([list(swing_shape(u, w, out)) for u in range(w + 1)])
+print(rows)
+"""
+    )
+    for shape in rows:
+        w = len(shape) - 1
+        assert shape[0] == [0, 0] and shape[-1] == [32768, 0]
+        fwd = [p[0] for p in shape]
+        up = [p[1] for p in shape]
+        assert fwd == sorted(fwd)  # the foot only moves forward during a swing
+        assert max(up) == up[w // 2] and up[w // 2] >= 32768 * 0.97
+        # Smooth touch-down: one tick before landing, eq. 14 alone would still be at
+        # sin(180/w); squared, the foot is already that factor lower (zero landing speed).
+        eq14_last = 32768 * math.sin(math.radians(180 / w))
+        assert up[w - 1] <= eq14_last * math.sin(math.radians(180 / w)) + 2
+        assert up[w - 1] < eq14_last
+        assert up[1] == up[w - 1]
