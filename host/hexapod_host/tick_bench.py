@@ -37,4 +37,13 @@ def bench_tick(args, ticks=10000, repeats=5):
     with tempfile.TemporaryDirectory() as tmp:
         build_mpy(tmp)
         out = mpvm.run(script=VM_SCRIPT, heapsize="128k", args=(tmp, str(ticks), str(repeats)))
-    return json.loads(out.strip().splitlines()[-1])
+    gaits = [json.loads(line) for line in out.strip().splitlines() if line.startswith("{")]
+    return {
+        "bench": "tick",
+        "runtime": "micropython",
+        "heap": "128k",
+        "budget_us": 20000,
+        "gaits": gaits,
+        "worst_max_over_median": max(g["max_over_median"] for g in gaits),
+        "heap_bytes_per_tick": max(g["heap_bytes_per_tick"] for g in gaits),
+    }
