@@ -20,24 +20,26 @@ BOARD = {
     # Femur and tibia servos of the left side are mounted mirrored, hence direction -1.
     "servos": (
         # leg, joint, chip, channel, centre_us, direction, min_us, max_us
+        # centre_us is the pulse at joint angle 0. The tibia's 0 is the leg straight out, one end
+        # of its -180..0 travel: 2400 us (600 us mirrored), so its -90 degree knee sits at 1500 us.
         (1, "coxa", 0x40, 0, 1500, 1, 600, 2400),
         (1, "femur", 0x40, 1, 1500, 1, 600, 2400),
-        (1, "tibia", 0x40, 2, 1500, 1, 600, 2400),
+        (1, "tibia", 0x40, 2, 2400, 1, 600, 2400),
         (2, "coxa", 0x40, 3, 1500, 1, 600, 2400),
         (2, "femur", 0x40, 4, 1500, 1, 600, 2400),
-        (2, "tibia", 0x40, 5, 1500, 1, 600, 2400),
+        (2, "tibia", 0x40, 5, 2400, 1, 600, 2400),
         (3, "coxa", 0x40, 6, 1500, 1, 600, 2400),
         (3, "femur", 0x40, 7, 1500, 1, 600, 2400),
-        (3, "tibia", 0x40, 8, 1500, 1, 600, 2400),
+        (3, "tibia", 0x40, 8, 2400, 1, 600, 2400),
         (4, "coxa", 0x41, 0, 1500, 1, 600, 2400),
         (4, "femur", 0x41, 1, 1500, -1, 600, 2400),
-        (4, "tibia", 0x41, 2, 1500, -1, 600, 2400),
+        (4, "tibia", 0x41, 2, 600, -1, 600, 2400),
         (5, "coxa", 0x41, 3, 1500, 1, 600, 2400),
         (5, "femur", 0x41, 4, 1500, -1, 600, 2400),
-        (5, "tibia", 0x41, 5, 1500, -1, 600, 2400),
+        (5, "tibia", 0x41, 5, 600, -1, 600, 2400),
         (6, "coxa", 0x41, 6, 1500, 1, 600, 2400),
         (6, "femur", 0x41, 7, 1500, -1, 600, 2400),
-        (6, "tibia", 0x41, 8, 1500, -1, 600, 2400),
+        (6, "tibia", 0x41, 8, 600, -1, 600, 2400),
     ),
     "sensors": (
         # name, trigger pin, echo pin, x, y (0.1 mm, body frame), heading (0.01 deg, 0 = forward, left +)

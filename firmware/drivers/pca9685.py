@@ -324,9 +324,25 @@ class ServoBank:
         self._ch_of = [ch for _, ch in channel_map]
         self._maps = list(servo_maps)
         self.clamped = 0  # pulses the calibrated min/max had to catch (the caller should have refused them)
+        self.status = OK  # status bits of the last write_frame
+        self.failed_frames = 0  # write_frame calls on which some chip kept its previous frame
+        self.reinits = 0  # write_frame calls that found a chip reset (brownout) and set it up again
+
+    def write_frame(self, pulses_us):
+        """The control tick's sink (hexapod.tick.Robot): write(), keeping the status and counts."""
+        st = self.write(pulses_us)
+        self.status = st
+        if st & (FAILED | OFFLINE):
+            self.failed_frames += 1
+        if st & REINIT:
+            self.reinits += 1
+        return st
 
     def write(self, pulses_us):
-        """pulses_us[k] (us) to servo k, each forced into its calibrated min..max; status bits."""
+        """pulses_us[k] (us) to servo k, each forced into its calibrated min..max; status bits.
+
+        A pulse of 0 means no pulse at all: that servo goes limp (channel full OFF).
+        """
         n = self._n
         if len(pulses_us) != n:
             raise ValueError("%d pulses for %d servos" % (len(pulses_us), n))
@@ -335,6 +351,9 @@ class ServoBank:
                 raise ValueError("servo %d: pulse_us %r, allowed an int (us)" % (k, pulses_us[k]))
         for k in range(n):
             p = pulses_us[k]
+            if p == 0:
+                self._chip_of[k].stage_off(self._ch_of[k])
+                continue
             q = self._maps[k].clamp(p)
             if q != p:
                 self.clamped += 1

@@ -194,3 +194,8 @@ class I2C(SoftI2C):
         self._setup(freq, timeout, bus if bus is not None else shared_bus(id))
         self.scl = scl
         self.sda = sda
+
+
+def reset():
+    """Forget every shared bus (a fresh machine for the next test)."""
+    _buses.clear()

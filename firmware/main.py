@@ -1,0 +1,57 @@
+"""Board entry point (MicroPython): the only file that touches real hardware.
+
+Loads the board file and the robot file named below, builds the loop (runner.Runner), stands
+the robot up and runs 50 Hz frames for ever, printing a status line every 5 s. Edit BOARD and
+ROBOT to match yours (files in boards/ and robots/).
+"""
+
+import time
+
+from machine import I2C, Pin, time_pulse_us
+from runner import Runner
+
+from hexapod import board as boards
+from hexapod import geometry
+
+BOARD = "pico"
+ROBOT = "default"
+STATUS_FRAMES = 250  # 5 s of 20 ms frames
+
+
+def build(board_name=BOARD, robot_name=ROBOT, clock=time):
+    """The Runner for a board and robot on this machine's I2C and pins."""
+    board = boards.load(board_name)
+    robot_module = __import__("robots." + robot_name, None, None, ("NAME",))
+    bus = board["i2c"]
+    i2c = I2C(bus["id"], scl=Pin(bus["scl"]), sda=Pin(bus["sda"]), freq=bus["freq"])
+    return Runner(board, geometry.load(robot_module), i2c, Pin, clock, time_pulse_us)
+
+
+def status_line(r):
+    """One line for the serial console: frames, held frames, overruns, bus and sonar faults."""
+    return "frames %d held %d overruns %d bus_failed %d reinit %d sonar_faults %d dist %s" % (
+        r.frames,
+        r.held,
+        r.robot.overruns,
+        r.bank.failed_frames,
+        r.bank.reinits,
+        r.sonar_faults,
+        r.distances,
+    )
+
+
+def main(frames=-1, clock=time, board_name=BOARD, robot_name=ROBOT):
+    r = build(board_name, robot_name, clock)
+    r.robot.stand_up()
+    n = 0
+    while frames < 0 or n < frames:
+        r.step()
+        n += 1
+        if n % STATUS_FRAMES == 0:
+            print(status_line(r))
+        r.wait()
+    return r
+
+
+if __name__ == "__main__":
+    main()

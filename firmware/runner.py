@@ -1,0 +1,69 @@
+"""The robot's control loop with its hardware handed in: a board file, a robot geometry, an
+I2C bus, a Pin class and a clock (the `time` module on a board; the virtual clock in tests).
+
+Each step is one 50 Hz frame: one sonar ping (round robin), one control tick, one burst per
+PCA9685. Nothing in a step raises on bus or sensor trouble: faults are counted and kept in
+plain attributes for a console to show, and the loop goes on.
+"""
+
+from drivers import hcsr04, pca9685
+from hexapod import board as boards
+from hexapod import tick
+
+FRAME_MS = 20
+
+
+class Runner:
+    """Board + robot + buses -> a loop of 20 ms frames; step() runs one."""
+
+    def __init__(self, board, geometry, i2c, pin, clock, time_pulse_us=None, *, max_range=10000):
+        """board: a validated BOARD (hexapod.board.load); geometry: hexapod.geometry.load(...);
+        pin: the Pin class (Pin(id, Pin.OUT)); clock: ticks_ms/ticks_us/ticks_diff/sleep_us/sleep_ms."""
+        table = boards.servo_table(board)
+        self.clock = clock
+        self.bank = pca9685.servo_bank(i2c, board["pca9685"], table, sleep_us=clock.sleep_us)
+        self.robot = tick.Robot(geometry, [row[2] for row in table], self.bank)
+        sensors = []
+        for trigger, echo in boards.sensor_pins(board):
+            sensors.append(
+                hcsr04.HCSR04(pin(trigger, pin.OUT), pin(echo, pin.IN), clock, time_pulse_us, max_range=max_range)
+            )
+        self.sonar = hcsr04.RoundRobin(sensors, tick_ms=FRAME_MS)
+        self.distances = [hcsr04.NO_DISTANCE] * len(sensors)  # 0.1 mm, NO_DISTANCE when not OK
+        self.sonar_status = [hcsr04.OK] * len(sensors)
+        self.sonar_faults = 0  # pings that came back NO_ECHO, STUCK or OUT_OF_RANGE
+        self.frames = 0
+        self.held = 0  # ticks whose frame the robot held back (hexapod.tick reason codes)
+        self.next_ms = clock.ticks_ms()
+
+    def step(self):
+        """One frame now: ping, tick, write. Returns the tick's code (0 = frame sent)."""
+        now = self.clock.ticks_ms()  # the frame's start: a ping's variable length must not look like jitter
+        i = self.sonar.tick(self.distances, self.sonar_status)
+        if i >= 0:
+            st = self.sonar_status[i]
+            if st != hcsr04.OK and st != hcsr04.WAIT:
+                self.sonar_faults += 1
+        code = self.robot.tick(now)
+        self.frames += 1
+        if code:
+            self.held += 1
+        return code
+
+    def wait(self):
+        """Sleep until the next 20 ms frame boundary (at once when late: the tick counts overruns)."""
+        clock = self.clock
+        self.next_ms = clock.ticks_add(self.next_ms, FRAME_MS)
+        late = clock.ticks_diff(clock.ticks_ms(), self.next_ms)
+        if late < 0:
+            clock.sleep_ms(-late)
+        elif late > FRAME_MS:
+            self.next_ms = clock.ticks_ms()  # far behind: start counting from now, never burst
+
+    def run(self, frames=-1):
+        """Run frames (forever when -1); every frame on its 20 ms boundary."""
+        n = 0
+        while frames < 0 or n < frames:
+            self.step()
+            self.wait()
+            n += 1
