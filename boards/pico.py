@@ -2,7 +2,7 @@
 
 Pins are GPIO numbers (GP4 is 4). The Pico"s pins are 3.3 V only: every echo line goes
 through a 1k/2k divider (docs/wiring.md). Calibration rows are the seed 001 defaults
-(1500 us centre, 600..2400 us): measure your own servos and replace them.
+(600..2400 us, 10 us per degree): measure your own servos and replace them.
 """
 
 BOARD = {
