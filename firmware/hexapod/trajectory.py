@@ -93,15 +93,6 @@ def combined_point(k, s, x, y, z, out, sine=sin90, one=ONE):
     return out
 
 
-def track_point_float(t, s, x, y, z):
-    """Eq. 12-14 in floats, as printed in the paper (a host-side check; not for the tick)."""
-    import math
-
-    a = math.radians(t * 90.0 / s)
-    b = math.radians((s - t) * 90.0 / s)
-    return (x * math.sin(a), y * math.sin(a), z - z * (1.0 - math.sin(b)))
-
-
 def swing_shape(u, w, out):
     """The gait's swing at tick u of w (0..w): (forward fraction, height fraction), Q15, into out[0:2].
 

@@ -52,3 +52,10 @@ def fk_dh(t1, t2, t3, coxa, femur, tibia, femur_offset=0.0):
     )
     # DH frame 1 has z1 along the femur axis: with alpha1 = +90 the chain's z comes out up.
     return m[0][3], m[1][3], m[2][3]
+
+
+def track_point(t, s, x, y, z):
+    """Seed 003 eq. 12-14 in floats, as printed: foot offset at step t of s for lengths x, y, z."""
+    a = math.radians(t * 90.0 / s)
+    b = math.radians((s - t) * 90.0 / s)
+    return x * math.sin(a), y * math.sin(a), z - z * (1.0 - math.sin(b))
