@@ -1,12 +1,14 @@
 """`hexapod sim`: the main job. Until the wall-following room exists, a kinematics demo.
 
 It walks seed 004's leg through seed 003's swing track (eq. 12-14) and prints, per step,
-the foot target, the integer joint angles, the seed 001 servo pulses, and the forward-
-kinematics round trip, on CPython and (when present) inside the MicroPython VM.
+the foot target, the integer joint angles, the servo pulses through the Pico board file's
+calibration of leg 1, and the forward-kinematics round trip, on CPython and (when present)
+inside the MicroPython VM.
 """
 
 import math
 
+from hexapod import board as boards
 from hexapod.leg import OK, Leg, describe
 from hexapod.units import format_fixed
 from hexapod_host import mpvm
@@ -34,11 +36,6 @@ def track(steps=5, stride=400, lift=300, base=(1400, 0, -800)):
     return pts
 
 
-def pulse_us(cdeg):
-    """Seed 001's map for a servo centred at 0: 1500 us + 10 us per degree."""
-    return 1500 + cdeg // 10
-
-
 def register(sub):
     p = sub.add_parser("sim", help="the main simulation (for now: a leg kinematics demo)")
     p.set_defaults(func=run)
@@ -47,6 +44,8 @@ def register(sub):
 def run(args):
     pts = track()
     leg = Leg(coxa=300, femur=850, tibia=1250, femur_offset=320)
+    servos = [row[2] for row in boards.servo_table(boards.load("pico"))[:3]]  # leg 1's calibration
+    pulses = [0, 0, 0]
     out = [0] * 6
     rows = []
     print("seed 004 leg (coxa 30, femur 85, tibia 125, offset 32 mm) on seed 003's swing track")
@@ -60,6 +59,8 @@ def run(args):
             print("%28s unreachable: %s" % (p, describe(code, leg.excess)))
             continue
         leg.fk(out[0], out[1], out[2], out, 3)
+        for k in range(3):
+            servos[k].pulse(out[k], pulses, k)
         worst = max(worst, *(abs(out[3 + k] - p[k]) for k in range(3)))
         rows.append([code] + out[:])
         print(
@@ -67,7 +68,7 @@ def run(args):
             % (
                 " ".join(format_fixed(v, 1) for v in p),
                 " ".join(format_fixed(v, 2) for v in out[:3]),
-                " ".join(str(pulse_us(v)) for v in out[:3]),
+                " ".join(str(v) for v in pulses),
                 " ".join(format_fixed(v, 1) for v in out[3:]),
             )
         )
