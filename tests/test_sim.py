@@ -1,0 +1,20 @@
+"""`hexapod sim` (for now the kinematics demo) runs, round-trips, and agrees across runtimes."""
+
+import os
+import subprocess
+import sys
+
+HEXAPOD = os.path.join(os.path.dirname(sys.executable), "hexapod")
+
+
+def test_sim_demo(mp):
+    proc = subprocess.run([HEXAPOD, "sim"], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    lines = proc.stdout.splitlines()
+    assert "worst FK round-trip error: 0.0 mm" in lines
+    assert lines[-1] == "MicroPython VM: identical integers"
+    rows = [line for line in lines if line.strip()[:1].isdigit()]
+    assert len(rows) == 21 and not any("unreachable" in r for r in lines)
+    for row in rows:
+        pulses = [int(v) for v in row.split()[6:9]]
+        assert all(600 <= p <= 2400 for p in pulses), row
