@@ -12,11 +12,7 @@ import adafruit_hcsr04
 
 from drivers.hcsr04 import (
     MIN_CYCLE_US,
-    MIN_RANGE,
     NO_ECHO,
-    OK,
-    OUT_OF_RANGE,
-    TOO_CLOSE,
     WAIT,
     MedianRanger,
     speed_x100,
@@ -65,13 +61,7 @@ class HCSR04(MedianRanger):
             cm = self.sonar.distance
         except RuntimeError:
             return NO_ECHO
-        d = int(cm * self._scale + 0.5)
-        if d > self.max_range:
-            return OUT_OF_RANGE
-        if d < MIN_RANGE:
-            return TOO_CLOSE
-        self.distance = d
-        return OK
+        return self.accept(int(cm * self._scale + 0.5))
 
     def deinit(self):
         self.sonar.deinit()

@@ -85,6 +85,15 @@ class MedianRanger:
         """0.1 mm for an echo width in us (rounded)."""
         return (echo_us * self._k + _HALF) >> _SHIFT
 
+    def accept(self, d):
+        """Status of a measured distance d (0.1 mm); OK keeps it in self.distance."""
+        if d > self.max_range:
+            return OUT_OF_RANGE
+        if d < MIN_RANGE:
+            return TOO_CLOSE
+        self.distance = d
+        return OK
+
     def measure_into(self, dist, status, i):
         """Ping; write status[i] and dist[i] (median 0.1 mm, or NO_DISTANCE); return the status.
 
@@ -159,13 +168,7 @@ class HCSR04(MedianRanger):
             return NO_ECHO
         if us < 0:
             return OUT_OF_RANGE
-        d = self.to_distance(us)
-        if d > self.max_range:
-            return OUT_OF_RANGE
-        if d < MIN_RANGE:
-            return TOO_CLOSE
-        self.distance = d
-        return OK
+        return self.accept(self.to_distance(us))
 
 
 def plan(count, tick_ms, neighbours, cycle_ms, crosstalk_ms):
