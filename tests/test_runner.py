@@ -125,3 +125,34 @@ print((boot, back, nack, brownout, sonar, r.distances[0] > 0, r.frames, r.held, 
     assert st_front == 3 and st_left_rear == 2  # STUCK, NO_ECHO: never a fake distance
     assert front_again and n == 315 and mode == 4 and held == 0
     assert bad == []
+
+
+def test_a_steady_frame_allocates_nothing(mp):
+    """Ping + tick + two bursts, through the stub machine and the chip models, in the VM."""
+    from hexapod_host.testing import HEAP_PROBE
+
+    src = (
+        SETUP
+        + HEAP_PROBE
+        + """
+plug(0x40)
+plug(0x41)
+r = main.build(clock=clock)
+r.robot.stand_up()
+frames(r, 100)
+r.robot.walk(1200, 300, 1500)
+frames(r, 100)
+
+
+def run(n):
+    for _ in range(n):
+        r.step()
+        r.wait()
+
+
+print((heap_bytes(run, 300), r.frames, r.held, r.bank.failed_frames, r.robot.mode))
+"""
+    )
+    heap, n, held, failed, mode = mp.value(src, heapsize="4m")
+    assert (held, failed, mode) == (0, 0, 4) and n == 800
+    assert heap == 0
