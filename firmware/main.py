@@ -10,6 +10,7 @@ import time
 from machine import I2C, Pin, time_pulse_us
 from runner import Runner
 
+from drivers import hcsr04, pca9685
 from hexapod import board as boards
 from hexapod import geometry
 
@@ -18,13 +19,20 @@ ROBOT = "default"
 STATUS_FRAMES = 250  # 5 s of 20 ms frames
 
 
-def build(board_name=BOARD, robot_name=ROBOT, clock=time):
-    """The Runner for a board and robot on this machine's I2C and pins."""
+def build(board_name=BOARD, robot_name=ROBOT, clock=time, max_range=10000):
+    """The Runner for a board and robot on this machine's I2C and pins (max_range: 0.1 mm)."""
     board = boards.load(board_name)
     robot_module = __import__("robots." + robot_name, None, None, ("NAME",))
     bus = board["i2c"]
     i2c = I2C(bus["id"], scl=Pin(bus["scl"]), sda=Pin(bus["sda"]), freq=bus["freq"])
-    return Runner(board, geometry.load(robot_module), i2c, Pin, clock, time_pulse_us)
+    table = boards.servo_table(board)
+    bank = pca9685.servo_bank(i2c, board["pca9685"], table, sleep_us=clock.sleep_us)
+    sensors = []
+    for trigger, echo in boards.sensor_pins(board):
+        sensors.append(
+            hcsr04.HCSR04(Pin(trigger, Pin.OUT), Pin(echo, Pin.IN), clock, time_pulse_us, max_range=max_range)
+        )
+    return Runner(geometry.load(robot_module), [row[2] for row in table], bank, sensors, clock)
 
 
 def status_line(r):

@@ -1,33 +1,28 @@
-"""The robot's control loop with its hardware handed in: a board file, a robot geometry, an
-I2C bus, a Pin class and a clock (the `time` module on a board; the virtual clock in tests).
+"""The robot's control loop with its drivers handed in: a robot geometry, the servo calibration,
+a servo bank (drivers.pca9685.ServoBank or the CircuitPython one), the sonars and a clock (the
+`time` module on MicroPython; the virtual clock in tests). main.py builds one on a board.
 
 Each step is one 50 Hz frame: one sonar ping (round robin), one control tick, one burst per
 PCA9685. Nothing in a step raises on bus or sensor trouble: faults are counted and kept in
 plain attributes for a console to show, and the loop goes on.
 """
 
-from drivers import hcsr04, pca9685
-from hexapod import board as boards
+from drivers import hcsr04
 from hexapod import tick
 
 FRAME_MS = 20
 
 
 class Runner:
-    """Board + robot + buses -> a loop of 20 ms frames; step() runs one."""
+    """Robot + servo bank + sonars -> a loop of 20 ms frames; step() runs one."""
 
-    def __init__(self, board, geometry, i2c, pin, clock, time_pulse_us=None, *, max_range=10000):
-        """board: a validated BOARD (hexapod.board.load); geometry: hexapod.geometry.load(...);
-        pin: the Pin class (Pin(id, Pin.OUT)); clock: ticks_ms/ticks_us/ticks_diff/sleep_us/sleep_ms."""
-        table = boards.servo_table(board)
+    def __init__(self, geometry, servo_maps, bank, sensors, clock):
+        """geometry: hexapod.geometry.load(...); servo_maps: 18 ServoMaps (leg/joint order);
+        bank: has write_frame(pulses), failed_frames, reinits; sensors: hcsr04 rangers in
+        drivers.hcsr04 order; clock: ticks_ms/ticks_add/ticks_diff/sleep_ms."""
         self.clock = clock
-        self.bank = pca9685.servo_bank(i2c, board["pca9685"], table, sleep_us=clock.sleep_us)
-        self.robot = tick.Robot(geometry, [row[2] for row in table], self.bank)
-        sensors = []
-        for trigger, echo in boards.sensor_pins(board):
-            sensors.append(
-                hcsr04.HCSR04(pin(trigger, pin.OUT), pin(echo, pin.IN), clock, time_pulse_us, max_range=max_range)
-            )
+        self.bank = bank
+        self.robot = tick.Robot(geometry, servo_maps, bank)
         self.sonar = hcsr04.RoundRobin(sensors, tick_ms=FRAME_MS)
         self.distances = [hcsr04.NO_DISTANCE] * len(sensors)  # 0.1 mm, NO_DISTANCE when not OK
         self.sonar_status = [hcsr04.OK] * len(sensors)

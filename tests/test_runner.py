@@ -156,3 +156,18 @@ print((heap_bytes(run, 300), r.frames, r.held, r.bank.failed_frames, r.robot.mod
     heap, n, held, failed, mode = mp.value(src, heapsize="4m")
     assert (held, failed, mode) == (0, 0, 4) and n == 800
     assert heap == 0
+
+
+def test_esp32_board_builds_and_runs(rt):
+    src = (
+        SETUP.replace('boards.load("pico")', 'boards.load("esp32_devkit")')
+        + """
+plug(0x40)
+plug(0x41)
+r = main.build("esp32_devkit", clock=clock)
+r.robot.stand_up()
+bad = frames(r, 120)
+print((r.frames, r.held, r.bank.failed_frames, r.sonar_faults, bad, r.robot.mode))
+"""
+    )
+    assert rt.value(src, heapsize="4m") == (120, 0, 0, 0, [], 3)  # standing after the stand-up move
