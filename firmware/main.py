@@ -8,7 +8,7 @@ ROBOT to match yours (files in boards/ and robots/).
 import time
 
 from machine import I2C, Pin, time_pulse_us
-from runner import Runner
+from runner import Runner, status_line
 
 from drivers import hcsr04, pca9685
 from hexapod import board as boards
@@ -33,19 +33,6 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=time, max_range=10000):
             hcsr04.HCSR04(Pin(trigger, Pin.OUT), Pin(echo, Pin.IN), clock, time_pulse_us, max_range=max_range)
         )
     return Runner(geometry.load(robot_module), [row[2] for row in table], bank, sensors, clock)
-
-
-def status_line(r):
-    """One line for the serial console: frames, held frames, overruns, bus and sonar faults."""
-    return "frames %d held %d overruns %d bus_failed %d reinit %d sonar_faults %d dist %s" % (
-        r.frames,
-        r.held,
-        r.robot.overruns,
-        r.bank.failed_frames,
-        r.bank.reinits,
-        r.sonar_faults,
-        r.distances,
-    )
 
 
 def main(frames=-1, clock=time, board_name=BOARD, robot_name=ROBOT):

@@ -62,3 +62,16 @@ class Runner:
             self.step()
             self.wait()
             n += 1
+
+
+def status_line(r):
+    """One line for the serial console: frames, held frames, overruns, bus and sonar faults."""
+    return "frames %d held %d overruns %d bus_failed %d reinit %d sonar_faults %d dist %s" % (
+        r.frames,
+        r.held,
+        r.robot.overruns,
+        r.bank.failed_frames,
+        r.bank.reinits,
+        r.sonar_faults,
+        r.distances,
+    )

@@ -1,0 +1,89 @@
+"""Board entry point on CircuitPython (it runs code.py): the CircuitPython twin of main.py.
+
+Loads the board file and the robot file named below, builds the loop (runner.Runner) on
+busio.I2C, the PCA9685 bank (drivers.cp_pca9685) and five non-blocking HC-SR04 rangers
+(drivers.cp_hcsr04_pulsein), stands the robot up and runs 50 Hz frames for ever, printing a
+status line every 5 s. Edit BOARD and ROBOT to match yours (files in boards/ and robots/).
+Needs adafruit_pca9685, adafruit_bus_device and adafruit_register in lib/ (docs/wiring.md).
+"""
+
+from runner import Runner, status_line
+
+from hexapod import board as boards
+from hexapod import geometry
+
+BOARD = "feather_rp2040"
+ROBOT = "default"
+STATUS_FRAMES = 250  # 5 s of 20 ms frames
+
+
+def board_pin(board, name, where):
+    """The `board` module's pin called name; ValueError naming the board file and place if absent."""
+    import board as pins
+
+    pin = getattr(pins, name, None)
+    if pin is None:
+        raise ValueError(
+            "board %r: %s: pin %r is not in this CircuitPython board's `board` module (board_id %r)"
+            % (board["name"], where, name, getattr(pins, "board_id", "?"))
+        )
+    return pin
+
+
+def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000):
+    """The Runner for a CircuitPython board and robot file (max_range: 0.1 mm); clock: cp_clock.Clock."""
+    board = boards.load(board_name)
+    if board["runtime"] != "circuitpython":
+        raise ValueError(
+            "board %r: runtime %r: code.py runs CircuitPython boards (e.g. feather_rp2040); use main.py on MicroPython"
+            % (board_name, board["runtime"])
+        )
+    if not isinstance(robot_name, str) or not robot_name:
+        raise ValueError("robot name %r: allowed a file name in robots/ without .py" % (robot_name,))
+    try:
+        robot_module = __import__("robots." + robot_name, None, None, ("NAME",))
+    except ImportError:
+        raise ValueError("robot %r: no robots/%s.py" % (robot_name, robot_name)) from None
+    robot = geometry.load(robot_module)
+    bus = board["i2c"]
+    scl = board_pin(board, bus["scl"], "i2c scl")
+    sda = board_pin(board, bus["sda"], "i2c sda")
+    sensor_pins = []
+    names = boards.SENSORS
+    pairs = boards.sensor_pins(board)
+    for k in range(len(pairs)):  # every pin looked up before any is claimed
+        trigger, echo = pairs[k]
+        where = names[k] + " sensor"
+        sensor_pins.append((board_pin(board, trigger, where + " trigger"), board_pin(board, echo, where + " echo")))
+
+    import busio
+
+    from drivers import cp_clock, cp_hcsr04_pulsein, cp_pca9685
+
+    if clock is None:
+        clock = cp_clock.Clock()
+    i2c = busio.I2C(scl, sda, frequency=bus["freq"])
+    table = boards.servo_table(board)
+    bank = cp_pca9685.servo_bank(i2c, board["pca9685"], table)
+    sensors = []
+    for trigger, echo in sensor_pins:
+        sensors.append(cp_hcsr04_pulsein.HCSR04(trigger, echo, clock, max_range=max_range))
+    return Runner(robot, [row[2] for row in table], bank, sensors, clock)
+
+
+def main(frames=-1, clock=None, board_name=BOARD, robot_name=ROBOT):
+    """Build, stand up, run frames (for ever when -1) with a status line every 5 s; returns the Runner."""
+    r = build(board_name, robot_name, clock)
+    r.robot.stand_up()
+    n = 0
+    while frames < 0 or n < frames:
+        r.step()
+        n += 1
+        if n % STATUS_FRAMES == 0:
+            print(status_line(r))
+        r.wait()
+    return r
+
+
+if __name__ == "__main__":
+    main()
