@@ -62,12 +62,17 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000):
 
     if clock is None:
         clock = cp_clock.Clock()
+    sensors = []
+    try:  # sensors first: a refused setting (max_range) leaves no pin claimed and the bus untouched
+        for trigger, echo in sensor_pins:
+            sensors.append(cp_hcsr04_pulsein.HCSR04(trigger, echo, clock, max_range=max_range))
+    except ValueError:
+        for s in sensors:
+            s.deinit()
+        raise
     i2c = busio.I2C(scl, sda, frequency=bus["freq"])
     table = boards.servo_table(board)
     bank = cp_pca9685.servo_bank(i2c, board["pca9685"], table)
-    sensors = []
-    for trigger, echo in sensor_pins:
-        sensors.append(cp_hcsr04_pulsein.HCSR04(trigger, echo, clock, max_range=max_range))
     return Runner(robot, [row[2] for row in table], bank, sensors, clock)
 
 

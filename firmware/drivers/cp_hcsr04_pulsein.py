@@ -25,6 +25,7 @@ comes one cycle later. Integer maths only on the slot's path.
 """
 
 import digitalio
+import microcontroller
 import pulseio
 from micropython import const
 
@@ -38,8 +39,9 @@ class HCSR04(MedianRanger):
     """One HC-SR04 on CircuitPython: trigger_pin and echo_pin are `board` pins, clock a cp_clock.Clock."""
 
     def __init__(self, trigger_pin, echo_pin, clock, *, max_range=10000, temp_centi_c=2000, samples=5):
-        if trigger_pin is None or echo_pin is None:
-            raise ValueError("trigger_pin %r, echo_pin %r: allowed two `board` pins" % (trigger_pin, echo_pin))
+        for name, pin in (("trigger_pin", trigger_pin), ("echo_pin", echo_pin)):
+            if not isinstance(pin, microcontroller.Pin):
+                raise ValueError("%s: %r, allowed a `board` pin such as board.D5" % (name, pin))
         if trigger_pin is echo_pin or trigger_pin == echo_pin:
             raise ValueError("trigger_pin and echo_pin are both %r: allowed two different pins" % (trigger_pin,))
         for name in ("ticks_ms", "ticks_diff", "sleep_us"):

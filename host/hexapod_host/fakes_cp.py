@@ -19,6 +19,7 @@ Fidelity notes:
 - microcontroller.delay_us advances the virtual clock by exactly its argument.
 """
 
+import importlib
 import sys
 import types
 
@@ -112,6 +113,7 @@ class CircuitPython:
 
         microcontroller = types.ModuleType("microcontroller")
         microcontroller.delay_us = clock.sleep_us
+        microcontroller.Pin = BoardPin
 
         self.modules = {
             "board": board,
@@ -289,3 +291,17 @@ class PulseIn:
     def deinit(self):
         self._paused = True
         self._cp.release(self.pin)
+
+
+def forget(name):
+    """Drop a module imported on top of these fakes (sys.modules and its package's attribute)."""
+    sys.modules.pop(name, None)
+    parent, _, child = name.rpartition(".")
+    if parent in sys.modules and child in vars(sys.modules[parent]):
+        delattr(sys.modules[parent], child)
+
+
+def reimport(name):
+    """name imported afresh, so it binds the fake modules installed now."""
+    forget(name)
+    return importlib.import_module(name)
