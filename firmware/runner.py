@@ -25,7 +25,7 @@ class Runner:
         self.robot = tick.Robot(geometry, servo_maps, bank)
         self.sonar = hcsr04.RoundRobin(sensors, tick_ms=FRAME_MS)
         self.distances = [hcsr04.NO_DISTANCE] * len(sensors)  # 0.1 mm, NO_DISTANCE when not OK
-        self.sonar_status = [hcsr04.OK] * len(sensors)
+        self.sonar_status = [hcsr04.WAIT] * len(sensors)  # WAIT until a sensor has a first result
         self.sonar_faults = 0  # pings that came back NO_ECHO, STUCK or OUT_OF_RANGE
         self.frames = 0
         self.held = 0  # ticks whose frame the robot held back (hexapod.tick reason codes)

@@ -85,7 +85,12 @@ def test_stands_walks_and_measures(rig):
     t0 = vclock.now_us()
     sup0 = g.cp.ticks_ms()
     r.robot.stand_up()
-    bad = g.frames(r, 150)
+    bad = g.frames(r, 5)
+    # one cycle in, every sensor has fired once and none has a reading yet: a reading is a cycle old
+    assert r.sonar_status == [hcsr04.WAIT] * 5 and r.distances == [hcsr04.NO_DISTANCE] * 5
+    bad += g.frames(r, 5)
+    assert r.sonar_status == [hcsr04.OK] * 5
+    bad += g.frames(r, 140)
     r.robot.walk(1200, 0, 0)
     bad += g.frames(r, 300)
     assert g.cp.ticks_ms() < sup0  # the supervisor's 2**29 wrap happened mid-run
