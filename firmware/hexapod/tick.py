@@ -101,7 +101,7 @@ class Robot:
         self.frame = frame
         self.body = Body(geometry)
         self._probe = Body(geometry)  # the target pose, for checks made before moving
-        self.walker = Walker(geometry, self.body)
+        self.walker = Walker(geometry)
         self.posture = Posture()
         self.rest_z = -(geometry.sit_height - geometry.foot_clearance) << FINE_SHIFT
         self.angles = [0] * 18  # last joint angles sent, cdeg

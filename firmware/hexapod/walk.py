@@ -50,11 +50,10 @@ _REANCHOR = const(4194304)  # ground-frame fine units before the origin is moved
 
 
 class Walker:
-    """Gait engine and walk state machine for one Geometry + Body."""
+    """Gait engine and walk state machine for one Geometry (feet in the body frame)."""
 
-    def __init__(self, geometry, body):
+    def __init__(self, geometry):
         self.geometry = geometry
-        self.body = body
         self.clock = GaitClock(TRIPOD, 1000)
         self.step = 300
         self.lift = 300
