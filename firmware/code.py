@@ -7,7 +7,7 @@ status line every 5 s. Edit BOARD and ROBOT to match yours (files in boards/ and
 Needs adafruit_pca9685, adafruit_bus_device and adafruit_register in lib/ (docs/wiring.md).
 """
 
-from runner import Runner, status_line
+from runner import Runner
 
 from hexapod import board as boards
 from hexapod import geometry
@@ -80,13 +80,7 @@ def main(frames=-1, clock=None, board_name=BOARD, robot_name=ROBOT):
     """Build, stand up, run frames (for ever when -1) with a status line every 5 s; returns the Runner."""
     r = build(board_name, robot_name, clock)
     r.robot.stand_up()
-    n = 0
-    while frames < 0 or n < frames:
-        r.step()
-        n += 1
-        if n % STATUS_FRAMES == 0:
-            print(status_line(r))
-        r.wait()
+    r.run(frames, STATUS_FRAMES)
     return r
 
 

@@ -8,7 +8,7 @@ ROBOT to match yours (files in boards/ and robots/).
 import time
 
 from machine import I2C, Pin, time_pulse_us
-from runner import Runner, status_line
+from runner import Runner
 
 from drivers import hcsr04, pca9685
 from hexapod import board as boards
@@ -38,13 +38,7 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=time, max_range=10000):
 def main(frames=-1, clock=time, board_name=BOARD, robot_name=ROBOT):
     r = build(board_name, robot_name, clock)
     r.robot.stand_up()
-    n = 0
-    while frames < 0 or n < frames:
-        r.step()
-        n += 1
-        if n % STATUS_FRAMES == 0:
-            print(status_line(r))
-        r.wait()
+    r.run(frames, STATUS_FRAMES)
     return r
 
 

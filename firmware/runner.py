@@ -55,13 +55,16 @@ class Runner:
         elif late > FRAME_MS:
             self.next_ms = clock.ticks_ms()  # far behind: start counting from now, never burst
 
-    def run(self, frames=-1):
-        """Run frames (forever when -1); every frame on its 20 ms boundary."""
+    def run(self, frames=-1, status_every=0):
+        """Run frames (forever when -1), each on its 20 ms boundary; print status_line every
+        status_every frames (0: never)."""
         n = 0
         while frames < 0 or n < frames:
             self.step()
-            self.wait()
             n += 1
+            if status_every and n % status_every == 0:
+                print(status_line(self))
+            self.wait()
 
 
 def status_line(r):

@@ -14,6 +14,7 @@ import _stub_clock as vclock
 import _stub_pins as pins
 import hcsr04_model
 import pytest
+import runner
 from i2c_bus import I2CBus
 from pca9685_model import PCA9685Model
 
@@ -111,7 +112,7 @@ def test_main_prints_a_status_line_every_5_s(rig, capsys):
     r = g.code.main(frames=500, clock=g.clock)
     lines = capsys.readouterr().out.splitlines()
     assert [line.split()[:2] for line in lines] == [["frames", "250"], ["frames", "500"]]
-    assert lines[-1] == g.code.status_line(r) and "sonar_faults 0" in lines[-1] and "held 0" in lines[-1]
+    assert lines[-1] == runner.status_line(r) and "sonar_faults 0" in lines[-1] and "held 0" in lines[-1]
     assert "dist [%d, " % r.distances[0] in lines[-1]
 
 
