@@ -17,7 +17,7 @@ $(STAMP): requirements.txt requirements-micropython.txt pyproject.toml
 test: $(STAMP)
 	$(BIN)/ruff check .
 	$(BIN)/ruff format --check .
-	$(BIN)/pytest -q
+	$(BIN)/pytest -q -n auto
 
 sim: $(STAMP)
 	$(BIN)/hexapod sim
