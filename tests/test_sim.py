@@ -18,3 +18,12 @@ def test_sim_demo(mp):
     for row in rows:
         pulses = [int(v) for v in row.split()[6:9]]
         assert all(600 <= p <= 2400 for p in pulses), row
+
+
+def test_sim_alone_is_the_default_kind():
+    from hexapod_host import cmd_sim
+
+    proc = subprocess.run([HEXAPOD, "sim", "--help"], capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 0 and cmd_sim.DEFAULT in proc.stdout
+    proc = subprocess.run([HEXAPOD, "sim", "no-such-kind"], capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 2 and "invalid choice" in proc.stderr

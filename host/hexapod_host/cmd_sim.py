@@ -1,83 +1,22 @@
-"""`hexapod sim`: the main job. Until the wall-following room exists, a kinematics demo.
+"""`hexapod sim [KIND]`: the simulations. Each kind lives in its own module with register(sub);
+`hexapod sim` alone runs DEFAULT, the main job (what `make sim` runs)."""
 
-It walks seed 004's leg through seed 003's swing track (eq. 12-14) and prints, per step,
-the foot target, the integer joint angles, the servo pulses through the Pico board file's
-calibration of leg 1, and the forward-kinematics round trip, on CPython and (when present)
-inside the MicroPython VM.
-"""
+import importlib
 
-import math
-
-from hexapod import board as boards
-from hexapod.leg import OK, Leg, describe
-from hexapod.units import format_fixed
-from hexapod_host import mpvm
-
-DEMO = """
-from hexapod.leg import OK, Leg
-leg = Leg(coxa=300, femur=850, tibia=1250, femur_offset=320)
-out = [0] * 6
-for p in POINTS:
-    code = leg.ik(p[0], p[1], p[2], out, 0)
-    if code == OK:
-        leg.fk(out[0], out[1], out[2], out, 3)
-    print(code, out)
-"""
-
-
-def track(steps=5, stride=400, lift=300, base=(1400, 0, -800)):
-    """Seed 003 eq. 12-14 around a neutral foot, 0.1 mm: lift-swing forward, then stance back."""
-    pts = []
-    for t in list(range(0, steps + 1)) + list(range(steps - 1, -steps - 1, -1)) + list(range(-steps + 1, 1)):
-        fx = stride * math.sin(math.radians(t * 90 / steps))
-        up = t >= 0 and len(pts) <= steps or t <= 0 and len(pts) > 3 * steps
-        fz = lift * math.sin(math.radians((steps - abs(t)) * 90 / steps)) if up else 0
-        pts.append((base[0], base[1] + round(fx), base[2] + round(fz)))
-    return pts
+# Modules that add `hexapod sim KIND`; each defines register(subparsers).
+SIM_MODULES = ("hexapod_host.sim_kinematics",)
+DEFAULT = "kinematics"
 
 
 def register(sub):
-    p = sub.add_parser("sim", help="the main simulation (for now: a leg kinematics demo)")
-    p.set_defaults(func=run)
+    p = sub.add_parser("sim", help="simulations; alone, the main job (%s)" % DEFAULT)
+    kinds = p.add_subparsers(dest="sim_kind", metavar="KIND")
+    for name in SIM_MODULES:
+        importlib.import_module(name).register(kinds)
+    p.set_defaults(func=lambda args: _default(kinds))
 
 
-def run(args):
-    pts = track()
-    leg = Leg(coxa=300, femur=850, tibia=1250, femur_offset=320)
-    servos = [row[2] for row in boards.servo_table(boards.load("pico"))[:3]]  # leg 1's calibration
-    pulses = [0, 0, 0]
-    out = [0] * 6
-    rows = []
-    print("seed 004 leg (coxa 30, femur 85, tibia 125, offset 32 mm) on seed 003's swing track")
-    print(
-        "%28s %26s %20s %24s" % ("foot x y z (mm)", "theta1 theta2 theta3 (deg)", "pulses (us)", "FK round trip (mm)")
-    )
-    worst = 0
-    for p in pts:
-        code = leg.ik(p[0], p[1], p[2], out, 0)
-        if code != OK:
-            print("%28s unreachable: %s" % (p, describe(code, leg.excess)))
-            continue
-        leg.fk(out[0], out[1], out[2], out, 3)
-        for k in range(3):
-            servos[k].pulse(out[k], pulses, k)
-        worst = max(worst, *(abs(out[3 + k] - p[k]) for k in range(3)))
-        rows.append([code] + out[:])
-        print(
-            "%28s %26s %20s %24s"
-            % (
-                " ".join(format_fixed(v, 1) for v in p),
-                " ".join(format_fixed(v, 2) for v in out[:3]),
-                " ".join(str(v) for v in pulses),
-                " ".join(format_fixed(v, 1) for v in out[3:]),
-            )
-        )
-    print("worst FK round-trip error: %s mm" % format_fixed(worst, 1))
-    if mpvm.executable():
-        text = mpvm.run("POINTS = %r\n%s" % (pts, DEMO))
-        vm_rows = [line for line in text.splitlines() if line]
-        same = vm_rows == ["%d %r" % (r[0], r[1:]) for r in rows]
-        print("MicroPython VM: %s" % ("identical integers" if same else "DIFFERENT RESULTS"))
-        return 0 if same else 1
-    print("MicroPython VM: not installed, compared nothing")
-    return 0
+def _default(kinds):
+    """No KIND given: DEFAULT with its default options."""
+    args = kinds.choices[DEFAULT].parse_args([])
+    return args.func(args)
