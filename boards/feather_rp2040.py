@@ -44,10 +44,15 @@ BOARD = {
     ),
     "sensors": (
         # name, trigger pin, echo pin, x, y (0.1 mm, body frame), heading (0.01 deg, 0 = forward, left +)
+        # Side sonars on brackets at the stance's outer edge (210 mm out, above the legs), 200 mm
+        # apart: an 8 cm reading keeps every foot and link clear of the wall (docs/wall.md).
         ("front", "D4", "D5", 1300, 0, 0),
-        ("left_front", "D6", "D9", 700, 650, 9000),
-        ("left_rear", "D10", "D11", -700, 650, 9000),
-        ("right_front", "D13", "D12", 700, -650, -9000),
-        ("right_rear", "A0", "A1", -700, -650, -9000),
+        ("left_front", "D6", "D9", 1000, 2100, 9000),
+        ("left_rear", "D10", "D11", -1000, 2100, 9000),
+        ("right_front", "D13", "D12", 1000, -2100, -9000),
+        ("right_rear", "A0", "A1", -1000, -2100, -9000),
     ),
+    # Wall following at power-up (hexapod.follow): None, or e.g. {"side": "left", "setpoint": 800}
+    # (set point 0.1 mm, the side sonar's reading; optional "speed" 0.1 mm/s, "form" "yaw"/"sweeps").
+    "follow": None,
 }

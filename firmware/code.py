@@ -3,7 +3,8 @@
 Loads the board file and the robot file named below, builds the loop (runner.Runner) on
 busio.I2C, the PCA9685 bank (drivers.cp_pca9685) and five non-blocking HC-SR04 rangers
 (drivers.cp_hcsr04_pulsein), stands the robot up and runs 50 Hz frames for ever, printing a
-status line every 5 s. Edit BOARD and ROBOT to match yours (files in boards/ and robots/).
+status line every 5 s; with a "follow" setting in the board file it follows that wall once
+standing (hexapod.follow). Edit BOARD and ROBOT to match yours (files in boards/ and robots/).
 Needs adafruit_pca9685, adafruit_bus_device and adafruit_register in lib/ (docs/wiring.md).
 """
 
@@ -15,6 +16,7 @@ from hexapod import geometry
 BOARD = "feather_rp2040"
 ROBOT = "default"
 STATUS_FRAMES = 250  # 5 s of 20 ms frames
+SONAR_SAMPLES = (3, 1, 1, 1, 1)  # pings per median, drivers.hcsr04 order (see main.py)
 
 
 def board_pin(board, name, where):
@@ -30,8 +32,9 @@ def board_pin(board, name, where):
     return pin
 
 
-def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000):
-    """The Runner for a CircuitPython board and robot file (max_range: 0.1 mm); clock: cp_clock.Clock."""
+def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000, samples=SONAR_SAMPLES):
+    """The Runner for a CircuitPython board and robot file (max_range: 0.1 mm; samples: pings per
+    median, drivers.hcsr04 order); clock: cp_clock.Clock."""
     board = boards.load(board_name)
     if board["runtime"] != "circuitpython":
         raise ValueError(
@@ -64,8 +67,9 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000):
         clock = cp_clock.Clock()
     sensors = []
     try:  # sensors first: a refused setting (max_range) leaves no pin claimed and the bus untouched
-        for trigger, echo in sensor_pins:
-            sensors.append(cp_hcsr04_pulsein.HCSR04(trigger, echo, clock, max_range=max_range))
+        for k in range(len(sensor_pins)):
+            trigger, echo = sensor_pins[k]
+            sensors.append(cp_hcsr04_pulsein.HCSR04(trigger, echo, clock, max_range=max_range, samples=samples[k]))
     except ValueError:
         for s in sensors:
             s.deinit()
@@ -73,13 +77,18 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000):
     i2c = busio.I2C(scl, sda, frequency=bus["freq"])
     table = boards.servo_table(board)
     bank = cp_pca9685.servo_bank(i2c, board["pca9685"], table)
-    return Runner(robot, [row[2] for row in table], bank, sensors, clock)
+    r = Runner(robot, [row[2] for row in table], bank, sensors, clock, boards.sensor_mounts(board))
+    r.board = board
+    return r
 
 
 def main(frames=-1, clock=None, board_name=BOARD, robot_name=ROBOT):
-    """Build, stand up, run frames (for ever when -1) with a status line every 5 s; returns the Runner."""
+    """Build, stand up (then follow the board's "follow" wall, if set), run frames (for ever
+    when -1) with a status line every 5 s; returns the Runner."""
     r = build(board_name, robot_name, clock)
     r.robot.stand_up()
+    if r.board.get("follow"):
+        r.follow_when_standing(r.board["follow"])
     r.run(frames, STATUS_FRAMES)
     return r
 

@@ -1,7 +1,8 @@
 """Board entry point (MicroPython): the only file that touches real hardware.
 
 Loads the board file and the robot file named below, builds the loop (runner.Runner), stands
-the robot up and runs 50 Hz frames for ever, printing a status line every 5 s. Edit BOARD and
+the robot up and runs 50 Hz frames for ever, printing a status line every 5 s; with a "follow"
+setting in the board file it follows that wall once standing (hexapod.follow). Edit BOARD and
 ROBOT to match yours (files in boards/ and robots/).
 """
 
@@ -17,10 +18,15 @@ from hexapod import geometry
 BOARD = "pico"
 ROBOT = "default"
 STATUS_FRAMES = 250  # 5 s of 20 ms frames
+# Pings per median, drivers.hcsr04 order: each sensor pings every 100 ms, so a median of n
+# lags about (n - 1) * 50 ms. The wall follower steers on the side sonars: no median there
+# (its PID takes each fresh reading once); the front one keeps 3 against a stray echo.
+SONAR_SAMPLES = (3, 1, 1, 1, 1)
 
 
-def build(board_name=BOARD, robot_name=ROBOT, clock=time, max_range=10000):
-    """The Runner for a board and robot on this machine's I2C and pins (max_range: 0.1 mm)."""
+def build(board_name=BOARD, robot_name=ROBOT, clock=time, max_range=10000, samples=SONAR_SAMPLES):
+    """The Runner for a board and robot on this machine's I2C and pins (max_range: 0.1 mm;
+    samples: pings per median for each sensor, drivers.hcsr04 order)."""
     board = boards.load(board_name)
     robot_module = __import__("robots." + robot_name, None, None, ("NAME",))
     bus = board["i2c"]
@@ -28,16 +34,28 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=time, max_range=10000):
     table = boards.servo_table(board)
     bank = pca9685.servo_bank(i2c, board["pca9685"], table, sleep_us=clock.sleep_us)
     sensors = []
-    for trigger, echo in boards.sensor_pins(board):
+    pins = boards.sensor_pins(board)
+    for k in range(len(pins)):
+        trigger, echo = pins[k]
         sensors.append(
-            hcsr04.HCSR04(Pin(trigger, Pin.OUT), Pin(echo, Pin.IN), clock, time_pulse_us, max_range=max_range)
+            hcsr04.HCSR04(
+                Pin(trigger, Pin.OUT), Pin(echo, Pin.IN), clock, time_pulse_us, max_range=max_range, samples=samples[k]
+            )
         )
-    return Runner(geometry.load(robot_module), [row[2] for row in table], bank, sensors, clock)
+    r = Runner(
+        geometry.load(robot_module), [row[2] for row in table], bank, sensors, clock, boards.sensor_mounts(board)
+    )
+    r.board = board
+    return r
 
 
 def main(frames=-1, clock=time, board_name=BOARD, robot_name=ROBOT):
+    """Build, stand up (then follow the board's "follow" wall, if set), run frames (for ever
+    when -1) with a status line every 5 s; returns the Runner."""
     r = build(board_name, robot_name, clock)
     r.robot.stand_up()
+    if r.board.get("follow"):
+        r.follow_when_standing(r.board["follow"])
     r.run(frames, STATUS_FRAMES)
     return r
 

@@ -2,13 +2,21 @@
 a servo bank (drivers.pca9685.ServoBank or the CircuitPython one), the sonars and a clock (the
 `time` module on MicroPython; the virtual clock in tests). main.py builds one on a board.
 
-Each step is one 50 Hz frame: one sonar ping (round robin), one control tick, one burst per
-PCA9685. Nothing in a step raises on bus or sensor trouble: faults are counted and kept in
-plain attributes for a console to show, and the loop goes on.
+Each step is one 50 Hz frame: one sonar ping (round robin), the wall follower when it is on
+(hexapod.follow: PID -> walk command), one control tick, one burst per PCA9685. Nothing in a
+step raises on bus or sensor trouble: faults are counted and kept in plain attributes for a
+console to show, and the loop goes on.
+
+Wall following from code (a console wires `wall left|right CM`, `wall off`, `pid KP KI KD`):
+    runner.follow("left", 800)        # follow the left wall, side sonar reading 80 mm
+    runner.follower.set_gains(25000, 500, 1000)   # seed 000's Kp, Ki, Kd in milli-units
+    runner.follow_off()               # stop following; the feet are set down
+State for a reply or the status line: runner.follower.mode_name, .used, .distance_only,
+.distance, .angle, .error, .output, .front, .faults, .fault_total, .reason_name.
 """
 
 from drivers import hcsr04
-from hexapod import tick
+from hexapod import follow, tick
 
 FRAME_MS = 20
 
@@ -16,10 +24,12 @@ FRAME_MS = 20
 class Runner:
     """Robot + servo bank + sonars -> a loop of 20 ms frames; step() runs one."""
 
-    def __init__(self, geometry, servo_maps, bank, sensors, clock):
+    def __init__(self, geometry, servo_maps, bank, sensors, clock, mounts=None):
         """geometry: hexapod.geometry.load(...); servo_maps: 18 ServoMaps (leg/joint order);
         bank: has write_frame(pulses), failed_frames, reinits; sensors: hcsr04 rangers in
-        drivers.hcsr04 order; clock: ticks_ms/ticks_add/ticks_diff/sleep_ms."""
+        drivers.hcsr04 order; clock: ticks_ms/ticks_add/ticks_diff/sleep_ms; mounts: the five
+        sensors' (x, y, heading), 0.1 mm and cdeg (hexapod.board.sensor_mounts; default: the
+        shipped board files')."""
         self.clock = clock
         self.bank = bank
         self.robot = tick.Robot(geometry, servo_maps, bank)
@@ -30,6 +40,29 @@ class Runner:
         self.frames = 0
         self.held = 0  # ticks whose frame the robot held back (hexapod.tick reason codes)
         self.next_ms = clock.ticks_ms()
+        self.follower = follow.Follower(self.robot, follow.DEFAULT_MOUNTS if mounts is None else mounts)
+        self._start = None  # a follow setting waiting for the robot to stand
+
+    def follow(self, side, setpoint, speed=None, form="yaw"):
+        """Follow the `side` ("left" or "right") wall at `setpoint` (0.1 mm, the side sonar's
+        reading, as in seed 000) walking forward at `speed` (0.1 mm/s, default follow.SPEED);
+        form "yaw" (the PID turns through Robot.walk's yaw rate) or "sweeps" (seed 000's coxa
+        sweeps). Returns 0 when following, else a hexapod.tick reason code (22 not standing,
+        21 busy, 23 unreachable) having changed nothing; bad values raise ValueError naming the
+        value and what is allowed, changing nothing. Again on the same side: new set point and
+        speed on the fly (no derivative kick)."""
+        return self.follower.follow(side, setpoint, speed, form)
+
+    def follow_off(self):
+        """Stop following: the robot finishes its steps and sets its feet down. Returns 0."""
+        self._start = None
+        return self.follower.off()
+
+    def follow_when_standing(self, setting):
+        """Start following once the robot stands (main.py's start-up): setting is a board
+        file's "follow" dict (side, setpoint, optional speed and form), checked now."""
+        follow.check_request(setting["side"], setting["setpoint"], setting.get("speed"), setting.get("form", "yaw"))
+        self._start = setting
 
     def step(self):
         """One frame now: ping, tick, write. Returns the tick's code (0 = frame sent)."""
@@ -39,6 +72,12 @@ class Runner:
             st = self.sonar_status[i]
             if st != hcsr04.OK and st != hcsr04.WAIT:
                 self.sonar_faults += 1
+        if self.follower.mode:
+            self.follower.update(now, i, self.distances, self.sonar_status)
+        elif self._start is not None and self.robot.mode == tick.STANDING:
+            s = self._start
+            self._start = None
+            self.follow(s["side"], s["setpoint"], s.get("speed"), s.get("form", "yaw"))
         code = self.robot.tick(now)
         self.frames += 1
         if code:
@@ -68,8 +107,9 @@ class Runner:
 
 
 def status_line(r):
-    """One line for the serial console: frames, held frames, overruns, bus and sonar faults."""
-    return "frames %d held %d overruns %d bus_failed %d reinit %d sonar_faults %d dist %s" % (
+    """One line for the serial console: frames, held frames, overruns, bus and sonar faults,
+    distances (0.1 mm) and the wall follower (mode, d, angle, error, output, sensors, faults)."""
+    return "frames %d held %d overruns %d bus_failed %d reinit %d sonar_faults %d dist %s %s" % (
         r.frames,
         r.held,
         r.robot.overruns,
@@ -77,4 +117,5 @@ def status_line(r):
         r.bank.reinits,
         r.sonar_faults,
         r.distances,
+        follow.status_text(r.follower),
     )

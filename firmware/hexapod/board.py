@@ -14,7 +14,9 @@ RUNTIMES = ("micropython", "circuitpython")
 LEGS = 6
 
 _TOP = ("name", "runtime", "i2c", "pca9685", "servos", "sensors")
-_OPTIONAL = ("notes",)
+_OPTIONAL = ("notes", "follow")
+_FOLLOW = ("side", "setpoint")
+_FOLLOW_OPTIONAL = ("speed", "form")
 _I2C = ("id", "sda", "scl", "freq")
 _PCA = ("pwm_hz", "chips")
 _CHIP = ("address", "osc_hz")
@@ -120,7 +122,23 @@ def validate(board):
 
     _servos(ck, ck.seq("servos", board["servos"], -1, "of servo tuples"), addresses)
     _sensors(ck, ck.seq("sensors", board["sensors"], -1, "of sensor tuples"), runtime, claim)
+    _follow(ck, board)
     return board
+
+
+def _follow(ck, board):
+    """The optional start-up wall following: None, or {"side", "setpoint"[, "speed", "form"]}."""
+    setting = board.get("follow")
+    if setting is None:
+        return
+    ck.dict_of("follow", setting, _FOLLOW, _FOLLOW_OPTIONAL)
+    from hexapod import follow
+
+    try:
+        follow.check_request(setting["side"], setting["setpoint"], setting.get("speed"), setting.get("form", "yaw"))
+        follow.check_mounts(sensor_mounts(board))
+    except ValueError as e:
+        ck.fail("follow", str(e))
 
 
 def _servos(ck, servos, addresses):
@@ -206,6 +224,14 @@ def servo_table(board):
             ServoMap(centre_us=s[4], direction=s[5], min_us=s[6], max_us=s[7]),
         )
     return tuple(table)
+
+
+def sensor_mounts(board):
+    """Five (x, y, heading) in drivers.hcsr04 order: 0.1 mm and cdeg, body frame."""
+    by_name = {}
+    for s in board["sensors"]:
+        by_name[s[0]] = (s[3], s[4], s[5])
+    return tuple(by_name[n] for n in SENSORS)
 
 
 def sensor_pins(board):

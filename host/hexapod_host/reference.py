@@ -59,3 +59,40 @@ def track_point(t, s, x, y, z):
     a = math.radians(t * 90.0 / s)
     b = math.radians((s - t) * 90.0 / s)
     return x * math.sin(a), y * math.sin(a), z - z * (1.0 - math.sin(b))
+
+
+class PidFloat:
+    """Seed 000 eq. 14 in floats, as firmware/hexapod/pid.py states it: real gains (the paper's
+    Kp = 25, Ki = 0.5, Kd = 1 in output units per 0.1 mm, per 0.1 mm s, per 0.1 mm/s), derivative
+    on the measurement, each error weighed by its own interval Ts (s), integral clamped to
+    +-i_max, output to +-out_max, error and measurement step to +-e_max; the first sample and one
+    after more than ts_max_ms are P only; a zero interval changes nothing."""
+
+    def __init__(self, kp, ki, kd, out_max, i_max, e_max=10000, ts_max_ms=1000):
+        self.kp, self.ki, self.kd = kp, ki, kd
+        self.out_max, self.i_max, self.e_max, self.ts_max_ms = out_max, i_max, e_max, ts_max_ms
+        self.integral = 0.0
+        self.first = True
+        self.last_ms = self.last_m = 0
+        self.output = 0.0
+
+    def update(self, setpoint, measurement, now_ms):
+        e = max(-self.e_max, min(self.e_max, setpoint - measurement))
+        ts_ms = 0
+        if not self.first:
+            ts_ms = (now_ms - self.last_ms) % 2**30
+            if ts_ms == 0:
+                return self.output
+            if ts_ms > self.ts_max_ms:
+                ts_ms = 0
+        d = 0.0
+        if ts_ms:
+            ts = ts_ms / 1000.0
+            self.integral = max(-self.i_max, min(self.i_max, self.integral + self.ki * ts * e))
+            dm = max(-self.e_max, min(self.e_max, measurement - self.last_m))
+            d = -self.kd * dm / ts
+        u = self.kp * e + self.integral + d
+        self.output = max(-self.out_max, min(self.out_max, u))
+        self.first = False
+        self.last_ms, self.last_m = now_ms, measurement
+        return self.output

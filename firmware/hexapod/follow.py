@@ -1,0 +1,571 @@
+"""Wall following (seed 000): side sonars -> distance and angle to the wall -> PID -> yaw rate.
+
+Pure: each frame the loop (runner.Runner) hands update() the loop time, the index of the sonar
+pinged this frame and the distances/status buffers it keeps, in drivers.hcsr04 order (front,
+left_front, left_rear, right_front, right_rear; 0.1 mm; hcsr04 status codes); the follower
+commands the Robot (Robot.walk, or seed 000's coxa sweeps). It allocates nothing per frame.
+
+Units: lengths 0.1 mm, angles cdeg, speeds 0.1 mm/s, yaw rates cdeg/s, time ms. The set point
+is the side sonar's reading, as in the paper. `angle` is positive when the nose points away
+from the wall: atan((d_front - d_rear) / baseline) of that side's two sensors, which both read
+their perpendicular distance while the robot is within the beam (~15 deg) of parallel.
+
+Control law (docs/wall.md says why): the PID (hexapod.pid, seed 000 eq. 14) holds the wall
+distance of a look-ahead point L ahead of the sensor pair,
+    e = (set point - d) - L sin(angle),   d = (d_front + d_rear) / 2,
+and its output turns the robot away from the wall (positive output = away) while it walks
+forward at the set speed. The angle term damps (distance alone oscillates); the angle guard
+stops the turn toward (or away from) the wall at ANGLE_GUARD, inside the beam.
+
+Modes: off, following, corner (the front sonar sees a wall ahead: arc away from the followed
+wall), lost (no wall on the side: arc toward where it was, radius = the wall distance), then
+searching (a widening spiral toward that side), blocked (something too close in front: stopped
+until it clears), stopped (for good, with a reason).
+
+Faults: a side reading is steered on only with status OK and within WALL_GAP of the set point.
+NO_ECHO, STUCK and TOO_CLOSE pings are faults (counted per sensor); OUT_OF_RANGE means nothing
+in range. A sensor with MISS_RUN pings in a row not steered on leaves use (failed when all of
+them were NO_ECHO/STUCK, else no wall). One side sensor left: it follows on that distance alone
+(distance_only, `used` names it); none failed-or-lost: lost; both failed: stopped. A failed
+front sonar, or two TOO_CLOSE side pings in a row, stop the robot.
+"""
+
+from micropython import const
+
+from hexapod.fixmath import atan2, to_cdeg
+from hexapod.pid import KD, KI, KP, PID
+from hexapod.tick import BUSY, MOVING, NOT_STANDING, OK, STANDING, WALKING
+from hexapod.turns import sweep_command
+from hexapod.walk import SPEED_MAX
+from hexapod.walk import STOPPED as WALKER_STOPPED
+
+# drivers.hcsr04's sensor order and status codes (tests/test_follow.py checks they agree).
+FRONT = const(0)
+LEFT_FRONT = const(1)
+LEFT_REAR = const(2)
+RIGHT_FRONT = const(3)
+RIGHT_REAR = const(4)
+SENSOR_NAMES = ("front", "left_front", "left_rear", "right_front", "right_rear")
+_OK = const(0)
+_OUT_OF_RANGE = const(1)
+_NO_ECHO = const(2)
+_STUCK = const(3)
+_TOO_CLOSE = const(4)
+_WAIT = const(5)
+_MIN_RANGE = const(200)  # the HC-SR04's 2 cm: what a TOO_CLOSE front ping is taken as
+
+# Modes.
+OFF = const(0)
+FOLLOWING = const(1)
+CORNER = const(2)
+LOST = const(3)
+SEARCHING = const(4)
+BLOCKED = const(5)
+STOPPED = const(6)
+MODE_NAMES = ("off", "following", "corner", "lost", "searching", "blocked", "stopped")
+
+# Why the follower stopped, is blocked, or follows on one sensor.
+NO_REASON = const(0)
+NO_SIDE_SENSOR = const(1)
+FRONT_FAILED = const(2)
+TOO_CLOSE = const(3)
+WALL_NOT_FOUND = const(4)
+WALK_REFUSED = const(5)
+OBSTACLE = const(6)
+DEAD_END = const(7)
+REASON_NAMES = (
+    "",
+    "both side sensors failed",
+    "front sensor failed",
+    "a side sensor reads under 2 cm",
+    "wall not found",
+    "the robot refused to walk",
+    "obstacle ahead",
+    "dead end",
+)
+
+# Sensor states.
+WAITING = const(0)  # no result yet since follow()
+IN_USE = const(1)
+NO_WALL = const(2)
+FAILED = const(3)
+STATE_NAMES = ("waiting", "ok", "no wall", "failed")
+
+FORMS = ("yaw", "sweeps")  # the PID output as a yaw rate (Robot.walk) or as seed 000's coxa sweeps
+SIDES = ("left", "right")
+# The sensors each side uses, by bit (1: side front, 2: side rear).
+USED_NAMES = (
+    ("none", "left_front", "left_rear", "left_front+left_rear"),
+    ("none", "right_front", "right_rear", "right_front+right_rear"),
+)
+
+# Mounts of the shipped board files: (x, y, heading), 0.1 mm and cdeg, drivers.hcsr04 order.
+DEFAULT_MOUNTS = (
+    (1300, 0, 0),
+    (1000, 2100, 9000),
+    (-1000, 2100, 9000),
+    (1000, -2100, -9000),
+    (-1000, -2100, -9000),
+)
+
+# Defaults (the simulator tunes them; docs/wall.md explains each).
+SPEED = const(800)  # forward speed, 0.1 mm/s
+SPEED_MIN = const(100)
+SETPOINT_MIN = const(400)  # set point (the side sonar's reading), 0.1 mm
+SETPOINT_MAX = const(5000)
+YAW_MAX = const(3000)  # the follower's largest yaw rate (PID output clamp), cdeg/s
+I_MAX = const(1000)  # integral clamp, cdeg/s
+LOOKAHEAD = const(1000)  # L: the look-ahead point ahead of the sensor pair, 0.1 mm
+ANGLE_GUARD = const(1200)  # no further turn toward or away from the wall past this angle, cdeg
+WALL_GAP = const(1500)  # a side reading beyond set point + this is no wall, 0.1 mm
+MISS_RUN = const(3)  # pings in a row without a steerable reading take a sensor out of use
+FRONT_STOP = const(3300)  # stop when something ahead is this close to the body centre, 0.1 mm
+FRONT_HYST = const(300)  # ... and go on once it is this much farther
+CORNER_RADIUS = const(2500)  # arc radius away from an inside corner, 0.1 mm
+CORNER_HYST = const(1000)  # the corner ends when the wall ahead is this much beyond its start
+CORNER_TURN = const(27000)  # turning this far in one corner without clearing it: dead end, cdeg
+LOST_TURN = const(15000)  # arc toward a lost wall this far, then search, cdeg
+SEARCH_GROW = const(500)  # the search spiral's radius grows this fast, 0.1 mm/s
+SEARCH_MS = const(30000)  # search this long, then stop, ms
+_COUNT_MAX = const(1000000)  # counters stop here (small ints for ever)
+_DEG180 = const(1800000)  # fixmath.ANGLE_UNIT
+_DEG360 = const(3600000)
+_WRAP = const(0x3FFFFFFF)
+
+
+def check_request(side, setpoint, speed=None, form="yaw"):
+    """ValueError naming the first bad value among side, setpoint (0.1 mm), speed (0.1 mm/s), form."""
+    if side not in SIDES:
+        raise ValueError("side: %r, allowed 'left' or 'right'" % (side,))
+    if not _whole(setpoint) or setpoint < SETPOINT_MIN or setpoint > SETPOINT_MAX:
+        raise ValueError(
+            "setpoint: %r is outside %d..%d (0.1 mm, the side sonar's reading)" % (setpoint, SETPOINT_MIN, SETPOINT_MAX)
+        )
+    if speed is not None and (not _whole(speed) or speed < SPEED_MIN or speed > SPEED_MAX):
+        raise ValueError("speed: %r is outside %d..%d (0.1 mm/s)" % (speed, SPEED_MIN, SPEED_MAX))
+    if form not in FORMS:
+        raise ValueError("form: %r, allowed 'yaw' or 'sweeps'" % (form,))
+
+
+def check_mounts(mounts):
+    """ValueError unless mounts are 5 (x, y, heading) in drivers.hcsr04 order that the follower can
+    use: front facing forward, side sensors facing their side (+-10 deg), front one ahead of rear."""
+    if not isinstance(mounts, (tuple, list)) or len(mounts) != 5:
+        raise ValueError("sensor mounts: need 5 (x, y, heading) in the order %s" % (", ".join(SENSOR_NAMES),))
+    for k in range(5):
+        m = mounts[k]
+        if not isinstance(m, (tuple, list)) or len(m) != 3 or not (_whole(m[0]) and _whole(m[1]) and _whole(m[2])):
+            raise ValueError("sensor mounts: %s: %r, allowed (x, y, heading) integers" % (SENSOR_NAMES[k], m))
+        want = (0, 9000, 9000, -9000, -9000)[k]
+        if m[2] < want - 1000 or m[2] > want + 1000:
+            raise ValueError(
+                "sensor mounts: %s heading %d cdeg, allowed %d..%d" % (SENSOR_NAMES[k], m[2], want - 1000, want + 1000)
+            )
+        if k and (m[1] <= 0 if k < 3 else m[1] >= 0):
+            raise ValueError(
+                "sensor mounts: %s y %d must be %s" % (SENSOR_NAMES[k], m[1], "> 0 (left)" if k < 3 else "< 0 (right)")
+            )
+    for f, r in ((LEFT_FRONT, LEFT_REAR), (RIGHT_FRONT, RIGHT_REAR)):
+        if mounts[f][0] - mounts[r][0] < 500:
+            raise ValueError(
+                "sensor mounts: %s x %d must be at least 500 (50 mm) ahead of %s x %d"
+                % (SENSOR_NAMES[f], mounts[f][0], SENSOR_NAMES[r], mounts[r][0])
+            )
+
+
+def _whole(v):
+    return isinstance(v, int) and not isinstance(v, bool)
+
+
+def yaw_for_radius(speed, radius):
+    """Yaw rate (cdeg/s) that walks a circle of radius (0.1 mm) at speed (0.1 mm/s)."""
+    return speed * 5730 // radius  # 18000 / pi = 5729.6 cdeg per radian
+
+
+class Follower:
+    """Follows the left or the right wall on the side sonars by commanding robot (a tick.Robot)."""
+
+    def __init__(self, robot, mounts=DEFAULT_MOUNTS):
+        """robot: tick.Robot; mounts: 5 (x, y, heading) (0.1 mm, cdeg) in drivers.hcsr04 order."""
+        check_mounts(mounts)
+        self.robot = robot
+        self.mounts = tuple(tuple(m) for m in mounts)
+        self.pid = PID(KP, KI, KD, YAW_MAX, I_MAX)
+        self.mode = OFF
+        self.mode_name = MODE_NAMES[OFF]
+        self.reason = NO_REASON  # why stopped / blocked (REASON_NAMES)
+        self.reason_name = REASON_NAMES[NO_REASON]
+        self.side = None  # "left" or "right" while on
+        self.setpoint = 0  # 0.1 mm
+        self.speed = SPEED  # 0.1 mm/s
+        self.form = FORMS[0]
+        self.lookahead = LOOKAHEAD  # 0.1 mm
+        self.state = [WAITING] * 5  # per sensor, STATE_NAMES
+        self.faults = [0] * 5  # NO_ECHO, STUCK and TOO_CLOSE pings per sensor since follow()
+        self.fault_total = 0
+        self.reading = [-1] * 5  # last steerable reading per sensor, 0.1 mm (-1 none)
+        self.used = USED_NAMES[0][0]  # which side sensors steer
+        self.distance_only = False  # True while one side sensor is left (no angle)
+        self.front = -1  # distance ahead, 0.1 mm (-1: nothing in range)
+        self.distance = -1  # last wall distance steered on, 0.1 mm
+        self.angle = 0  # last angle to the wall, cdeg, positive = nose away (0 when distance only)
+        self.error = 0  # last PID error, 0.1 mm
+        self.output = 0  # last PID output after the angle guard, cdeg/s (positive = away)
+        self.vx = 0  # last command sent: forward speed 0.1 mm/s, yaw rate cdeg/s
+        self.yaw = 0
+        self.updates = 0  # PID updates since follow()
+        self.refused = 0  # walk commands the robot refused
+        self.walk_code = OK  # the last refusal's reason code (hexapod.tick)
+        self.turned = 0  # heading change since the mode began, cdeg
+        self._f = LEFT_FRONT
+        self._r = LEFT_REAR
+        self._away = -1  # yaw sign that turns away from the wall (left wall: clockwise)
+        self._base = 1  # baseline, 0.1 mm
+        self._wall = 0  # body centre to the wall at the set point, 0.1 mm
+        self._stop_at = 0  # front readings that block / start a corner, 0.1 mm
+        self._corner_at = 0
+        self._used = 0
+        self._fresh = 0
+        self._miss = [0] * 5
+        self._bad = [0] * 5
+        self._close = [0] * 5
+        self._sent = False
+        self._turn = 0  # fixmath.ANGLE_UNIT
+        self._psi = 0
+        self._t0 = 0
+        self._sweep = [0, 0]  # seed 000's full turn: vx (0.1 mm/s), |yaw| (cdeg/s)
+
+    # -- commands ----------------------------------------------------------------------
+
+    def follow(self, side, setpoint, speed=None, form="yaw"):
+        """Follow the `side` ("left"/"right") wall at `setpoint` (0.1 mm, the side sonar's reading)
+        walking at `speed` (0.1 mm/s, default SPEED); form "yaw" (Robot.walk) or "sweeps" (seed
+        000's coxa sweeps). Returns 0 (following) or a hexapod.tick reason code (not standing,
+        busy, unreachable) having changed nothing; bad values raise ValueError, changing nothing.
+        Called again on the same side and form it changes set point and speed on the fly."""
+        check_request(side, setpoint, speed, form)
+        robot = self.robot
+        if robot.mode != STANDING and robot.mode != WALKING:
+            return BUSY if robot.mode == MOVING else NOT_STANDING
+        if not robot.body.settled():
+            return BUSY
+        speed = SPEED if speed is None else speed
+        on = self.mode != OFF and self.mode != STOPPED
+        if on and side == self.side and form == self.form:
+            self.setpoint = setpoint
+            self.speed = speed
+            self._thresholds()
+            self._sent = False  # the next command goes out even if it equals the last one
+            return OK
+        if form == "sweeps":
+            sweep_command(robot.walker, 4500, 1000, self._sweep)  # seed 000's right turn
+            self._sweep[1] = -self._sweep[1]
+        old = (self.side, self.setpoint, self.speed, self.form, self._f, self._r, self._away)
+        self.side = side
+        self.setpoint = setpoint
+        self.speed = speed
+        self.form = form
+        left = side == "left"
+        self._f = LEFT_FRONT if left else RIGHT_FRONT
+        self._r = LEFT_REAR if left else RIGHT_REAR
+        self._away = -1 if left else 1
+        self._thresholds()
+        self._sent = False
+        code = self._walk(speed, 0)
+        if code != OK:
+            self.side, self.setpoint, self.speed, self.form, self._f, self._r, self._away = old
+            self._thresholds()
+            return code
+        self._restart()
+        return OK
+
+    def off(self):
+        """Stop following; the robot finishes its steps and sets its feet down. Returns 0."""
+        if self.mode != OFF:
+            self.robot.stop()
+        self._set_mode(OFF, NO_REASON)
+        self._sent = False
+        self.vx = self.yaw = 0
+        return OK
+
+    def set_gains(self, kp, ki, kd):
+        """PID gains in milli-units (hexapod.pid: the paper's 25, 0.5, 1 are 25000, 500, 1000);
+        ValueError naming the bad one, nothing changed."""
+        self.pid.set_gains(kp, ki, kd)
+
+    def _restart(self):
+        for k in range(5):
+            self.state[k] = WAITING
+            self.faults[k] = 0
+            self.reading[k] = -1
+            self._miss[k] = 0
+            self._bad[k] = 0
+            self._close[k] = 0
+        self.fault_total = 0
+        self.updates = 0
+        self.refused = 0
+        self.walk_code = OK
+        self.front = -1
+        self.distance = -1
+        self.angle = self.error = self.output = 0
+        self._used = 3
+        self.used = USED_NAMES[self._side()][3]
+        self.distance_only = False
+        self._fresh = 0
+        self.pid.reset()
+        self._psi = self.robot.walker.psi
+        self._set_mode(FOLLOWING, NO_REASON)
+
+    def _side(self):
+        return 0 if self._f == LEFT_FRONT else 1
+
+    def _thresholds(self):
+        m = self.mounts
+        f = m[self._f]
+        r = m[self._r]
+        self._base = f[0] - r[0]
+        side_y = ((f[1] if f[1] > 0 else -f[1]) + (r[1] if r[1] > 0 else -r[1])) >> 1
+        self._wall = side_y + self.setpoint
+        self._stop_at = FRONT_STOP - m[FRONT][0]
+        self._corner_at = self._wall + CORNER_RADIUS - m[FRONT][0]
+
+    # -- the frame ---------------------------------------------------------------------
+
+    def update(self, now_ms, i, dist, status):
+        """One frame at loop time now_ms (ms); i: the sonar pinged this frame (-1 none); dist,
+        status: the Runner's buffers. Commands the robot when something changed; returns the mode."""
+        if self.mode == OFF or self.mode == STOPPED:
+            return self.mode
+        if i >= 0:
+            self._sense(i, dist[i], status[i])
+        self._track_turn()
+        self._decide(now_ms)
+        return self.mode
+
+    def _sense(self, i, d, st):
+        if st == _WAIT or (i != FRONT and i != self._f and i != self._r):
+            return
+        fault = st == _NO_ECHO or st == _STUCK or st == _TOO_CLOSE  # noqa: SIM109 (a tuple may allocate)
+        if fault and self.faults[i] < _COUNT_MAX:
+            self.faults[i] += 1
+            self.fault_total += 1
+        if i == FRONT:
+            self._sense_front(d, st)
+            return
+        if st == _OK and d <= self.setpoint + WALL_GAP:
+            self.reading[i] = d
+            self.state[i] = IN_USE
+            self._miss[i] = 0
+            self._bad[i] = 0
+            self._close[i] = 0
+            self._fresh |= 1 if i == self._f else 2
+            return
+        if self._miss[i] < _COUNT_MAX:
+            self._miss[i] += 1
+        if st == _NO_ECHO or st == _STUCK:  # noqa: SIM109
+            if self._bad[i] < _COUNT_MAX:
+                self._bad[i] += 1
+        else:
+            self._bad[i] = 0
+        if st == _TOO_CLOSE:
+            if self._close[i] < _COUNT_MAX:
+                self._close[i] += 1
+        else:
+            self._close[i] = 0
+        if self._miss[i] >= MISS_RUN:
+            self.state[i] = FAILED if self._bad[i] >= MISS_RUN else NO_WALL
+
+    def _sense_front(self, d, st):
+        if st == _NO_ECHO or st == _STUCK:  # noqa: SIM109
+            if self._bad[FRONT] < _COUNT_MAX:
+                self._bad[FRONT] += 1
+            if self._bad[FRONT] >= MISS_RUN:
+                self.state[FRONT] = FAILED  # the last distance ahead is kept until then
+            return
+        self._bad[FRONT] = 0
+        if st == _OUT_OF_RANGE:
+            self.front = -1
+            self.state[FRONT] = NO_WALL
+        else:
+            self.front = d if st == _OK else _MIN_RANGE
+            self.state[FRONT] = IN_USE
+
+    def _track_turn(self):
+        p = self.robot.walker.psi
+        d = p - self._psi
+        if d > _DEG180:
+            d -= _DEG360
+        elif d < -_DEG180:
+            d += _DEG360
+        self._psi = p
+        t = self._turn + d
+        if -100000000 < t < 100000000:
+            self._turn = t
+            self.turned = (t + 50) // 100
+
+    def _decide(self, now):
+        f = self._f
+        r = self._r
+        st = self.state
+        if st[FRONT] == FAILED:
+            return self._halt(FRONT_FAILED)
+        if st[f] == FAILED and st[r] == FAILED:
+            return self._halt(NO_SIDE_SENSOR)
+        if self._close[f] >= 2 or self._close[r] >= 2:
+            return self._halt(TOO_CLOSE)
+        ahead = self.front
+        if self.mode == BLOCKED:
+            if ahead >= 0 and ahead < self._stop_at + FRONT_HYST:
+                return
+            self._set_mode(FOLLOWING, NO_REASON)
+        elif ahead >= 0 and ahead < self._stop_at:
+            self._set_mode(BLOCKED, OBSTACLE)
+            self.robot.stop()
+            self._sent = False
+            self.vx = self.yaw = 0
+            return
+        if self.mode == CORNER:
+            if ahead >= 0 and ahead < self._corner_at + CORNER_HYST:
+                if self._turn > CORNER_TURN * 100 or self._turn < -CORNER_TURN * 100:
+                    self._halt(DEAD_END)
+                else:
+                    self._walk(self.speed, self._away * self._yaw_for(CORNER_RADIUS))
+                return
+            self._set_mode(FOLLOWING, NO_REASON)
+        elif ahead >= 0 and ahead < self._corner_at:
+            self._set_mode(CORNER, NO_REASON)
+            self._walk(self.speed, self._away * self._yaw_for(CORNER_RADIUS))
+            return
+        used = 0
+        if st[f] == IN_USE or st[f] == WAITING:
+            used = 1
+        if st[r] == IN_USE or st[r] == WAITING:
+            used |= 2
+        if used == 0:
+            self._lost(now)
+            return
+        if self.mode != FOLLOWING:
+            self._set_mode(FOLLOWING, NO_REASON)
+        if used != self._used:
+            # Another set of sensors: another measurement; no derivative across the change.
+            self._used = used
+            self.used = USED_NAMES[self._side()][used]
+            self.distance_only = used != 3
+            self.pid.reset(True)
+        if self._fresh & used == used:
+            self._fresh = 0
+            self._steer(now, used)
+        elif not self._sent:
+            self._walk(self.speed, 0)  # no reading yet: straight on
+
+    def _steer(self, now, used):
+        rd = self.reading
+        if used == 3:
+            df = rd[self._f]
+            dr = rd[self._r]
+            diff = df - dr
+            self.distance = (df + dr) >> 1
+            self.angle = to_cdeg(atan2(diff, self._base))
+            m = self.distance + self.lookahead * diff // self._base  # + L sin(angle)
+        else:
+            self.distance = rd[self._f] if used == 1 else rd[self._r]
+            self.angle = 0
+            m = self.distance
+        u = self.pid.update(self.setpoint, m, now)
+        self.error = self.pid.error
+        if used == 3 and ((u > 0 and self.angle >= ANGLE_GUARD) or (u < 0 and self.angle <= -ANGLE_GUARD)):
+            u = 0  # past the guard angle: no further turn that way (the beam would lose the wall)
+        self.output = u
+        if self.updates < _COUNT_MAX:
+            self.updates += 1
+        self._walk(self.speed, self._away * u)
+
+    def _lost(self, now):
+        if self.mode != LOST and self.mode != SEARCHING:
+            self._set_mode(LOST, NO_REASON)
+        toward = -self._away
+        if self.mode == LOST:
+            if self._turn > LOST_TURN * 100 or self._turn < -LOST_TURN * 100:
+                self._set_mode(SEARCHING, NO_REASON)
+                self._t0 = now
+            else:
+                self._walk(self.speed, toward * self._yaw_for(self._wall))
+                return
+        t = (now - self._t0) & _WRAP
+        if t > SEARCH_MS:
+            self._halt(WALL_NOT_FOUND)
+            return
+        self._walk(self.speed, toward * self._yaw_for(self._wall + SEARCH_GROW * (t // 100) // 10))
+
+    def _yaw_for(self, radius):
+        w = yaw_for_radius(self.speed, radius)
+        return w if w < self.pid.out_max else self.pid.out_max
+
+    def _set_mode(self, mode, reason):
+        if mode != self.mode:
+            self.mode = mode
+            self.mode_name = MODE_NAMES[mode]
+            self._turn = 0
+            self.turned = 0
+            if mode == FOLLOWING:
+                self.pid.reset()
+                self._fresh = 0
+                self._sent = False
+        self.reason = reason
+        self.reason_name = REASON_NAMES[reason]
+
+    def _halt(self, reason):
+        self._set_mode(STOPPED, reason)
+        self.robot.stop()
+        self._sent = False
+        self.vx = self.yaw = 0
+
+    def _walk(self, vx, yaw):
+        """Send (vx, yaw) unless it is what was sent last; returns the robot's code."""
+        if self.form == "sweeps":
+            # Seed 000's form: straight blended with its full turn (left coxas 45, right 10 deg,
+            # or mirrored) by the share of the largest yaw rate asked for.
+            a = yaw if yaw >= 0 else -yaw
+            k = a * 1000 // self.pid.out_max
+            if k > 1000:
+                k = 1000
+            vx = vx + (self._sweep[0] - vx) * k // 1000
+            w = self._sweep[1] * k // 1000
+            yaw = w if yaw >= 0 else -w
+        if self._sent and vx == self.vx and yaw == self.yaw:
+            return OK
+        walker = self.robot.walker
+        was_stopped = walker.state == WALKER_STOPPED
+        code = self.robot.walk(vx, 0, yaw)
+        if code != OK:
+            if self.refused < _COUNT_MAX:
+                self.refused += 1
+            self.walk_code = code
+            if code == NOT_STANDING and self.mode != OFF:
+                self._halt(WALK_REFUSED)
+            return code
+        if was_stopped:
+            self._psi = walker.psi  # a walk from a stop starts the walker's heading at 0
+        self.vx = vx
+        self.yaw = yaw
+        self._sent = True
+        return OK
+
+
+def status_text(f):
+    """The follower's part of the status line (allocates: not for the frame)."""
+    if f.mode == OFF:
+        return "wall off"
+    return "wall %s %s%s d %d a %d e %d u %d front %d used %s faults %d%s" % (
+        f.side,
+        f.mode_name,
+        " (" + f.reason_name + ")" if f.reason else "",
+        f.distance,
+        f.angle,
+        f.error,
+        f.output,
+        f.front,
+        f.used,
+        f.fault_total,
+        " distance only" if f.distance_only else "",
+    )
