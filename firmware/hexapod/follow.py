@@ -32,7 +32,7 @@ front sonar, or two TOO_CLOSE side pings in a row, stop the robot.
 
 from micropython import const
 
-from hexapod.fixmath import atan2, to_cdeg
+from hexapod.fixmath import atan2, mul_q15, sin, to_cdeg
 from hexapod.pid import KD, KI, KP, PID
 from hexapod.tick import BUSY, MOVING, NOT_STANDING, OK, STANDING, WALKING
 from hexapod.turns import sweep_command
@@ -118,6 +118,7 @@ I_MAX = const(1000)  # integral clamp, cdeg/s
 LOOKAHEAD = const(1000)  # L: the look-ahead point ahead of the sensor pair, 0.1 mm
 ANGLE_GUARD = const(1200)  # no further turn toward or away from the wall past this angle, cdeg
 WALL_GAP = const(1500)  # a side reading beyond set point + this is no wall, 0.1 mm
+JUMP = const(300)  # a side reading this much beyond the sensor's last one is an edge, not the wall
 MISS_RUN = const(3)  # pings in a row without a steerable reading take a sensor out of use
 FRONT_STOP = const(3300)  # stop when something ahead is this close to the body centre, 0.1 mm
 FRONT_HYST = const(300)  # ... and go on once it is this much farther
@@ -208,7 +209,7 @@ class Follower:
         self.distance_only = False  # True while one side sensor is left (no angle)
         self.front = -1  # distance ahead, 0.1 mm (-1: nothing in range)
         self.distance = -1  # last wall distance steered on, 0.1 mm
-        self.angle = 0  # last angle to the wall, cdeg, positive = nose away (0 when distance only)
+        self.angle = 0  # last angle to the wall, cdeg, positive = nose away (one sensor: by odometry)
         self.error = 0  # last PID error, 0.1 mm
         self.output = 0  # last PID output after the angle guard, cdeg/s (positive = away)
         self.vx = 0  # last command sent: forward speed 0.1 mm/s, yaw rate cdeg/s
@@ -231,6 +232,7 @@ class Follower:
         self._close = [0] * 5
         self._sent = False
         self._turn = 0  # fixmath.ANGLE_UNIT
+        self._adr = 0  # the angle carried on by the walker's heading since the last pair, ANGLE_UNIT
         self._psi = 0
         self._t0 = 0
         self._sweep = [0, 0]  # seed 000's full turn: vx (0.1 mm/s), |yaw| (cdeg/s)
@@ -308,6 +310,7 @@ class Follower:
         self.front = -1
         self.distance = -1
         self.angle = self.error = self.output = 0
+        self._adr = 0
         self._used = 3
         self.used = USED_NAMES[self._side()][3]
         self.distance_only = False
@@ -352,7 +355,9 @@ class Follower:
         if i == FRONT:
             self._sense_front(d, st)
             return
-        if st == _OK and d <= self.setpoint + WALL_GAP:
+        # A reading that jumps away from the last one is the wall's edge leaving the beam (an
+        # outside corner, a gap), not the wall: never steered on. Nearer readings always count.
+        if st == _OK and d <= self.setpoint + WALL_GAP and (self.state[i] != IN_USE or d - self.reading[i] <= JUMP):
             self.reading[i] = d
             self.state[i] = IN_USE
             self._miss[i] = 0
@@ -398,6 +403,11 @@ class Follower:
         elif d < -_DEG180:
             d += _DEG360
         self._psi = p
+        self._adr += self._away * d  # turning away from the wall opens the angle
+        if self._adr > _DEG180:
+            self._adr = _DEG180
+        elif self._adr < -_DEG180:
+            self._adr = -_DEG180
         t = self._turn + d
         if -100000000 < t < 100000000:
             self._turn = t
@@ -465,15 +475,23 @@ class Follower:
             dr = rd[self._r]
             diff = df - dr
             self.distance = (df + dr) >> 1
-            self.angle = to_cdeg(atan2(diff, self._base))
+            a = atan2(diff, self._base)
+            self._adr = a
+            self.angle = to_cdeg(a)
             m = self.distance + self.lookahead * diff // self._base  # + L sin(angle)
         else:
-            self.distance = rd[self._f] if used == 1 else rd[self._r]
-            self.angle = 0
-            m = self.distance
+            # One sensor: its distance, with the angle of the last pair carried on by the walker's
+            # own heading (odometry) and let fade (1/16 an update), so heading slip cannot pile up.
+            k = self._f if used == 1 else self._r
+            self._adr -= self._adr >> 4
+            self.angle = to_cdeg(self._adr)
+            s = sin(self.angle)
+            x = self.mounts[k][0] - ((self.mounts[self._f][0] + self.mounts[self._r][0]) >> 1)
+            self.distance = rd[k] - mul_q15(x, s)  # the pair's midpoint
+            m = self.distance + mul_q15(self.lookahead, s)
         u = self.pid.update(self.setpoint, m, now)
         self.error = self.pid.error
-        if used == 3 and ((u > 0 and self.angle >= ANGLE_GUARD) or (u < 0 and self.angle <= -ANGLE_GUARD)):
+        if (u > 0 and self.angle >= ANGLE_GUARD) or (u < 0 and self.angle <= -ANGLE_GUARD):
             u = 0  # past the guard angle: no further turn that way (the beam would lose the wall)
         self.output = u
         if self.updates < _COUNT_MAX:
