@@ -451,17 +451,17 @@ class Follower:
             used = 1
         if st[r] == IN_USE or st[r] == WAITING:
             used |= 2
+        if used != self._used:
+            # Another set of sensors: another measurement; no derivative across the change.
+            self._used = used
+            self.used = USED_NAMES[self._side()][used]
+            self.distance_only = used == 1 or used == 2
+            self.pid.reset(True)
         if used == 0:
             self._lost(now)
             return
         if self.mode != FOLLOWING:
             self._set_mode(FOLLOWING, NO_REASON)
-        if used != self._used:
-            # Another set of sensors: another measurement; no derivative across the change.
-            self._used = used
-            self.used = USED_NAMES[self._side()][used]
-            self.distance_only = used != 3
-            self.pid.reset(True)
         if self._fresh & used == used:
             self._fresh = 0
             self._steer(now, used)

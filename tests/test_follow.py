@@ -1,0 +1,445 @@
+"""hexapod.follow: the wall follower's decisions in hand-worked situations, fed round-robin sonar
+cycles the way runner.Runner feeds it, on a standing Robot. Every case runs for the left wall and
+mirrored for the right one; a scripted tour of them is bit-identical on both runtimes."""
+
+import copy
+
+import pytest
+
+import robots.default
+from drivers import hcsr04
+from hexapod import board as hb
+from hexapod import follow, geometry, pid, tick
+from hexapod.turns import sweep_command
+
+SLOTS = (0, 4, 1, 3, 2)  # drivers.hcsr04.plan for five sensors at 20 ms: front, RR, LF, RF, LR
+OOR, NOECHO, STUCK, CLOSE = -1, -2, -3, -4  # a reading given as minus an hcsr04 status
+SP = 800  # 8 cm set point
+W = 2100 + SP  # body centre to the wall, 0.1 mm
+CORNER_AT = W + follow.CORNER_RADIUS - 1300  # front readings that start a corner / block
+STOP_AT = follow.FRONT_STOP - 1300
+
+
+_STANDING = []
+
+
+def standing_robot():
+    """A Robot standing at its neutral stance (a copy of one stood up once) and the loop time."""
+    if not _STANDING:
+        g = geometry.load(robots.default)
+        robot = tick.Robot(g, tick.default_servos(g), tick.FrameBuffer())
+        robot.stand_up()
+        t = 0
+        while robot.mode != tick.STANDING:
+            robot.tick(t)
+            t += 20
+        _STANDING.append((robot, t))
+    robot, t = _STANDING[0]
+    return copy.deepcopy(robot), t
+
+
+class Rig:
+    """A standing robot and its follower; cycle() feeds one 100 ms round robin of readings."""
+
+    def __init__(self, side="left", setpoint=SP, speed=None, form="yaw"):
+        self.robot, self.t = standing_robot()
+        self.f = follow.Follower(self.robot)
+        self.side = side
+        self.dist = [hcsr04.NO_DISTANCE] * 5
+        self.status = [hcsr04.WAIT] * 5
+        assert self.f.follow(side, setpoint, speed, form) == 0
+
+    def cycle(self, front=OOR, near=SP, far=SP, n=1):
+        """Readings for n cycles: front, the followed side's front (`near`) and rear (`far`)
+        sensor; the other side reads nothing. Mirrored for the right wall."""
+        side = (near, far, OOR, OOR) if self.side == "left" else (OOR, OOR, near, far)
+        want = (front,) + side
+        for _ in range(n):
+            for k in SLOTS:
+                v = want[k]
+                self.status[k] = hcsr04.OK if v >= 0 else -v
+                self.dist[k] = v if v >= 0 else hcsr04.NO_DISTANCE
+                self.f.update(self.t, k, self.dist, self.status)
+                self.robot.tick(self.t)
+                self.t += 20
+        return self.f
+
+    def away(self, yaw):
+        """yaw (cdeg/s) as 'turning away from the wall' (positive) for either side."""
+        return -yaw if self.side == "left" else yaw
+
+
+SIDES = ["left", "right"]
+
+
+def test_constants_agree_with_the_driver_and_the_boards():
+    assert follow.SENSOR_NAMES == hcsr04.SENSOR_NAMES == hb.SENSORS
+    assert (follow.FRONT, follow.LEFT_FRONT, follow.LEFT_REAR, follow.RIGHT_FRONT, follow.RIGHT_REAR) == (
+        hcsr04.FRONT,
+        hcsr04.LEFT_FRONT,
+        hcsr04.LEFT_REAR,
+        hcsr04.RIGHT_FRONT,
+        hcsr04.RIGHT_REAR,
+    )
+    assert (follow._OK, follow._OUT_OF_RANGE, follow._NO_ECHO, follow._STUCK, follow._TOO_CLOSE, follow._WAIT) == (
+        hcsr04.OK,
+        hcsr04.OUT_OF_RANGE,
+        hcsr04.NO_ECHO,
+        hcsr04.STUCK,
+        hcsr04.TOO_CLOSE,
+        hcsr04.WAIT,
+    )
+    assert follow._MIN_RANGE == hcsr04.MIN_RANGE
+    assert hcsr04.plan(5, 20, hcsr04.NEIGHBOURS, 60, 38) == SLOTS
+    for name in ("pico", "esp32_devkit", "feather_rp2040"):
+        assert hb.sensor_mounts(hb.load(name)) == follow.DEFAULT_MOUNTS
+    assert (pid.KP, pid.KI, pid.KD) == (25000, 500, 1000)  # seed 000's Kp = 25, Ki = 0.5, Kd = 1
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_parallel_at_the_set_point_walks_straight(side):
+    rig = Rig(side)
+    f = rig.cycle(n=5)
+    assert (f.mode_name, f.distance, f.angle, f.error, f.output, f.vx, f.yaw) == ("following", SP, 0, 0, 0, 800, 0)
+    assert f.used == side + "_front+" + side + "_rear" and not f.distance_only and f.updates == 5
+    assert f.pid.ts_ms == 100  # one update per round robin: both sensors fresh
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_angled_toward_and_away_turn_the_right_way(side):
+    # Nose toward the wall: front sensor 78 mm, rear 82 mm. angle = atan(-4 / 200) = -1.15 deg;
+    # e = (80 - 80) - 100 mm * (-4 / 200) = 2 mm -> first sample P only: u = 25 * 20 = 500, away.
+    rig = Rig(side)
+    f = rig.cycle(near=780, far=820)
+    assert (f.distance, f.angle, f.error, f.output) == (800, -115, 20, 500)
+    assert rig.away(f.yaw) == 500
+    rig = Rig(side)
+    f = rig.cycle(near=820, far=780)  # nose away: turn toward
+    assert (f.angle, f.error, f.output) == (115, -20, -500) and rig.away(f.yaw) == -500
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_too_close_and_too_far_when_parallel(side):
+    rig = Rig(side)
+    f = rig.cycle(near=760, far=760)  # 4 mm close: u = 25 * 40
+    assert (f.error, f.output, rig.away(f.yaw)) == (40, 1000, 1000)
+    f = rig.cycle(near=760, far=760)  # next sample: + Ki Ts e = 0.5 * 0.1 * 40 = 2; no D (still)
+    assert (f.pid.i, f.pid.d, f.output) == (2, 0, 1002)
+    rig = Rig(side)
+    f = rig.cycle(near=900, far=900)  # 1 cm far: 250 per mm would be 2500, toward
+    assert rig.away(f.yaw) == -2500
+    rig = Rig(side)
+    f = rig.cycle(near=1000, far=1000)  # 2 cm far: clamped at the follower's largest yaw rate
+    assert rig.away(f.yaw) == -follow.YAW_MAX
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_the_angle_guard_holds_the_angle_inside_the_beam(side):
+    # Nose 14 deg away (readings 75 and 25 mm: atan(50 / 200)) and close: d = 50 mm,
+    # e = 30 - 25 = 5 mm would turn further away; past 12 degrees it holds instead.
+    rig = Rig(side)
+    f = rig.cycle(near=750, far=250)
+    assert (f.angle, f.error, f.pid.output, f.output, f.yaw) == (1404, 50, 1250, 0, 0)
+    rig = Rig(side)
+    f = rig.cycle(near=850, far=1350)  # 14 deg toward and far: no further turn toward
+    assert (f.angle, f.error, f.pid.output, f.output, f.yaw) == (-1404, -50, -1250, 0, 0)
+    rig = Rig(side)
+    f = rig.cycle(near=250, far=750)  # 14 deg toward and close: turning away is always allowed
+    assert f.output == follow.YAW_MAX and rig.away(f.yaw) == follow.YAW_MAX
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_inside_corner_turns_away_in_time_then_follows(side):
+    rig = Rig(side)
+    f = rig.cycle(front=CORNER_AT + 1, n=2)
+    assert f.mode_name == "following" and f.yaw == 0
+    f = rig.cycle(front=CORNER_AT - 1)
+    # An arc of CORNER_RADIUS away from the wall: 80 mm/s * 5730 / 250 mm = 1833 cdeg/s.
+    assert (f.mode_name, f.vx, rig.away(f.yaw)) == ("corner", 800, 1833)
+    f = rig.cycle(front=CORNER_AT + follow.CORNER_HYST - 1, n=3)
+    assert f.mode_name == "corner" and f.turned * (1 if side == "right" else -1) > 0
+    n = f.updates
+    f = rig.cycle(front=OOR)  # the wall ahead has gone by: following again, PID afresh
+    assert f.mode_name == "following" and f.updates == n + 1 and f.pid.samples == 1
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_something_too_close_in_front_stops_the_robot_until_it_clears(side):
+    rig = Rig(side)
+    rig.cycle(n=2)
+    f = rig.cycle(front=STOP_AT - 1)
+    assert (f.mode_name, f.reason_name, f.vx, f.yaw) == ("blocked", "obstacle ahead", 0, 0)
+    assert rig.robot.walker.state == 3  # stopping: finishing the steps, feet set down
+    f = rig.cycle(front=STOP_AT + follow.FRONT_HYST - 1, n=40)
+    assert f.mode_name == "blocked" and rig.robot.mode == tick.STANDING
+    f = rig.cycle(front=OOR)
+    assert f.mode_name == "following" and rig.robot.mode == tick.WALKING and f.vx == 800
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_a_lost_wall_turns_toward_where_it_was_then_searches_then_stops(side):
+    rig = Rig(side)
+    rig.cycle(n=3)
+    f = rig.cycle(near=OOR, far=OOR, n=2)
+    assert f.mode_name == "following"  # two misses: still the same wall, no new reading to steer on
+    f = rig.cycle(near=OOR, far=OOR)
+    # Third miss: lost. Arc toward the wall with its distance as radius: 800 * 5730 / 2900.
+    assert (f.mode_name, f.used, f.vx, rig.away(f.yaw)) == ("lost", "none", 800, -1580)
+    assert f.state[1:3] == [follow.NO_WALL] * 2 or f.state[3:5] == [follow.NO_WALL] * 2
+    turned = 0
+    while f.mode_name == "lost":
+        turned = f.turned
+        rig.cycle(near=OOR, far=OOR)
+    start = rig.t  # the search began within the last 100 ms
+    assert f.mode_name == "searching"
+    assert follow.LOST_TURN - 300 < turned * (1 if side == "left" else -1) <= follow.LOST_TURN  # toward the wall
+    yaw = rig.away(f.yaw)
+    rig.cycle(near=OOR, far=OOR, n=50)
+    assert -yaw > -rig.away(f.yaw) > 0  # the spiral widens
+    while f.mode_name == "searching":
+        rig.cycle(near=OOR, far=OOR)
+    assert (f.mode_name, f.reason_name) == ("stopped", "wall not found")
+    assert follow.SEARCH_MS - 100 <= rig.t - start <= follow.SEARCH_MS + 100
+    rig.cycle(n=3)
+    assert f.mode_name == "stopped"  # for good: follow() again to restart
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_a_wall_found_again_is_followed(side):
+    rig = Rig(side)
+    f = rig.cycle(near=OOR, far=OOR, n=4)
+    assert f.mode_name == "lost"
+    f = rig.cycle(near=900, far=OOR)
+    assert (f.mode_name, f.used, f.distance_only) == ("following", side + "_front", True)
+    f = rig.cycle(near=900, far=900, n=2)  # the rear one joins: the pair from the next pair on
+    assert (f.mode_name, f.distance_only, f.distance, f.angle) == ("following", False, 900, 0)
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_one_failed_side_sensor_follows_on_distance_alone_and_says_so(side):
+    rig = Rig(side)
+    rig.cycle(n=2)
+    f = rig.cycle(near=NOECHO, n=2)
+    assert not f.distance_only and f.updates == 2  # not steered on, and no update without it
+    f = rig.cycle(near=NOECHO)
+    assert f.distance_only and f.used == side + "_rear" and f.state[1 if side == "left" else 3] == follow.FAILED
+    assert f.faults == ([0, 3, 0, 0, 0] if side == "left" else [0, 0, 0, 3, 0]) and f.fault_total == 3
+    n = f.updates
+    f = rig.cycle(near=NOECHO, far=760)  # 4 mm close on the rear sensor alone, parallel: away
+    assert f.updates == n + 1 and f.distance == 760 and f.error == 40 and rig.away(f.yaw) > 0
+    assert "distance only" in follow.status_text(f) and "faults 4" in follow.status_text(f)
+    f = rig.cycle(near=800, far=800)  # it answers again: back on the pair
+    assert not f.distance_only and f.used == side + "_front+" + side + "_rear"
+
+
+@pytest.mark.parametrize("side", SIDES)
+@pytest.mark.parametrize("bad", [STUCK, OOR, 800 + follow.WALL_GAP + 1])
+def test_the_other_sensor_faults(side, bad):
+    rig = Rig(side)
+    rig.cycle(n=2)
+    f = rig.cycle(far=bad, n=3)
+    assert f.distance_only and f.used == side + "_front" and f.mode_name == "following"
+    assert f.state[2 if side == "left" else 4] == (follow.FAILED if bad == STUCK else follow.NO_WALL)
+    assert f.fault_total == (3 if bad == STUCK else 0)  # out of range / no wall is no fault
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_a_dropout_is_skipped_not_fed_twice(side):
+    rig = Rig(side)
+    f = rig.cycle(near=780, far=780, n=2)
+    n, i = f.updates, f.pid.i
+    f = rig.cycle(near=NOECHO, far=780)
+    assert f.updates == n and f.pid.i == i and not f.distance_only  # nothing new to steer on
+    f = rig.cycle(near=780, far=780)
+    # Both fresh again at the later of the two pings: left_front (slot 2) comes after the rear
+    # reading of the dropped cycle, 160 ms after the last pair; right_front (slot 3) follows
+    # right_rear (slot 1) in the same cycle, 200 ms after. Each reading is fed once.
+    ts = 160 if side == "left" else 200
+    assert f.updates == n + 1 and f.pid.ts_ms == ts
+    assert f.pid.i == (i * 1000 + 10 * ts + 500) // 1000  # + 0.5 * Ts * 20
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_a_reading_that_jumps_away_is_an_edge_not_the_wall(side):
+    rig = Rig(side)
+    rig.cycle(n=2)
+    f = rig.cycle(near=800 + follow.JUMP + 1)
+    assert f.updates == 2 and f.reading[1 if side == "left" else 3] == 800
+    f = rig.cycle(near=800 + follow.JUMP)
+    assert f.updates == 3 and f.reading[1 if side == "left" else 3] == 800 + follow.JUMP
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_both_side_sensors_failed_stop_and_report(side):
+    rig = Rig(side)
+    rig.cycle(n=2)
+    f = rig.cycle(near=NOECHO, far=STUCK, n=3)
+    assert (f.mode_name, f.reason_name) == ("stopped", "both side sensors failed")
+    assert rig.robot.walker.state == 3 and f.fault_total == 6
+    assert "stopped (both side sensors failed)" in follow.status_text(f)
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_front_failed_and_side_too_close_stop(side):
+    rig = Rig(side)
+    f = rig.cycle(front=NOECHO, n=2)
+    assert f.mode_name == "following"
+    f = rig.cycle(front=STUCK)
+    assert (f.mode_name, f.reason_name) == ("stopped", "front sensor failed")
+    rig = Rig(side)
+    f = rig.cycle(far=CLOSE)
+    assert f.mode_name == "following"
+    f = rig.cycle(far=CLOSE)
+    assert (f.mode_name, f.reason_name) == ("stopped", "a side sensor reads under 2 cm")
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_other_sensors_are_ignored(side):
+    rig = Rig(side)
+    other = Rig("right" if side == "left" else "left")
+    f = rig.cycle(n=2)
+    # The other side failing entirely changes nothing for this side.
+    for k in (3, 4) if side == "left" else (1, 2):
+        rig.status[k] = hcsr04.NO_ECHO
+        f.update(rig.t, k, rig.dist, rig.status)
+    assert f.fault_total == 0 and f.mode_name == "following"
+    assert other.f.mode_name == "following"
+
+
+def test_set_point_changes_on_the_fly_without_a_derivative_kick():
+    rig = Rig()
+    f = rig.cycle(near=800, far=800, n=3)
+    assert f.follow("left", 1000) == 0
+    f = rig.cycle(near=800, far=800)
+    # e jumps to 200 (20 mm): P = 5000 -> clamped; the D term sees the still measurement: 0.
+    assert (f.setpoint, f.error, f.pid.d, f.pid.p) == (1000, 200, 0, 5000) and f.output == follow.YAW_MAX
+    assert f.updates == 4  # the same follow, not restarted
+
+
+def test_sweeps_form_is_seed_000s_turn():
+    rig = Rig(form="sweeps")
+    full = [0, 0]
+    sweep_command(rig.robot.walker, 4500, 1000, full)  # the paper's right turn
+    f = rig.cycle(near=600, far=600)  # 2 cm close to the left wall: full output, turn right
+    assert f.output == follow.YAW_MAX and (f.vx, f.yaw) == tuple(full)
+    assert rig.robot.walker.req_vx == full[0] and rig.robot.walker.req_yaw == full[1]
+    rig = Rig("right", form="sweeps")
+    f = rig.cycle(near=600, far=600)  # mirrored: left turn, the same forward speed
+    assert (f.vx, f.yaw) == (full[0], -full[1])
+    f = rig.cycle(near=800, far=800, n=3)
+    assert (f.output, f.vx, f.yaw) == (0, 800, 0)  # straight at the set speed
+
+
+@pytest.mark.parametrize(
+    "args, match",
+    [
+        (("up", 800), "side: 'up', allowed 'left' or 'right'"),
+        ((None, 800), "side: None"),
+        (("Left", 800), "side: 'Left'"),
+        (("left", 399), r"setpoint: 399 is outside 400..5000 \(0.1 mm"),
+        (("left", 5001), "setpoint: 5001"),
+        (("left", 80.0), "setpoint: 80.0"),
+        (("left", "800"), "setpoint: '800'"),
+        (("left", True), "setpoint: True"),
+        (("left", None), "setpoint: None"),
+        (("left", 800, 0), r"speed: 0 is outside 100..3000 \(0.1 mm/s\)"),
+        (("left", 800, -800), "speed: -800"),
+        (("left", 800, 3001), "speed: 3001"),
+        (("left", 800, 80.5), "speed: 80.5"),
+        (("left", 800, False), "speed: False"),
+        (("left", 800, None, "coxa"), "form: 'coxa', allowed 'yaw' or 'sweeps'"),
+    ],
+)
+def test_bad_follow_requests_are_refused_and_change_nothing(args, match):
+    rig = Rig("right", 1200, 600)
+    rig.cycle(near=1100, far=1150, n=2)
+    f = rig.f
+    before = (f.mode, f.side, f.setpoint, f.speed, f.form, f.updates, f.vx, f.yaw, rig.robot.walker.req_yaw)
+    with pytest.raises(ValueError, match=match):
+        f.follow(*args)
+    assert (f.mode, f.side, f.setpoint, f.speed, f.form, f.updates, f.vx, f.yaw, rig.robot.walker.req_yaw) == before
+
+
+@pytest.mark.parametrize("gains", [(-1, 500, 1000), (25000, 0.5, 1000), (25000, 500, 100001), ("25", 0, 0)])
+def test_bad_gains_are_refused_and_change_nothing(gains):
+    rig = Rig()
+    rig.f.set_gains(30000, 0, 2000)
+    with pytest.raises(ValueError, match="k[pid]: .* is outside 0..100000"):
+        rig.f.set_gains(*gains)
+    assert (rig.f.pid.kp, rig.f.pid.ki, rig.f.pid.kd) == (30000, 0, 2000)
+
+
+def test_follow_refuses_a_robot_that_is_not_standing_and_changes_nothing():
+    g = geometry.load(robots.default)
+    robot = tick.Robot(g, tick.default_servos(g), tick.FrameBuffer())
+    f = follow.Follower(robot)
+    assert f.follow("left", 800) == tick.NOT_STANDING and f.mode_name == "off" and f.side is None
+    robot.stand_up()
+    robot.tick(0)
+    assert f.follow("left", 800) == tick.BUSY and f.mode_name == "off" and robot.walker.req_vx == 0
+    assert f.off() == 0 and f.mode_name == "off"
+
+
+@pytest.mark.parametrize(
+    "mounts, match",
+    [
+        (follow.DEFAULT_MOUNTS[:4], "need 5"),
+        (((1300, 0, 4500),) + follow.DEFAULT_MOUNTS[1:], "front heading 4500"),
+        (follow.DEFAULT_MOUNTS[:1] + ((1000, -2100, 9000),) + follow.DEFAULT_MOUNTS[2:], "left_front y -2100"),
+        (follow.DEFAULT_MOUNTS[:2] + ((1000, 2100, 9000),) + follow.DEFAULT_MOUNTS[3:], "left_front x 1000 must be"),
+        (follow.DEFAULT_MOUNTS[:4] + ((0, 0, -9000),), "right_rear y 0"),
+        (follow.DEFAULT_MOUNTS[:4] + ((0, -2100, -9000.0),), "right_rear"),
+    ],
+)
+def test_bad_mounts_are_refused(mounts, match):
+    robot, _ = standing_robot()
+    with pytest.raises(ValueError, match=match):
+        follow.Follower(robot, mounts)
+
+
+TOUR = """
+import robots.default
+from hexapod import follow, geometry, tick
+
+g = geometry.load(robots.default)
+out = []
+for side in ("left", "right"):
+    robot = tick.Robot(g, tick.default_servos(g), tick.FrameBuffer())
+    robot.stand_up()
+    t = 0
+    while robot.mode != tick.STANDING:
+        robot.tick(t)
+        t += 20
+    f = follow.Follower(robot)
+    f.follow(side, 800)
+    dist = [-1] * 5
+    status = [5] * 5
+    for n in range(1500):
+        # A wall that comes and goes, a corner ahead now and then, noise from a fixed pattern.
+        k = (0, 4, 1, 3, 2)[n % 5]
+        c = n // 5
+        if k == 0:
+            d = 3900 + (c % 40) * 100 if c % 97 < 60 else -1
+        elif (k <= 2) == (side == "left"):
+            d = 800 + ((c * 37) % 23) * 10 - 110 + (30 if k in (1, 3) else 0) * ((c // 13) % 3 - 1)
+            if c % 151 > 140:
+                d = -1
+        else:
+            d = -1
+        status[k] = 0 if d >= 0 else 1
+        dist[k] = d
+        f.update(t, k, dist, status)
+        robot.tick(t)
+        t += 20
+        if n % 50 == 0:
+            out.append((f.mode, f.distance, f.angle, f.error, f.output, f.vx, f.yaw, f.turned, robot.walker.psi))
+print(out)
+"""
+
+
+def test_decisions_are_bit_identical_on_both_runtimes(both_runtimes):
+    cp, mp = both_runtimes(TOUR)
+    assert cp == mp
+    rows = eval(cp)  # noqa: S307 (our own printed literal)
+    modes = {r[0] for r in rows}
+    assert {follow.FOLLOWING, follow.CORNER} <= modes and len(rows) == 60
