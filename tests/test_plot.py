@@ -58,4 +58,7 @@ def test_tick_bench_script_runs_allocation_free():
     for g in result["gaits"]:
         assert g["heap_bytes_per_tick"] == 0 and g["faults"] == 0
         assert 0 < g["median_us"] <= g["p99_us"] <= g["max_us"] <= g["raw_max_us"]
+    wall = result["wall_follow"]  # the follower's frame: sonar result, PID, walk command, tick
+    assert wall["row"] == "wall-follow" and wall["heap_bytes_per_frame"] == 0 and wall["faults"] == 0
+    assert wall["pid_updates"] >= 50 and 0 < wall["median_us"] <= wall["max_us"] <= wall["raw_max_us"]
     json.dumps(result)

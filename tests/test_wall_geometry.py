@@ -10,8 +10,8 @@ perpendicular distance, so the wall sits at n.p = 80 mm + max(n.s) over the two 
 import math
 
 import pytest
-import robots.default
 
+import robots.default
 from hexapod import follow, geometry, tick
 from hexapod_host.reference import fk
 

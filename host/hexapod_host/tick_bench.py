@@ -33,11 +33,13 @@ def build_mpy(dest):
 
 
 def bench_tick(args, ticks=10000, repeats=5):
-    """Median and max microseconds per tick, max/median, heap bytes per tick, per gait."""
+    """Median and max microseconds per tick, max/median, heap bytes per tick, per gait; and the
+    same for the wall follower's frame (Follower.update + Robot.tick) under `wall_follow`."""
     with tempfile.TemporaryDirectory() as tmp:
         build_mpy(tmp)
         out = mpvm.run(script=VM_SCRIPT, heapsize="128k", args=(tmp, str(ticks), str(repeats)))
-    gaits = [json.loads(line) for line in out.strip().splitlines() if line.startswith("{")]
+    rows = [json.loads(line) for line in out.strip().splitlines() if line.startswith("{")]
+    gaits = [r for r in rows if "gait" in r]
     return {
         "bench": "tick",
         "runtime": "micropython",
@@ -46,4 +48,6 @@ def bench_tick(args, ticks=10000, repeats=5):
         "gaits": gaits,
         "worst_max_over_median": max(g["max_over_median"] for g in gaits),
         "heap_bytes_per_tick": max(g["heap_bytes_per_tick"] for g in gaits),
+        # The wall follower's frame (sonar result in, PID, walk command, tripod tick), same method.
+        "wall_follow": [r for r in rows if r.get("row") == "wall-follow"][0],
     }
