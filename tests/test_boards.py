@@ -123,6 +123,16 @@ MUTATIONS = [
     (P, ("sensors", 0, 4), 1.5, "sensor front y: 1.5, allowed"),
     (P, ("sensors", 0), ("front", 6, 7), "sensors[0]: expected 6 items"),
     (P, ("sensors", 0), {}, "sensors[0]: expected a tuple (name, trigger"),
+    (P, ("sensors", 1, 5), 4500, "sensors: sensor mounts: left_front heading 4500 cdeg, allowed 8000..10000"),
+    (E, ("sensors", 4, 3), 1000, "sensors: sensor mounts: right_front x 1000 must be at least 500 (50 mm) ahead"),
+    (F, ("sensors", 2, 4), -2100, "sensors: sensor mounts: left_rear y -2100 must be > 0 (left)"),
+    (P, ("follow",), "left", "follow: expected a dict, got str"),
+    (P, ("follow",), {"side": "left"}, "follow: missing key 'setpoint'"),
+    (P, ("follow",), {"side": "left", "setpoint": 800, "gain": 1}, "follow: unknown key 'gain'"),
+    (P, ("follow",), {"side": "up", "setpoint": 800}, "follow: side: 'up', allowed 'left' or 'right'"),
+    (E, ("follow",), {"side": "left", "setpoint": 80}, "follow: setpoint: 80 is outside 400..5000 (0.1 mm"),
+    (F, ("follow",), {"side": "right", "setpoint": 800, "speed": 0}, "follow: speed: 0 is outside 100..3000"),
+    (P, ("follow",), {"side": "right", "setpoint": 800, "form": "crab"}, "follow: form: 'crab', allowed 'yaw'"),
 ]
 
 
@@ -139,11 +149,14 @@ out = []
 for n in %r:
     out.append((hb.load(n) is GOOD[n], check(GOOD[n]), check(thaw(GOOD[n])), len(hb.servo_table(GOOD[n]))))
 out.append(check(mutated("pico", ("notes",), "spare servo in the drawer")))
+out.append(check(mutated("pico", ("follow",), {"side": "left", "setpoint": 800})))
+out.append(check(mutated("esp32_devkit", ("follow",), {"side": "right", "setpoint": 1600, "form": "sweeps"})))
+out.append(check(mutated("feather_rp2040", ("follow",), "<delete>")))
 print(out)
 """
         % (BOARDS,)
     )
-    assert rt.value(src) == [(True, "accepted", "accepted", 18)] * 3 + ["accepted"]
+    assert rt.value(src) == [(True, "accepted", "accepted", 18)] * 3 + ["accepted"] * 4
 
 
 def test_many_bad_boards_each_fail_with_a_clear_value_error(rt):

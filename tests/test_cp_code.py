@@ -116,6 +116,24 @@ def test_main_prints_a_status_line_every_5_s(rig, capsys):
     assert "dist [%d, " % r.distances[0] in lines[-1]
 
 
+def test_main_starts_following_from_the_board_setting(rig, monkeypatch):
+    monkeypatch.setitem(BOARD, "follow", {"side": "right", "setpoint": 900})
+    g = rig()
+    for k, d in enumerate((9000, 9000, 9000, 900, 900)):
+        g.sonar[k].set_distance(d)
+    r = g.code.main(frames=300, clock=g.clock)
+    f = r.follower
+    assert (f.mode_name, f.side, f.setpoint, f.used, f.distance, f.yaw) == (
+        "following",
+        "right",
+        900,
+        "right_front+right_rear",
+        900,
+        0,
+    )
+    assert r.robot.mode == 4 and f.updates > 10
+
+
 def test_faults_while_running(rig):
     g = rig(plugged=(0x40,))  # 0x41 unplugged at boot
     r = g.code.build(clock=g.clock)

@@ -87,3 +87,59 @@ print((heap_bytes(run, 300), f.updates - before, f.mode_name, r.robot.mode, r.he
     assert (mode, robot_mode, held) == ("following", 4, 0)
     assert updates >= 55 and turned  # two runs of 300 frames: every 100 ms a PID update, new commands
     assert heap == 0
+
+
+def test_main_starts_following_from_the_board_setting(both_runtimes):
+    src = (
+        SETUP
+        + """
+plug(0x40)
+plug(0x41)
+import boards.pico
+for k, d in enumerate((9000, 1150, 1150, 9000, 9000)):
+    SONAR[k].set_distance(d)
+boards.pico.BOARD["follow"] = {"side": "left", "setpoint": 1200, "speed": 600}
+try:
+    r = main.main(frames=300, clock=clock)
+finally:
+    boards.pico.BOARD["follow"] = None
+f = r.follower
+print((f.mode_name, f.side, f.setpoint, f.speed, f.updates > 10, f.distance, f.yaw < 0, r.robot.mode))
+"""
+    )
+    cp, mp = both_runtimes(src, heapsize="4m")
+    assert cp == mp
+    lines = cp.strip().splitlines()
+    assert lines[0].startswith("frames 250 ") and " wall left following d 115" in lines[0]
+    # 5 mm inside the 12 cm set point: it turns away from the wall (right, clockwise).
+    assert eval(lines[-1]) == ("following", "left", 1200, 600, True, 1150, True, 4)  # noqa: S307
+
+
+def test_follow_refuses_until_standing_and_bad_values_change_nothing(rt):
+    src = (
+        SETUP
+        + """
+plug(0x40)
+plug(0x41)
+SONAR[0].set_distance(9000)  # nothing ahead
+r = main.build(clock=clock)
+out = [r.follow("left", 800)]  # relaxed
+r.robot.stand_up()
+frames(r, 2)
+out.append(r.follow("right", 800))  # standing up
+for args in (("middle", 800), ("left", 0), ("left", 800, 99999), ("left", 800, None, "wave")):
+    try:
+        r.follow(*args)
+        out.append("accepted")
+    except ValueError as e:
+        out.append(str(e).split(":")[0])
+frames(r, 150)
+out.append((r.follower.mode_name, r.robot.mode, r.robot.walker.req_vx))
+out.append(r.follow("right", 800))
+frames(r, 10)
+out.append((r.follower.mode_name, r.robot.mode))
+print(out)
+"""
+    )
+    out = rt.value(src, heapsize="4m")
+    assert out == [22, 21, "side", "setpoint", "speed", "form", ("off", 3, 0), 0, ("following", 4)]

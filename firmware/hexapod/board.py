@@ -127,16 +127,20 @@ def validate(board):
 
 
 def _follow(ck, board):
-    """The optional start-up wall following: None, or {"side", "setpoint"[, "speed", "form"]}."""
+    """Sensor mounts the wall follower can use, and the optional start-up wall following: None,
+    or {"side", "setpoint"[, "speed", "form"]} (hexapod.follow's units)."""
+    from hexapod import follow
+
+    try:
+        follow.check_mounts(sensor_mounts(board))
+    except ValueError as e:
+        ck.fail("sensors", str(e))
     setting = board.get("follow")
     if setting is None:
         return
     ck.dict_of("follow", setting, _FOLLOW, _FOLLOW_OPTIONAL)
-    from hexapod import follow
-
     try:
         follow.check_request(setting["side"], setting["setpoint"], setting.get("speed"), setting.get("form", "yaw"))
-        follow.check_mounts(sensor_mounts(board))
     except ValueError as e:
         ck.fail("follow", str(e))
 
