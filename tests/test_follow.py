@@ -294,6 +294,21 @@ def test_front_failed_and_side_too_close_stop(side):
 
 
 @pytest.mark.parametrize("side", SIDES)
+def test_out_of_range_from_under_4_cm_is_too_close_not_a_lost_wall(side):
+    # Inside 2 cm the module holds its echo for 38 ms: the driver reports OUT_OF_RANGE.
+    rig = Rig(side)
+    rig.cycle(near=390, far=390)
+    f = rig.cycle(near=OOR, far=OOR)
+    assert f.mode_name == "following" and f.fault_total == 2
+    f = rig.cycle(near=OOR, far=OOR)
+    assert (f.mode_name, f.reason_name) == ("stopped", "a side sensor reads under 2 cm")
+    rig = Rig(side)
+    rig.cycle(near=400, far=400)
+    f = rig.cycle(near=OOR, far=OOR, n=3)
+    assert (f.mode_name, f.fault_total) == ("lost", 0)
+
+
+@pytest.mark.parametrize("side", SIDES)
 def test_other_sensors_are_ignored(side):
     rig = Rig(side)
     other = Rig("right" if side == "left" else "left")

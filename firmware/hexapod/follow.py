@@ -22,12 +22,16 @@ wall), lost (no wall on the side: arc toward where it was, radius = the wall dis
 searching (a widening spiral toward that side), blocked (something too close in front: stopped
 until it clears), stopped (for good, with a reason).
 
-Faults: a side reading is steered on only with status OK and within WALL_GAP of the set point.
-NO_ECHO, STUCK and TOO_CLOSE pings are faults (counted per sensor); OUT_OF_RANGE means nothing
-in range. A sensor with MISS_RUN pings in a row not steered on leaves use (failed when all of
-them were NO_ECHO/STUCK, else no wall). One side sensor left: it follows on that distance alone
-(distance_only, `used` names it); none failed-or-lost: lost; both failed: stopped. A failed
-front sonar, or two TOO_CLOSE side pings in a row, stop the robot.
+Faults: a side reading is steered on only with status OK, within WALL_GAP of the set point and
+not JUMP farther than that sensor's last one (an edge leaving the beam). NO_ECHO, STUCK and
+TOO_CLOSE pings are faults (counted per sensor); OUT_OF_RANGE means nothing in range (but from
+under 4 cm it means too close: the module holds its echo inside 2 cm). A sensor with MISS_RUN
+pings in a row not steered on leaves use (failed when all of them were NO_ECHO/STUCK, else no
+wall). One side sensor left: it follows on that sensor's distance (distance_only; `used` names
+it), the angle carried on from the last pair by the walker's own heading and let fade; none in
+use and not both failed: lost; both failed: stopped. A failed front sonar, or two TOO_CLOSE
+side pings in a row, stop the robot. The PID takes a sample when every sensor in use has a
+fresh reading (once per round robin): a stale reading is never fed twice.
 """
 
 from micropython import const
@@ -53,6 +57,7 @@ _STUCK = const(3)
 _TOO_CLOSE = const(4)
 _WAIT = const(5)
 _MIN_RANGE = const(200)  # the HC-SR04's 2 cm: what a TOO_CLOSE front ping is taken as
+_NEAR = const(400)  # from under 4 cm a side sonar going out of range has come too close, 0.1 mm
 
 # Modes.
 OFF = const(0)
@@ -348,6 +353,8 @@ class Follower:
     def _sense(self, i, d, st):
         if st == _WAIT or (i != FRONT and i != self._f and i != self._r):
             return
+        if i != FRONT and st == _OUT_OF_RANGE and self.state[i] == IN_USE and self.reading[i] < _NEAR:
+            st = _TOO_CLOSE  # inside 2 cm the module holds its echo: it looks out of range
         fault = st == _NO_ECHO or st == _STUCK or st == _TOO_CLOSE  # noqa: SIM109 (a tuple may allocate)
         if fault and self.faults[i] < _COUNT_MAX:
             self.faults[i] += 1
