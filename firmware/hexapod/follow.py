@@ -473,7 +473,7 @@ class Follower:
             self._fresh = 0
             self._steer(now, used)
         elif not self._sent:
-            self._walk(self.speed, 0)  # no reading yet: straight on
+            self._walk(self.speed, self._away * self.output)  # not sent yet (refused, or no sample: straight)
 
     def _steer(self, now, used):
         rd = self.reading
@@ -534,6 +534,7 @@ class Follower:
             self.turned = 0
             if mode == FOLLOWING:
                 self.pid.reset()
+                self.output = 0
                 self._fresh = 0
                 self._sent = False
         self.reason = reason
