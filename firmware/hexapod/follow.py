@@ -264,10 +264,12 @@ class Follower:
             self._thresholds()
             self._sent = False  # the next command goes out even if it equals the last one
             return OK
+        code = robot.walk(speed, 0, 0)  # straight on until the first sample (the same in both forms)
+        if code != OK:
+            return code
         if form == "sweeps":
             sweep_command(robot.walker, 4500, 1000, self._sweep)  # seed 000's right turn
             self._sweep[1] = -self._sweep[1]
-        old = (self.side, self.setpoint, self.speed, self.form, self._f, self._r, self._away)
         self.side = side
         self.setpoint = setpoint
         self.speed = speed
@@ -277,13 +279,10 @@ class Follower:
         self._r = LEFT_REAR if left else RIGHT_REAR
         self._away = -1 if left else 1
         self._thresholds()
-        self._sent = False
-        code = self._walk(speed, 0)
-        if code != OK:
-            self.side, self.setpoint, self.speed, self.form, self._f, self._r, self._away = old
-            self._thresholds()
-            return code
-        self._restart()
+        self._restart()  # after the walk: a walk from a stop starts the walker's heading at 0
+        self.vx = speed
+        self.yaw = 0
+        self._sent = True
         return OK
 
     def off(self):
@@ -322,6 +321,7 @@ class Follower:
         self._fresh = 0
         self.pid.reset()
         self._psi = self.robot.walker.psi
+        self.mode = OFF  # a new follow starts afresh whatever the mode was
         self._set_mode(FOLLOWING, NO_REASON)
 
     def _side(self):
