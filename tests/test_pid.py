@@ -63,6 +63,27 @@ def test_matches_the_float_form_of_eq_14_step_by_step(case):
     assert worst <= 1.0, worst
 
 
+def test_matches_eq_14_as_printed_while_the_set_point_holds():
+    """The paper's eq. 14 itself, derivative on the error, at a fixed Ts of 100 ms (the round
+    robin's), written out here: u(k) = Kp e(k) + Ki Ts sum e(j) + Kd (e(k) - e(k-1)) / Ts. The
+    sum starts at the first interval (the first sample has none: P only)."""
+    kp, ki, kd, ts = 25.0, 0.5, 1.0, 0.1
+    rnd = random.Random(14)
+    p = pid.PID(*PAPER, out_max=9000, i_max=9000)
+    m, total, e_last, worst = 800, 0.0, None, 0
+    for k in range(300):
+        m += rnd.randint(-40, 40) + (800 - m) // 4
+        e = 800 - m
+        want = kp * e
+        if e_last is not None:
+            total += e
+            want += ki * ts * total + kd * (e - e_last) / ts
+        e_last = e
+        assert abs(want) < 9000  # no clamp reached: the bare equation
+        worst = max(worst, abs(p.update(800, m, 100 * k) - want))
+    assert worst <= 1.0, worst
+
+
 def test_hand_worked_pure_p_step():
     p = pid.PID(25000, 0, 0, out_max=9000, i_max=0)
     # 8 cm set point, 7.6 cm reading: e = 40 (0.1 mm) -> u = 25 * 40 = 1000 cdeg/s.
