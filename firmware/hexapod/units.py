@@ -2,21 +2,74 @@
 
 The edges (CLI, serial console) speak mm and degrees; the core speaks 0.1 mm and
 centidegrees. parse_fixed("12.34", 2) == 1234 and format_fixed(1234, 2) == "12.34".
+Only ASCII is read and written, so CPython and MicroPython (whose str methods differ on
+non-ASCII text) give the same value or the same message for any text.
 """
 
+_DIGITS = "0123456789"
+_SPACE = " \t\n\r\x0b\x0c"  # ASCII whitespace: the set both runtimes strip and split on
+SHOWN_MAX = 20  # characters of a value quoted in a message before it is cut
 
-def parse_fixed(text, places):
+
+def shown(text):
+    """text quoted for a message: cut to SHOWN_MAX characters + '...', ASCII only (\\x, \\u escapes)."""
+    cut = len(text) > SHOWN_MAX
+    parts = ["'"]
+    for c in text[:SHOWN_MAX] if cut else text:
+        o = ord(c)
+        if 32 <= o < 127 and c != "\\" and c != "'":
+            parts.append(c)
+        elif c == "\\" or c == "'":
+            parts.append("\\" + c)
+        elif o < 256:
+            parts.append("\\x%02x" % o)
+        elif o < 65536:
+            parts.append("\\u%04x" % o)
+        else:
+            parts.append("\\U%08x" % o)
+    parts.append("...'" if cut else "'")
+    return "".join(parts)
+
+
+def _all_digits(s):
+    return all(c in _DIGITS for c in s)
+
+
+def _outside(text, places, limit, unit):
+    """The ValueError for a value past +-limit (scaled by 10**places), e.g. "'4000' is outside -3000..3000 mm"."""
+    t = format_fixed(limit, places)
+    if places:
+        t = t.rstrip("0").rstrip(".")
+    return ValueError("%s is outside the accepted -%s..%s%s" % (shown(text), t, t, " " + unit if unit else ""))
+
+
+def parse_fixed(text, places, limit=None, unit=""):
     """Integer value of a decimal string scaled by 10**places, rounded half away from zero.
 
-    Raises ValueError naming the text when it is not a plain decimal number.
+    Accepts an optional sign, ASCII digits and one point ('-12.5', '.5', '5.'), nothing else.
+    Raises ValueError naming the text (cut to SHOWN_MAX characters) when it is not such a
+    number, or, given a limit (scaled like the result), when the rounded value is past +-limit
+    (the message then names the bound, in `unit`).
     """
-    s = text.strip()
+    s = text.strip(_SPACE)
     body = s[1:] if s[:1] in ("-", "+") else s
     whole, dot, frac = body.partition(".")
-    if not (whole or frac) or not (whole.isdigit() or not whole) or not (frac.isdigit() or not frac):
-        raise ValueError("%r is not a number" % text)
+    if not (whole or frac) or not _all_digits(whole) or not _all_digits(frac):
+        for c in s:
+            if ord(c) > 126:
+                raise ValueError("%s is not a number: only ASCII digits 0-9, '-' and '.' are accepted" % shown(text))
+        mant, e, exp = body.replace("E", "e").partition("e")
+        m_whole, _, m_frac = mant.partition(".")
+        if e and (m_whole or m_frac) and _all_digits(m_whole) and _all_digits(m_frac):
+            digits = exp[1:] if exp[:1] in ("-", "+") else exp
+            if digits and _all_digits(digits):
+                raise ValueError("%s is not a number: exponents are not accepted, write it out in full" % shown(text))
+        raise ValueError("%s is not a number" % shown(text))
+    whole = whole.lstrip("0")
     if len(whole) > 9:
-        raise ValueError("%r is too large" % text)
+        if limit is not None:
+            raise _outside(text, places, limit, unit)
+        raise ValueError("%s is too large" % shown(text))
     scale = 10**places
     value = int(whole or "0") * scale
     digits = frac[:places]
@@ -24,6 +77,8 @@ def parse_fixed(text, places):
         value += int(digits) * 10 ** (places - len(digits))
     if len(frac) > places and frac[places] >= "5":
         value += 1
+    if limit is not None and value > limit:
+        raise _outside(text, places, limit, unit)
     return -value if s[:1] == "-" else value
 
 

@@ -4,8 +4,8 @@ import io
 import os
 import sys
 
-from hexapod.leg import COXA_MAX, DEFAULT_LIMITS, LINK_MAX, LINK_MIN, OFFSET_MAX, Leg
-from hexapod.units import parse_fixed
+from hexapod.leg import ANGLE_MAX, COXA_MAX, DEFAULT_LIMITS, LINK_MAX, LINK_MIN, OFFSET_MAX, Leg
+from hexapod.units import format_fixed, parse_fixed, shown
 from hexapod_host import mpvm
 from hexapod_host.cli import UsageError
 from hexapod_host.vm import kin
@@ -40,15 +40,31 @@ def _add_leg_options(p):
 
 
 def register(sub):
-    p = sub.add_parser("ik", help="joint angles (degrees) of a foot position (mm, leg frame)")
-    p.add_argument("values", nargs="*", metavar="X Y Z", help="foot position, mm")
+    domain = " Input domain: |x|, |y|, |z| <= 3000 mm; angles within +-360 degrees; plain decimals only."
+    p = sub.add_parser(
+        "ik",
+        help="joint angles (degrees) of a foot position (mm, leg frame)",
+        description="Joint angles (degrees) of a foot position (mm, leg frame)." + domain + EXIT_RULE,
+    )
+    p.add_argument("values", nargs="*", metavar="X Y Z", help="foot position, mm (each within +-3000)")
     p.add_argument("--batch", action="store_true", help="read 'x y z' lines from stdin, one answer per line")
     _add_leg_options(p)
     p.set_defaults(func=run_ik)
-    p = sub.add_parser("fk", help="foot position (mm, leg frame) of joint angles (degrees)")
-    p.add_argument("values", nargs="*", metavar="T1 T2 T3", help="coxa, femur, tibia angles, degrees")
+    p = sub.add_parser(
+        "fk",
+        help="foot position (mm, leg frame) of joint angles (degrees)",
+        description="Foot position (mm, leg frame) of joint angles (degrees)." + domain + EXIT_RULE,
+    )
+    p.add_argument("values", nargs="*", metavar="T1 T2 T3", help="coxa, femur, tibia angles, degrees (within +-360)")
+    p.add_argument("--batch", action="store_true", help="read 't1 t2 t3' lines from stdin, one answer per line")
     _add_leg_options(p)
     p.set_defaults(func=run_fk)
+
+
+EXIT_RULE = (
+    " Exit status: 0 all solved, 1 some refused (unreachable or beyond a limit), 2 bad input"
+    " (a batch: 2 if any line was bad, else 1 if any was refused), 3 internal error."
+)
 
 
 def _fixed(name, text, places, lo, hi, unit):
@@ -59,7 +75,8 @@ def _fixed(name, text, places, lo, hi, unit):
     if value < lo or value > hi:
         scale = 10**places
         raise UsageError(
-            "--%s: %s %s is outside the allowed %g..%g %s" % (name, text, unit, lo / scale, hi / scale, unit)
+            "--%s: %s %s is outside the allowed %g..%g %s"
+            % (name, shown(text)[1:-1], unit, lo / scale, hi / scale, unit)
         )
     return value
 
@@ -75,7 +92,13 @@ def geometry_words(args):
     if args.limits is None:
         g += list(DEFAULT_LIMITS)
     else:
-        g += [_fixed("limits", w, 2, -18000, 18000, "deg") for w in args.limits]
+        g += [_fixed("limits", w, 2, -ANGLE_MAX, ANGLE_MAX, "deg") for w in args.limits]
+        for k, joint in ((0, "coxa"), (2, "femur"), (4, "tibia")):
+            if g[4 + k] > g[5 + k]:
+                raise UsageError(
+                    "--limits: %s min %s deg is above its max %s deg"
+                    % (joint, format_fixed(g[4 + k], 2), format_fixed(g[5 + k], 2))
+                )
     try:
         Leg(coxa=g[0], femur=g[1], tibia=g[2], femur_offset=g[3], limits=g[4:])
     except ValueError as err:
@@ -83,31 +106,46 @@ def geometry_words(args):
     return [str(v) for v in g]
 
 
-def _run(mode, args):
-    if mode != "ik-batch" and len(args.values) != 3:
-        raise UsageError("need 3 numbers, got %d: %s" % (len(args.values), " ".join(args.values) or "none"))
-    if mode == "ik-batch" and args.values:
-        raise UsageError("--batch reads stdin; drop the values %s" % " ".join(args.values))
-    argv = [mode, "1" if args.json else "0"] + geometry_words(args) + list(args.values)
+def _word_bytes(word):
+    """A command-line word back as the bytes the user typed (non-UTF-8 ones arrive surrogate-escaped)."""
+    if "\0" in word:
+        raise UsageError("%s: contains a NUL character" % shown(word))
+    try:
+        return word.encode("utf-8", "surrogateescape")
+    except UnicodeEncodeError:  # a lone surrogate no shell can send: stays invalid UTF-8
+        return word.encode("utf-8", "surrogatepass")
+
+
+def _run(kind, args):
+    if args.batch and args.values:
+        raise UsageError("--batch reads stdin; drop the values %s" % " ".join(shown(w) for w in args.values[:3]))
+    mode = kind + "-batch" if args.batch else kind
+    argv = [mode, "1" if args.json else "0"] + geometry_words(args)
+    if args.batch:
+        stdin = sys.stdin.buffer
+    else:
+        stdin = io.BytesIO(b"".join(_word_bytes(w) + b"\0" for w in args.values))
     if args.runtime == "cpython":
-        return kin.run(argv, sys.stdin, sys.stdout, sys.stderr)
-    stdin = sys.stdin.buffer.read() if mode == "ik-batch" else b""
-    status, out, err = mpvm.run_script_status(KIN_SCRIPT, argv, stdin)
-    sys.stdout.write(out)
+        return kin.run(argv, stdin, sys.stdout, sys.stderr)
+    status, out, err = mpvm.run_script_status(KIN_SCRIPT, argv, stdin.read())
+    if not kin.STATUS_BASE <= status <= kin.STATUS_BASE + kin.INTERNAL:
+        raise RuntimeError("the MicroPython VM exited %d: %s" % (status, err.strip()[-300:]))
+    for k in range(0, len(out), 8192):  # in pieces: one huge write to a closed pipe may fail silently
+        sys.stdout.write(out[k : k + 8192])
     sys.stderr.write(err)
-    return status
+    return status - kin.STATUS_BASE
 
 
 def run_ik(args):
-    return _run("ik-batch" if args.batch else "ik", args)
+    return _run("ik", args)
 
 
 def run_fk(args):
     return _run("fk", args)
 
 
-def run_in_process(argv_words, stdin_text=""):
-    """Test helper: the engine's (status, stdout, stderr) on CPython for given words."""
+def run_in_process(argv_words, stdin=b""):
+    """Test helper: the engine's (status, stdout, stderr) on CPython for given words and stdin bytes."""
     out, err = io.StringIO(), io.StringIO()
-    status = kin.run(argv_words, io.StringIO(stdin_text), out, err)
+    status = kin.run(argv_words, io.BytesIO(stdin), out, err)
     return status, out.getvalue(), err.getvalue()

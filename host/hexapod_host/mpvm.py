@@ -57,4 +57,4 @@ def run_script_status(script, args=(), stdin=b"", heapsize="256k", timeout=300):
     proc = subprocess.run(
         [exe, "-X", "heapsize=" + heapsize, script, *args], input=stdin, capture_output=True, env=env, timeout=timeout
     )
-    return proc.returncode, proc.stdout.decode(), proc.stderr.decode()
+    return proc.returncode, proc.stdout.decode(errors="replace"), proc.stderr.decode(errors="replace")

@@ -1,93 +1,231 @@
 # The `hexapod ik` / `hexapod fk` engine. Runs unchanged on CPython (imported by the CLI) and
 # inside the MicroPython VM (run as a script), so both print byte-identical text.
 #
-#   kin.py MODE JSON COXA FEMUR TIBIA OFFSET L1 .. L6 [VALUE ...]
-# MODE is ik, fk or ik-batch; JSON is 0 or 1; lengths in 0.1 mm, limits in cdeg; VALUEs are
-# the user's mm / degree words. ik-batch reads "x y z" lines (mm) from stdin.
+#   kin.py MODE JSON COXA FEMUR TIBIA OFFSET L1 .. L6      (values on stdin)
+# MODE is ik or fk (stdin: the user's words as given, each ended by a NUL byte) or ik-batch /
+# fk-batch (stdin: lines of three numbers); JSON is 0 or 1; lengths in 0.1 mm, limits in cdeg.
+# Input is read as bytes in chunks and cut at LINE_MAX, and only ASCII numbers are read
+# (units.parse_fixed), so no input can make the two runtimes differ, raise or run out of heap.
+#
+# Exit status (README "Command line"): 0 all solved, 1 some refused, 2 bad input (a batch: 2
+# if any line was bad, else 1 if any was refused), 3 internal error. As a script it exits with
+# STATUS_BASE + status, so the host can tell an answer from the VM itself failing (exit 1).
 import sys
 
-from hexapod.leg import OK, Leg, describe
-from hexapod.units import format_fixed, parse_fixed
+from hexapod.leg import ANGLE_MAX, COORD_MAX, OK, Leg, describe
+from hexapod.units import SHOWN_MAX, format_fixed, parse_fixed, shown
+
+SOLVED = 0
+REFUSED = 1
+BAD_INPUT = 2
+INTERNAL = 3
+STATUS_BASE = 10
+LINE_MAX = 1000  # longest batch line or value accepted, bytes
+_CHUNK = 4096
+_BOM = b"\xef\xbb\xbf"
 
 NAMES = {"ik": ("x", "y", "z"), "fk": ("theta1", "theta2", "theta3")}
+PLACES = {"ik": 1, "fk": 2}  # the user's mm -> 0.1 mm, degrees -> cdeg
+# The input domain: |x|, |y|, |z| <= 3000 mm (the core's COORD_MAX); angles within +-360 deg.
+LIMIT = {"ik": COORD_MAX, "fk": 2 * ANGLE_MAX}
+UNIT = {"ik": "mm", "fk": "deg"}
 
 
-def parse_three(words, names, places):
-    """Three decimal words into scaled integers; ValueError names the bad one."""
+def records(stream, sep, limit=LINE_MAX):
+    """Yield (data, size) per sep-ended record of a byte stream; data is cut to limit bytes.
+
+    Reads _CHUNK bytes at a time and keeps at most limit + _CHUNK, so a 100,000-digit line
+    costs no more heap than a short one. A last record without sep is yielded when not empty.
+    """
+    pending = b""
+    size = 0  # bytes of the current record so far, kept or not
+    while True:
+        chunk = stream.read(_CHUNK)
+        if not chunk:
+            break
+        start = 0
+        while True:
+            k = chunk.find(sep, start)
+            if k < 0:
+                break
+            if size <= limit:
+                pending += chunk[start:k]
+            size += k - start
+            yield pending[:limit], size
+            pending = b""
+            size = 0
+            start = k + 1
+        if size <= limit:
+            pending += chunk[start:]
+        size += len(chunk) - start
+    if size:
+        yield pending[:limit], size
+
+
+def utf8_ok(b):
+    """True when the bytes are well-formed UTF-8 (RFC 3629: no overlong form, surrogate or
+    code point past U+10FFFF). MicroPython's decode() accepts some of those; CPython's not."""
+    i = 0
+    n = len(b)
+    while i < n:
+        c = b[i]
+        if c < 0x80:
+            i += 1
+            continue
+        lo, hi = 0x80, 0xBF
+        if 0xC2 <= c <= 0xDF:
+            need = 1
+        elif 0xE0 <= c <= 0xEF:
+            need = 2
+            if c == 0xE0:
+                lo = 0xA0
+            elif c == 0xED:
+                hi = 0x9F
+        elif 0xF0 <= c <= 0xF4:
+            need = 3
+            if c == 0xF0:
+                lo = 0x90
+            elif c == 0xF4:
+                hi = 0x8F
+        else:
+            return False
+        if i + need >= n:
+            return False
+        if not lo <= b[i + 1] <= hi:
+            return False
+        for k in range(i + 2, i + need + 1):
+            if not 0x80 <= b[k] <= 0xBF:
+                return False
+        i += need + 1
+    return True
+
+
+def raw(data):
+    """Bytes quoted for a message, each byte >= 128 as \\xNN (shown() cuts it)."""
+    return shown("".join([chr(c) for c in data[: SHOWN_MAX + 1]]))
+
+
+def number(kind, k, word):
+    """The k-th value of an ik or fk line (bytes) as a scaled integer; ValueError names it."""
+    try:
+        return parse_fixed(word.decode(), PLACES[kind], LIMIT[kind], UNIT[kind])
+    except ValueError as err:
+        raise ValueError("%s: %s" % (NAMES[kind][k], err)) from None
+
+
+def three(kind, words):
     if len(words) != 3:
-        raise ValueError("need 3 numbers (%s), got %d" % (" ".join(names), len(words)))
-    vals = [0, 0, 0]
-    for k in range(3):
-        try:
-            vals[k] = parse_fixed(words[k], places)
-        except ValueError as err:
-            raise ValueError("%s: %s" % (names[k], err)) from None
-    return vals
+        raise ValueError("need 3 numbers (%s), got %d" % (" ".join(NAMES[kind]), len(words)))
+    return [number(kind, 0, words[0]), number(kind, 1, words[1]), number(kind, 2, words[2])]
 
 
-def angles_text(out):
-    return "%s %s %s" % (format_fixed(out[0], 2), format_fixed(out[1], 2), format_fixed(out[2], 2))
+def _fixed3(out, i, places):
+    return format_fixed(out[i], places), format_fixed(out[i + 1], places), format_fixed(out[i + 2], places)
 
 
-def solve_line(leg, mode, words, as_json, out):
-    """One solve: (True, text) when the leg reaches it, (False, text) when refused."""
-    if mode == "fk":
-        t = parse_three(words, NAMES["fk"], 2)
-        code = leg.accept(t[0], t[1], t[2], out, 0)
+def json_text(s):
+    """A JSON string of ASCII text (what every message here is)."""
+    return '"' + s.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
+def solve(leg, kind, words, as_json, out, head=""):
+    """(SOLVED or REFUSED, the answer line); ValueError on bad input. head starts a JSON object."""
+    v = three(kind, words)
+    if kind == "fk":
+        code = leg.accept(v[0], v[1], v[2], out, 0)
         if code == OK:
-            leg.fk(t[0], t[1], t[2], out, 3)
+            leg.fk(v[0], v[1], v[2], out, 3)
             if as_json:
-                return True, '{"x_mm": %s, "y_mm": %s, "z_mm": %s}' % (
-                    format_fixed(out[3], 1),
-                    format_fixed(out[4], 1),
-                    format_fixed(out[5], 1),
+                return SOLVED, '{%s"within_limits": true, "x_mm": %s, "y_mm": %s, "z_mm": %s}' % (
+                    (head,) + _fixed3(out, 3, 1)
                 )
-            return True, "%s %s %s" % (format_fixed(out[3], 1), format_fixed(out[4], 1), format_fixed(out[5], 1))
-    else:
-        p = parse_three(words, NAMES["ik"], 1)
-        code = leg.ik(p[0], p[1], p[2], out, 0)
-        if code == OK:
-            if as_json:
-                return True, '{"reachable": true, "theta1_deg": %s, "theta2_deg": %s, "theta3_deg": %s}' % (
-                    format_fixed(out[0], 2),
-                    format_fixed(out[1], 2),
-                    format_fixed(out[2], 2),
-                )
-            return True, angles_text(out)
+            return SOLVED, "%s %s %s" % _fixed3(out, 3, 1)
+        reason = describe(code, leg.excess)
+        if as_json:
+            return REFUSED, '{%s"within_limits": false, "reason": %s}' % (head, json_text(reason))
+        return REFUSED, "beyond limit: " + reason
+    code = leg.ik(v[0], v[1], v[2], out, 0)
+    if code == OK:
+        if as_json:
+            return SOLVED, '{%s"reachable": true, "theta1_deg": %s, "theta2_deg": %s, "theta3_deg": %s}' % (
+                (head,) + _fixed3(out, 0, 2)
+            )
+        return SOLVED, "%s %s %s" % _fixed3(out, 0, 2)
     reason = describe(code, leg.excess)
     if as_json:
-        return False, '{"reachable": false, "reason": "%s"}' % reason
-    return False, "unreachable: " + reason
+        return REFUSED, '{%s"reachable": false, "reason": %s}' % (head, json_text(reason))
+    return REFUSED, "unreachable: " + reason
 
 
-def run(argv, stdin, stdout, stderr):
-    """Exit status: 0 done, 1 refused (unreachable / beyond a limit), 2 bad input."""
-    mode = argv[0]
-    as_json = argv[1] == "1"
-    g = [int(w) for w in argv[2:12]]
-    leg = Leg(coxa=g[0], femur=g[1], tibia=g[2], femur_offset=g[3], limits=g[4:10])
-    out = [0] * 6
-    if mode != "ik-batch":
-        try:
-            ok, text = solve_line(leg, mode, argv[12:], as_json, out)
-        except ValueError as err:
-            stderr.write("hexapod: error: %s\n" % err)
-            return 2
-        stdout.write(text + "\n")
-        return 0 if ok else 1
-    status = 0
-    n = 0
-    for line in stdin:
-        n += 1
-        try:
-            text = solve_line(leg, "ik", line.split(), as_json, out)[1]
-        except ValueError as err:
-            stderr.write("hexapod: line %d: %s\n" % (n, err))
-            text = "error: line %d: %s" % (n, err)
-            status = 2
-        stdout.write(text + "\n")
+def run_words(leg, kind, stdin, as_json, out, stdout, stderr):
+    """One solve of the user's words (NUL-ended records on stdin)."""
+    words = []
+    for data, size in records(stdin, b"\0"):
+        k = len(words)
+        name = NAMES[kind][k] if k < 3 else "value %d" % (k + 1)
+        if size > LINE_MAX:
+            stderr.write("hexapod: error: %s: %s is longer than %d bytes\n" % (name, raw(data), LINE_MAX))
+            return BAD_INPUT
+        if not utf8_ok(data):
+            stderr.write("hexapod: error: %s: %s is not UTF-8 text\n" % (name, raw(data)))
+            return BAD_INPUT
+        words.append(data)
+    try:
+        status, text = solve(leg, kind, words, as_json, out)
+    except ValueError as err:
+        stderr.write("hexapod: error: %s\n" % err)
+        return BAD_INPUT
+    stdout.write(text + "\n")
     return status
 
 
+def run_batch(leg, kind, stdin, as_json, out, stdout, stderr):
+    """One answer line per input line; blank lines are skipped, a leading BOM dropped."""
+    refused = False
+    bad = False
+    n = 0
+    for data, size in records(stdin, b"\n"):
+        n += 1
+        if n == 1 and data[:3] == _BOM:
+            data = data[3:]
+        try:
+            if size > LINE_MAX:
+                raise ValueError("%s is longer than %d bytes" % (raw(data), LINE_MAX))
+            if data and max(data) > 127 and not utf8_ok(data):
+                raise ValueError("%s is not UTF-8 text" % raw(data))
+            words = data.split()
+            if not words:
+                continue
+            status, text = solve(leg, kind, words, as_json, out, '"line": %d, ' % n)
+            refused = refused or status == REFUSED
+        except ValueError as err:
+            bad = True
+            stderr.write("hexapod: line %d: %s\n" % (n, err))
+            text = (
+                '{"line": %d, "error": %s}' % (n, json_text(str(err))) if as_json else "error: line %d: %s" % (n, err)
+            )
+        stdout.write(text + "\n")
+    return BAD_INPUT if bad else REFUSED if refused else SOLVED
+
+
+def run(argv, stdin, stdout, stderr):
+    """The engine on argv words (see the top of this file); stdin is a byte stream."""
+    mode = argv[0]
+    g = [int(w) for w in argv[2:12]]
+    leg = Leg(coxa=g[0], femur=g[1], tibia=g[2], femur_offset=g[3], limits=g[4:10])
+    kind = mode[:2]
+    job = run_batch if mode.endswith("-batch") else run_words
+    return job(leg, kind, stdin, argv[1] == "1", [0] * 6, stdout, stderr)
+
+
+def main():
+    try:
+        status = run(sys.argv[1:], sys.stdin.buffer, sys.stdout, sys.stderr)
+    except Exception as err:  # a bug: say so in one line, with its own status
+        sys.stderr.write("hexapod: internal error: %s: %s\n" % (type(err).__name__, err))
+        status = INTERNAL
+    sys.exit(STATUS_BASE + status)
+
+
 if __name__ == "__main__":
-    sys.exit(run(sys.argv[1:], sys.stdin, sys.stdout, sys.stderr))
+    main()
