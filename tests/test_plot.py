@@ -48,6 +48,47 @@ def test_plot_out_must_be_a_directory(tmp_path, capsys):
     assert "not a directory" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize(
+    "out,message",
+    [
+        ("", "--out: empty; give a directory"),
+        ("/proc/hexapod-plots", "--out: cannot write into '/proc/hexapod-plots': No such file or directory"),
+        ("FILE/sub", "cannot write into '{tmp}/FILE/sub': Not a directory"),
+    ],
+)
+def test_plot_unwritable_out_exits_2_before_drawing(tmp_path, capsys, monkeypatch, out, message):
+    from hexapod_host import cmd_plot
+
+    (tmp_path / "FILE").write_text("x")
+    monkeypatch.setattr(cmd_plot, "record", lambda *a, **k: pytest.fail("drew before checking --out"))
+    out = out.replace("FILE", str(tmp_path / "FILE"))
+    with pytest.raises(SystemExit) as exc:
+        cli.main(["plot", "gait", "--out", out])
+    assert exc.value.code == 2 and message.format(tmp=tmp_path) in capsys.readouterr().err
+
+
+def test_plot_write_failure_leaves_no_partial_file(tmp_path, monkeypatch):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from hexapod_host import cmd_plot
+    from hexapod_host.cli import UsageError
+
+    fig, _ = plt.subplots()
+
+    def full_disk(path, **kw):
+        with open(path, "wb") as f:
+            f.write(b"\x89PNG half")
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(fig, "savefig", full_disk)
+    with pytest.raises(UsageError, match="No space left on device"):
+        cmd_plot._save(fig, plt, str(tmp_path), "x.png")
+    assert os.listdir(tmp_path) == []
+
+
 @pytest.mark.skipif(mpvm.executable() is None, reason="no MicroPython VM")
 def test_tick_bench_script_runs_allocation_free():
     from hexapod_host.tick_bench import bench_tick

@@ -11,11 +11,11 @@ _SPACE = " \t\n\r\x0b\x0c"  # ASCII whitespace: the set both runtimes strip and 
 SHOWN_MAX = 20  # characters of a value quoted in a message before it is cut
 
 
-def shown(text):
-    """text quoted for a message: cut to SHOWN_MAX characters + '...', ASCII only (\\x, \\u escapes)."""
-    cut = len(text) > SHOWN_MAX
+def shown(text, limit=SHOWN_MAX):
+    """text quoted for a message: cut to `limit` characters + '...', ASCII only (\\x, \\u escapes)."""
+    cut = len(text) > limit
     parts = ["'"]
-    for c in text[:SHOWN_MAX] if cut else text:
+    for c in text[:limit] if cut else text:
         o = ord(c)
         if 32 <= o < 127 and c != "\\" and c != "'":
             parts.append(c)

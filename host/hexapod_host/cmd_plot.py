@@ -8,7 +8,9 @@ Writes into --out (default plots/):
 """
 
 import os
+import tempfile
 
+from hexapod.units import shown
 from hexapod_host.cli import UsageError
 
 GAITS = ("tripod", "tetrapod", "ripple", "wave")
@@ -32,7 +34,7 @@ def _options(args):
     gaits = GAITS if args.gait == "all" else (args.gait,)
     for g in gaits:
         if g not in GAITS:
-            raise UsageError("--gait: %r is not one of %s or all" % (args.gait, ", ".join(GAITS)))
+            raise UsageError("--gait: %s is not one of %s or all" % (shown(args.gait), ", ".join(GAITS)))
     try:
         speed = parse_fixed(args.speed, 1)  # mm/s -> 0.1 mm/s
         turn = parse_fixed(args.turn, 2)  # deg/s -> cdeg/s
@@ -44,9 +46,22 @@ def _options(args):
         raise UsageError(
             "--turn: %s deg/s is outside -%d..%d deg/s" % (args.turn, YAW_RATE_MAX // 100, YAW_RATE_MAX // 100)
         )
-    if os.path.exists(args.out) and not os.path.isdir(args.out):
-        raise UsageError("--out: %r exists and is not a directory" % args.out)
+    _check_out(args.out)
     return gaits, speed, turn
+
+
+def _check_out(out):
+    """--out must be a directory we can create and write into; UsageError says why not."""
+    if not out:
+        raise UsageError("--out: empty; give a directory for the PNGs (default plots/)")
+    if os.path.exists(out) and not os.path.isdir(out):
+        raise UsageError("--out: %s exists and is not a directory" % shown(out, 200))
+    try:
+        os.makedirs(out, exist_ok=True)
+        probe = tempfile.NamedTemporaryFile(dir=out, prefix=".hexapod-probe-")  # noqa: SIM115
+        probe.close()
+    except OSError as err:
+        raise UsageError("--out: cannot write into %s: %s" % (shown(out, 200), err.strerror or err)) from None
 
 
 def record(gait_name, speed, turn, cycles=2):
@@ -104,7 +119,6 @@ def run(args):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    os.makedirs(args.out, exist_ok=True)
     written = [_trajectory(plt, args.out, speed, turn)]
     for name in gaits:
         g, w, rows = record(name, speed, turn)
@@ -115,6 +129,51 @@ def run(args):
     return 0
 
 
+def _arrows(ax, xs, ys, every, color):
+    """Direction arrows on a drawn path: one on every `every`-th segment."""
+    for k in range(every // 2, len(xs) - 1, every):
+        if (xs[k], ys[k]) != (xs[k + 1], ys[k + 1]):
+            ax.annotate(
+                "",
+                xy=(xs[k + 1], ys[k + 1]),
+                xytext=(xs[k], ys[k]),
+                arrowprops={"arrowstyle": "-|>", "color": color, "lw": 1.5, "mutation_scale": 14},
+            )
+
+
+def _step_labels(ax, pts):
+    """Label seed 003's steps without overlap: one label for points that coincide (0 and 20),
+    arc points pushed outward from the track's centre, ground points below, staggered when close."""
+    cx = (max(p[0] for p in pts) + min(p[0] for p in pts)) / 2
+    groups = []
+    for k, p in enumerate(pts):
+        for g in groups:
+            if abs(g[1][0] - p[0]) < 1e-6 and abs(g[1][1] - p[1]) < 1e-6:
+                g[0].append(k)
+                break
+        else:
+            groups.append(([k], p))
+    ground = sorted((g for g in groups if g[1][1] <= 1e-6), key=lambda g: g[1][0])
+    last_x, row = None, 0
+    for ks, p in ground:
+        row = 1 - row if last_x is not None and p[0] - last_x < 2.5 else 0
+        last_x = p[0]
+        ax.annotate(
+            ", ".join(map(str, ks)), p, textcoords="offset points", xytext=(0, -12 - 10 * row), ha="center", fontsize=7
+        )
+    for ks, p in groups:
+        if p[1] > 1e-6:
+            dx = 1 if p[0] >= cx else -1
+            ax.annotate(
+                ", ".join(map(str, ks)),
+                p,
+                textcoords="offset points",
+                xytext=(7 * dx, 5),
+                ha="left" if dx > 0 else "right",
+                fontsize=7,
+            )
+
+
 def _trajectory(plt, out, speed, turn):
     from hexapod.trajectory import FINE_BITS, combined_point, sin90_fine
 
@@ -122,26 +181,34 @@ def _trajectory(plt, out, speed, turn):
     table = []
     buf = [0, 0, 0]
     for k in range(4 * s + 1):
-        combined_point(k, s, 2000000, 0, 2000000, buf, sin90_fine, 1 << FINE_BITS)
-        table.append((buf[0] / 1e6, buf[2] / 1e6))
+        combined_point(k, s, 2000000, 0, 2000000, buf, sin90_fine, 1 << FINE_BITS)  # 2 cm in 1e-6 cm
+        table.append((buf[0] / 1e5, buf[2] / 1e5))  # mm
     _, w, rows = record("tripod", speed, turn, cycles=1)
-    fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4))
-    a.plot([p[0] for p in table], [p[1] for p in table], "o-")
-    for k, p in enumerate(table):
-        a.annotate(str(k), p, textcoords="offset points", xytext=(3, 3), fontsize=7)
-    a.set(title="seed 003 combined tracks (Table III: s=5, x=2, z=2)", xlabel="fx (cm)", ylabel="fz (cm)")
+    fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.2))
+    tx, tz = [p[0] for p in table], [p[1] for p in table]
+    a.plot(tx, tz, "o-", ms=4, color="tab:blue")
+    _arrows(a, tx, tz, 2, "tab:blue")
+    _step_labels(a, table)
+    a.set(
+        title="seed 003 combined tracks, steps 0-20\n(Table III: s=5, x=z=20 mm)",
+        xlabel="fx (mm)",
+        ylabel="fz (mm)",
+    )
+    a.set_ylim(-6, 24)
     a.grid(True)
     x0 = w.nx[0] / 160.0
     xs = [r[0][0][0] - x0 for r in rows]
     zs = [r[0][0][2] for r in rows]
-    b.plot(xs, zs, ".-")
-    b.set(title="leg 1 (RF) over one tripod cycle, smooth touch-down", xlabel="x from neutral (mm)", ylabel="z (mm)")
+    b.plot(xs, zs, ".-", color="tab:green")
+    _arrows(b, xs, zs, 6, "tab:green")
+    b.set(
+        title="leg 1 (RF) over one tripod cycle\n(swing forward, stance back)",
+        xlabel="x from neutral (mm)",
+        ylabel="z (mm)",
+    )
     b.grid(True)
     fig.tight_layout()
-    path = os.path.join(out, "trajectory.png")
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
-    return path
+    return _save(fig, plt, out, "trajectory.png")
 
 
 def _phases(plt, out, name, w, rows):
@@ -155,24 +222,23 @@ def _phases(plt, out, name, w, rows):
             elif not swing[leg] and start is not None:
                 spans.append((start, n - start))
                 start = None
-        ax.broken_barh(spans, (5 - leg - 0.4, 0.8), color="tab:orange")
+        pct = 100.0 / w.clock.cycle_ticks  # one tick in % of the cycle
+        ax.broken_barh([(a * pct, n * pct) for a, n in spans], (5 - leg - 0.4, 0.8), color="tab:orange")
     ax.set_yticks(range(6))
     ax.set_yticklabels(list(reversed(LEGS)))
     ax.set(
         title="%s gait: legs in swing (bars) over two cycles of %d ms" % (name, w.clock.cycle_ms),
-        xlabel="tick (20 ms)",
+        xlabel="time (% of the cycle; one tick = 20 ms)",
     )
-    ax.set_xlim(0, len(rows))
+    ax.set_xlim(0, len(rows) * 100.0 / w.clock.cycle_ticks)
+    ax.set_xticks(range(0, 201, 25))
     ax.grid(True, axis="x")
     fig.tight_layout()
-    path = os.path.join(out, "phases_%s.png" % name)
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
-    return path
+    return _save(fig, plt, out, "phases_%s.png" % name)
 
 
 def _top(plt, out, name, g, w, rows):
-    fig, ax = plt.subplots(figsize=(6, 6))
+    fig, ax = plt.subplots(figsize=(7.6, 6))
     bx = [v / 10.0 for v in g.mount_x] + [g.mount_x[0] / 10.0]
     by = [v / 10.0 for v in g.mount_y] + [g.mount_y[0] / 10.0]
     ax.plot(by, bx, "k-", lw=1)
@@ -180,21 +246,59 @@ def _top(plt, out, name, g, w, rows):
     for leg in range(6):
         ys = [r[0][leg][1] for r in half]
         xs = [r[0][leg][0] for r in half]
+        zs = [r[0][leg][2] for r in half]
         down = [r[1][leg] == 0 for r in half]
-        (line,) = ax.plot(ys, xs, "-", lw=0.8, label=LEGS[leg])
-        on_ground = [(y, x) for y, x, d in zip(ys, xs, down, strict=True) if d]
-        ax.plot([p[0] for p in on_ground], [p[1] for p in on_ground], ".", ms=3, color=line.get_color())
-        ax.plot([w.ny[leg] / 160.0], [w.nx[leg] / 160.0], "k+")
+        ground = min(z for z, d in zip(zs, down, strict=True) if d)
+        # Seen from above a swing retraces the stance line: draw it pushed outward by the foot's
+        # lift, so the air path shows as an arch beside the ground path.
+        out_y = 1 if w.ny[leg] > 0 else -1
+        yl = [y + out_y * (z - ground) for y, z in zip(ys, zs, strict=True)]
+        (line,) = ax.plot(yl, xs, "-", lw=0.8, label=LEGS[leg])
+        c = line.get_color()
+        ax.plot(
+            [y for y, d in zip(ys, down, strict=True) if d],
+            [x for x, d in zip(xs, down, strict=True) if d],
+            "o",
+            ms=3,
+            color=c,
+        )
+        ax.plot(
+            [y for y, d in zip(yl, down, strict=True) if not d],
+            [x for x, d in zip(xs, down, strict=True) if not d],
+            "o",
+            ms=4,
+            mfc="white",
+            mew=0.8,
+            color=c,
+        )
+        ax.plot([w.ny[leg] / 160.0], [w.nx[leg] / 160.0], "k+", ms=9)
+    ax.plot([], [], "o", ms=3, color="grey", label="on the ground")
+    ax.plot([], [], "o", ms=4, mfc="white", color="grey", label="in the air (drawn\noutward by its lift)")
+    ax.plot([], [], "k+", ms=9, label="neutral foot")
+    ax.plot([], [], "k-", lw=1, label="body (coxa mounts)")
     ax.invert_xaxis()  # seen from above with x forward: left (+y) is drawn on the left
     ax.set_aspect("equal")
     ax.set(
-        title="%s: feet over one cycle (dots: on the ground)\nmin stability margin %.1f mm" % (name, margin_mm(rows)),
+        title="%s: feet over one cycle, seen from above\nmin stability margin %.1f mm" % (name, margin_mm(rows)),
         xlabel="y, left (mm)",
         ylabel="x, forward (mm)",
     )
-    ax.legend(fontsize=7, loc="center")
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
     fig.tight_layout()
-    path = os.path.join(out, "top_%s.png" % name)
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
+    return _save(fig, plt, out, "top_%s.png" % name)
+
+
+def _save(fig, plt, out, name):
+    """Write a PNG whole or not at all: into a temporary file, then renamed over the name."""
+    path = os.path.join(out, name)
+    tmp = path + ".part"
+    try:
+        fig.savefig(tmp, dpi=100, format="png", bbox_inches="tight")
+        os.replace(tmp, path)
+    except OSError as err:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+        raise UsageError("--out: cannot write %s: %s" % (path, err.strerror or err)) from None
+    finally:
+        plt.close(fig)
     return path
