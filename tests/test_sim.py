@@ -18,6 +18,15 @@ def test_sim_demo(mp):
     for row in rows:
         pulses = [int(v) for v in row.split()[6:9]]
         assert all(600 <= p <= 2400 for p in pulses), row
+    # Every number's last character sits under its heading's last character.
+    heads = lines[2]
+    assert heads.split() == ["x", "y", "z", "theta1", "theta2", "theta3", "coxa", "femur", "tibia", "x", "y", "z"]
+    for row in rows:
+        assert ends(row) == ends(heads), row
+
+
+def ends(line):
+    return [k for k in range(len(line)) if line[k] != " " and (k + 1 == len(line) or line[k + 1] == " ")]
 
 
 def test_sim_alone_is_the_default_kind():

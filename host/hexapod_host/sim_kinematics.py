@@ -41,6 +41,14 @@ def register(sub):
     p.set_defaults(func=run)
 
 
+WIDTHS = (8, 8, 8, 9, 9, 9, 7, 7, 7, 8, 8, 8)  # characters per column, right-aligned
+
+
+def _row(cells):
+    """One table line: each cell right-aligned in its column (WIDTHS)."""
+    return "".join("%*s" % (w, c) for w, c in zip(WIDTHS, cells, strict=False))
+
+
 def run(args):
     pts = track()
     leg = Leg(coxa=300, femur=850, tibia=1250, femur_offset=320)
@@ -49,35 +57,37 @@ def run(args):
     out = [0] * 6
     rows = []
     print("seed 004 leg (coxa 30, femur 85, tibia 125, offset 32 mm) on seed 003's swing track")
-    print(
-        "%28s %26s %20s %24s" % ("foot x y z (mm)", "theta1 theta2 theta3 (deg)", "pulses (us)", "FK round trip (mm)")
+    # One fixed width per column, headings right-aligned over their numbers like the numbers.
+    groups = (
+        ("foot (mm)", 3 * 8),
+        ("joint angles (deg)", 3 * 9),
+        ("pulses (us)", 3 * 7),
+        ("FK round trip (mm)", 3 * 8),
     )
+    print("".join(title.center(width) for title, width in groups).rstrip())
+    heads = ("x", "y", "z", "theta1", "theta2", "theta3", "coxa", "femur", "tibia", "x", "y", "z")
+    print(_row(heads))
     worst = 0
     for p in pts:
         code = leg.ik(p[0], p[1], p[2], out, 0)
         if code != OK:
-            print("%28s unreachable: %s" % (p, describe(code, leg.excess)))
+            foot = [format_fixed(v, 1) for v in p]
+            print(_row(foot) + "   unreachable: " + describe(code, leg.excess))
             continue
         leg.fk(out[0], out[1], out[2], out, 3)
         for k in range(3):
             servos[k].pulse(out[k], pulses, k)
         worst = max(worst, *(abs(out[3 + k] - p[k]) for k in range(3)))
         rows.append([code] + out[:])
-        print(
-            "%28s %26s %20s %24s"
-            % (
-                " ".join(format_fixed(v, 1) for v in p),
-                " ".join(format_fixed(v, 2) for v in out[:3]),
-                " ".join(str(v) for v in pulses),
-                " ".join(format_fixed(v, 1) for v in out[3:]),
-            )
-        )
+        cells = [format_fixed(v, 1) for v in p] + [format_fixed(v, 2) for v in out[:3]]
+        cells += [str(v) for v in pulses] + [format_fixed(v, 1) for v in out[3:]]
+        print(_row(cells))
     print("worst FK round-trip error: %s mm" % format_fixed(worst, 1))
     if mpvm.executable():
         text = mpvm.run("POINTS = %r\n%s" % (pts, DEMO))
         vm_rows = [line for line in text.splitlines() if line]
         same = vm_rows == ["%d %r" % (r[0], r[1:]) for r in rows]
         print("MicroPython VM: %s" % ("identical integers" if same else "DIFFERENT RESULTS"))
-        return 0 if same else 1
+        return 0 if same else 3  # the exit rule's "internal error": the runtimes must agree
     print("MicroPython VM: not installed, compared nothing")
     return 0
