@@ -39,7 +39,11 @@ def version():
 
 
 def build_parser():
-    parser = argparse.ArgumentParser(prog="hexapod", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(
+        prog="hexapod",
+        description=__doc__.splitlines()[0],
+        epilog="Exit status: 0 all solved, 1 some refused, 2 bad input, 3 internal error (a bug).",
+    )
     parser.add_argument("--version", action="version", version="hexapod " + version())
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
     for name in COMMAND_MODULES:
