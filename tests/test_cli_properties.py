@@ -205,3 +205,41 @@ def test_every_command_line_follows_the_exit_rule(argv, stdin):
     assert "Traceback" not in err.getvalue()
     if status == 2:
         assert err.getvalue().count("hexapod: ") >= 1 or "error" in err.getvalue(), (argv, err.getvalue())
+
+
+@settings(max_examples=500, **SETTINGS)
+@given(st.one_of(st.binary(max_size=12), st.text(max_size=6).map(lambda t: t.encode("utf-8", "surrogatepass"))))
+def test_utf8_check_agrees_with_cpythons_strict_codec(data):
+    try:
+        data.decode("utf-8")
+        strict = True
+    except UnicodeDecodeError:
+        strict = False
+    assert kin.utf8_ok(data) == strict
+
+
+class ShortReads(io.BytesIO):
+    """A stream that hands out at most `step` bytes per read, as a pipe may."""
+
+    def __init__(self, data, step):
+        super().__init__(data)
+        self.step = step
+
+    def read(self, n=-1):
+        return super().read(min(n, self.step))
+
+
+@settings(max_examples=200, **SETTINGS)
+@given(
+    st.lists(st.binary(max_size=40).map(lambda b: b.replace(b"\n", b"")), max_size=8),
+    st.booleans(),
+    st.integers(1, 50),
+    st.integers(1, 30),
+)
+def test_records_split_like_bytes_split_and_cut_at_the_limit(lines, final, step, limit):
+    data = b"\n".join(lines) + (b"\n" if final and lines else b"")
+    want = data.split(b"\n")
+    if want and want[-1] == b"":
+        want.pop()  # a last newline ends the last line; it does not start an empty one
+    got = list(kin.records(ShortReads(data, step), b"\n", limit))
+    assert got == [(w[:limit], len(w)) for w in want]

@@ -39,26 +39,28 @@ def _add_leg_options(p):
     )
 
 
+# name, what it does, its values (metavar) and their help
+COMMANDS = (
+    (
+        "ik",
+        "joint angles (degrees) of a foot position (mm, leg frame)",
+        "X Y Z",
+        "foot position, mm (each within +-3000)",
+    ),
+    ("fk", "foot position (mm, leg frame) of joint angles (degrees)", "T1 T2 T3", "coxa, femur, tibia, degrees"),
+)
+
+
 def register(sub):
     domain = " Input domain: |x|, |y|, |z| <= 3000 mm; angles within +-360 degrees; plain decimals only."
-    p = sub.add_parser(
-        "ik",
-        help="joint angles (degrees) of a foot position (mm, leg frame)",
-        description="Joint angles (degrees) of a foot position (mm, leg frame)." + domain + EXIT_RULE,
-    )
-    p.add_argument("values", nargs="*", metavar="X Y Z", help="foot position, mm (each within +-3000)")
-    p.add_argument("--batch", action="store_true", help="read 'x y z' lines from stdin, one answer per line")
-    _add_leg_options(p)
-    p.set_defaults(func=run_ik)
-    p = sub.add_parser(
-        "fk",
-        help="foot position (mm, leg frame) of joint angles (degrees)",
-        description="Foot position (mm, leg frame) of joint angles (degrees)." + domain + EXIT_RULE,
-    )
-    p.add_argument("values", nargs="*", metavar="T1 T2 T3", help="coxa, femur, tibia angles, degrees (within +-360)")
-    p.add_argument("--batch", action="store_true", help="read 't1 t2 t3' lines from stdin, one answer per line")
-    _add_leg_options(p)
-    p.set_defaults(func=run_fk)
+    for name, what, metavar, values in COMMANDS:
+        p = sub.add_parser(name, help=what, description=what[0].upper() + what[1:] + "." + domain + EXIT_RULE)
+        p.add_argument("values", nargs="*", metavar=metavar, help=values)
+        p.add_argument(
+            "--batch", action="store_true", help="read '%s' lines from stdin, one answer per line" % metavar.lower()
+        )
+        _add_leg_options(p)
+        p.set_defaults(func=run_ik if name == "ik" else run_fk)
 
 
 EXIT_RULE = (

@@ -128,6 +128,13 @@ def json_text(s):
     return '"' + s.replace("\\", "\\\\").replace('"', '\\"') + '"'
 
 
+# Per kind: the JSON flag, the text before a refusal's reason, the answer's keys, its slot in out, decimals.
+ANSWER = {
+    "ik": ("reachable", "unreachable: ", ("theta1_deg", "theta2_deg", "theta3_deg"), 0, 2),
+    "fk": ("within_limits", "beyond limit: ", ("x_mm", "y_mm", "z_mm"), 3, 1),
+}
+
+
 def solve(leg, kind, words, as_json, out, head=""):
     """(SOLVED or REFUSED, the answer line); ValueError on bad input. head starts a JSON object."""
     v = three(kind, words)
@@ -135,26 +142,27 @@ def solve(leg, kind, words, as_json, out, head=""):
         code = leg.accept(v[0], v[1], v[2], out, 0)
         if code == OK:
             leg.fk(v[0], v[1], v[2], out, 3)
-            if as_json:
-                return SOLVED, '{%s"within_limits": true, "x_mm": %s, "y_mm": %s, "z_mm": %s}' % (
-                    (head,) + _fixed3(out, 3, 1)
-                )
-            return SOLVED, "%s %s %s" % _fixed3(out, 3, 1)
-        reason = describe(code, leg.excess)
-        if as_json:
-            return REFUSED, '{%s"within_limits": false, "reason": %s}' % (head, json_text(reason))
-        return REFUSED, "beyond limit: " + reason
-    code = leg.ik(v[0], v[1], v[2], out, 0)
+    else:
+        code = leg.ik(v[0], v[1], v[2], out, 0)
+    flag, refusal, keys, i, places = ANSWER[kind]
     if code == OK:
+        a, b, c = _fixed3(out, i, places)
         if as_json:
-            return SOLVED, '{%s"reachable": true, "theta1_deg": %s, "theta2_deg": %s, "theta3_deg": %s}' % (
-                (head,) + _fixed3(out, 0, 2)
+            return SOLVED, '{%s"%s": true, "%s": %s, "%s": %s, "%s": %s}' % (
+                head,
+                flag,
+                keys[0],
+                a,
+                keys[1],
+                b,
+                keys[2],
+                c,
             )
-        return SOLVED, "%s %s %s" % _fixed3(out, 0, 2)
+        return SOLVED, "%s %s %s" % (a, b, c)
     reason = describe(code, leg.excess)
     if as_json:
-        return REFUSED, '{%s"reachable": false, "reason": %s}' % (head, json_text(reason))
-    return REFUSED, "unreachable: " + reason
+        return REFUSED, '{%s"%s": false, "reason": %s}' % (head, flag, json_text(reason))
+    return REFUSED, refusal + reason
 
 
 def run_words(leg, kind, stdin, as_json, out, stdout, stderr):
