@@ -155,8 +155,8 @@ def test_batches_same_bytes_and_status_on_both_runtimes(cases):
 # fmt: off
 VOCABULARY = [
     "ik", "fk", "bench", "plot", "sim", "gait", "kinematics", "ik", "i2c", "tick", "--batch", "--json",
-    "--runtime", "cpython", "micropython", "--coxa", "--femur", "--tibia", "--femur-offset", "--limits", "--out", "--gait",
-    "--speed", "--turn", "--help", "--version", "-h", "tripod", "all", "wave", "1", "-90", "90", "0", "-180",
+    "--runtime", "cpython", "micropython", "--coxa", "--femur", "--tibia", "--femur-offset", "--limits", "--out",
+    "--gait", "--speed", "--turn", "--help", "--version", "-h", "tripod", "all", "wave", "1", "-90", "90", "0", "-180",
 ]
 # fmt: on
 safe_word = word.filter(lambda w: not w.lstrip().startswith(("/", "~")) and ".." not in w and "\0" not in w)

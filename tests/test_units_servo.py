@@ -117,3 +117,52 @@ def test_bad_leg_geometry_is_refused(kwargs, message):
     args = {"coxa": 300, "femur": 850, "tibia": 1250, **kwargs}
     with pytest.raises(ValueError, match=message.replace("(", r"\(").replace(".", r"\.")):
         Leg(**args)
+
+
+EDGES = """
+from hexapod.units import parse_fixed, shown
+for text, places, limit in CASES:
+    try:
+        print(parse_fixed(text, places, limit, "mm"))
+    except ValueError as err:
+        print("error", err)
+print(shown("a'b\\\\c\\x00\\u00e9\\u20ac\\U0001f600"), shown("x" * 25), shown("x" * 20))
+"""
+
+
+def test_parse_fixed_edges_identical_in_both_runtimes(rt):
+    cases = [
+        ("\uff11\uff14\uff10", 1, None),  # full-width digits: CPython's isdigit() says yes, MicroPython's no
+        ("\u0661", 1, None),  # an Arabic-Indic one
+        ("\u22125", 1, None),  # a Unicode minus sign
+        ("1e6", 1, None),
+        ("-2.5E+03", 1, None),
+        ("1e", 1, None),
+        ("\u00a012\u3000", 1, None),  # Unicode spaces are not stripped (MicroPython's strip() keeps them)
+        ("3000", 1, 30000),  # exactly at the limit
+        ("-3000.04", 1, 30000),  # rounds onto it
+        ("3000.05", 1, 30000),  # rounds past it
+        ("0" * 50 + "12.5", 1, 30000),  # leading zeros are no digits
+        ("9" * 60, 1, 30000),
+        ("9" * 60, 1, None),
+        ("360.005", 2, 36000),
+    ]
+    out = rt.run("CASES = %r\n%s" % (cases, EDGES)).splitlines()
+    only = "is not a number: only ASCII digits 0-9, '-' and '.' are accepted"
+    assert out == [
+        "error '\\uff11\\uff14\\uff10' " + only,
+        "error '\\u0661' " + only,
+        "error '\\u22125' " + only,
+        "error '1e6' is not a number: exponents are not accepted, write it out in full",
+        "error '-2.5E+03' is not a number: exponents are not accepted, write it out in full",
+        "error '1e' is not a number",
+        "error '\\xa012\\u3000' " + only,
+        "30000",
+        "-30000",
+        "error '3000.05' is outside the accepted -3000..3000 mm",
+        "125",
+        "error '99999999999999999999...' is outside the accepted -3000..3000 mm",
+        "error '99999999999999999999...' is too large",
+        "error '360.005' is outside the accepted -360..360 mm",
+        "'a\\'b\\\\c\\x00\\xe9\\u20ac\\U0001f600' 'xxxxxxxxxxxxxxxxxxxx...' 'xxxxxxxxxxxxxxxxxxxx'",
+    ]
