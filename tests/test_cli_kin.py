@@ -99,6 +99,8 @@ BAD = [
     (("ik", "1", "2", "3", "--tibia", "0"), "--tibia: 0 mm is outside"),
     (("ik", "1", "2", "3", "--coxa", "-1"), "--coxa: -1 mm is outside"),
     (("ik", "1", "2", "3", "--coxa", "x"), "--coxa: 'x' is not a number"),
+    (("ik", "1", "2", "3", "--coxa", "9" * 30), "--coxa: 99999999999999999999... mm is outside the allowed 0..150 mm"),
+    (("ik", "1", "2", "3", "--coxa", "150.05"), "--coxa: 150.05 mm is outside the allowed 0..150 mm"),
     (("ik", "1", "2", "3", "--femur-offset", "999"), "--femur-offset: 999 mm is outside"),
     (
         ("ik", "1", "2", "3", "--limits", "10", "-10", "-90", "90", "-180", "0"),

@@ -26,18 +26,24 @@ def test_plot_gait_writes_pngs(tmp_path, capsys):
     "argv,message",
     [
         (["--gait", "trot"], "--gait: 'trot' is not one of"),
-        (["--speed", "fast"], "--speed/--turn"),
-        (["--speed", "301"], "--speed: 301 mm/s is outside"),
-        (["--turn", "-91"], "--turn"),
+        (["--speed", "fast"], "--speed: 'fast' is not a number"),
+        (["--speed", "301"], "--speed: '301' is outside the accepted -300..300 mm/s"),
+        (["--speed", "300"], None),  # exactly at the limit: accepted, then --out is checked
+        (["--speed", "9" * 40], "--speed: '99999999999999999999...' is outside the accepted -300..300 mm/s"),
+        (["--turn", "-91"], "--turn: '-91' is outside the accepted -90..90 deg/s"),
+        (["--turn", "1e1"], "--turn: '1e1' is not a number: exponents are not accepted"),
     ],
 )
 def test_plot_bad_options(tmp_path, capsys, argv, message):
     out = tmp_path / "plots"
+    (tmp_path / "file").write_text("x")
+    if message is None:  # a good value: the run goes on to --out, here a file, and stops there
+        out, message = tmp_path / "file", "--out: '%s' exists and is not a directory" % (tmp_path / "file")
     with pytest.raises(SystemExit) as err:
         cli.main(["plot", "gait", "--out", str(out)] + argv)
     assert err.value.code == 2
     assert message in capsys.readouterr().err
-    assert not out.exists()
+    assert not (tmp_path / "plots").exists()
 
 
 def test_plot_out_must_be_a_directory(tmp_path, capsys):

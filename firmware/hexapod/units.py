@@ -35,12 +35,16 @@ def _all_digits(s):
     return all(c in _DIGITS for c in s)
 
 
+class OutOfRange(ValueError):
+    """A number past the limit parse_fixed was given (the message names the bound)."""
+
+
 def _outside(text, places, limit, unit):
-    """The ValueError for a value past +-limit (scaled by 10**places), e.g. "'4000' is outside -3000..3000 mm"."""
+    """The OutOfRange error for a value past +-limit (scaled by 10**places), e.g. "'4000' is outside -3000..3000 mm"."""
     t = format_fixed(limit, places)
     if places:
         t = t.rstrip("0").rstrip(".")
-    return ValueError("%s is outside the accepted -%s..%s%s" % (shown(text), t, t, " " + unit if unit else ""))
+    return OutOfRange("%s is outside the accepted -%s..%s%s" % (shown(text), t, t, " " + unit if unit else ""))
 
 
 def parse_fixed(text, places, limit=None, unit=""):

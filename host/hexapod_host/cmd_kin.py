@@ -5,7 +5,7 @@ import os
 import sys
 
 from hexapod.leg import ANGLE_MAX, COXA_MAX, DEFAULT_LIMITS, LINK_MAX, LINK_MIN, OFFSET_MAX, Leg
-from hexapod.units import format_fixed, parse_fixed, shown
+from hexapod.units import OutOfRange, format_fixed, parse_fixed, shown
 from hexapod_host import mpvm
 from hexapod_host.cli import UsageError
 from hexapod_host.vm import kin
@@ -71,10 +71,12 @@ EXIT_RULE = (
 
 def _fixed(name, text, places, lo, hi, unit):
     try:
-        value = parse_fixed(text, places)
+        value = parse_fixed(text, places, max(-lo, hi))
+    except OutOfRange:
+        value = None  # past both bounds' magnitude, however many digits: the range message below
     except ValueError as err:
         raise UsageError("--%s: %s" % (name, err)) from None
-    if value < lo or value > hi:
+    if value is None or value < lo or value > hi:
         scale = 10**places
         raise UsageError(
             "--%s: %s %s is outside the allowed %g..%g %s"

@@ -28,26 +28,25 @@ def register(sub):
 
 
 def _options(args):
-    from hexapod.units import parse_fixed
     from hexapod.walk import SPEED_MAX, YAW_RATE_MAX
 
     gaits = GAITS if args.gait == "all" else (args.gait,)
     for g in gaits:
         if g not in GAITS:
             raise UsageError("--gait: %s is not one of %s or all" % (shown(args.gait), ", ".join(GAITS)))
-    try:
-        speed = parse_fixed(args.speed, 1)  # mm/s -> 0.1 mm/s
-        turn = parse_fixed(args.turn, 2)  # deg/s -> cdeg/s
-    except ValueError as err:
-        raise UsageError("--speed/--turn: %s" % err) from None
-    if abs(speed) > SPEED_MAX:
-        raise UsageError("--speed: %s mm/s is outside -%d..%d mm/s" % (args.speed, SPEED_MAX // 10, SPEED_MAX // 10))
-    if abs(turn) > YAW_RATE_MAX:
-        raise UsageError(
-            "--turn: %s deg/s is outside -%d..%d deg/s" % (args.turn, YAW_RATE_MAX // 100, YAW_RATE_MAX // 100)
-        )
+    speed = _number("speed", args.speed, 1, SPEED_MAX, "mm/s")  # 0.1 mm/s
+    turn = _number("turn", args.turn, 2, YAW_RATE_MAX, "deg/s")  # cdeg/s
     _check_out(args.out)
     return gaits, speed, turn
+
+
+def _number(name, text, places, limit, unit):
+    from hexapod.units import parse_fixed
+
+    try:
+        return parse_fixed(text, places, limit, unit)
+    except ValueError as err:
+        raise UsageError("--%s: %s" % (name, err)) from None
 
 
 def _check_out(out):
