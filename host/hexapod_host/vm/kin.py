@@ -62,41 +62,41 @@ def records(stream, sep, limit=LINE_MAX):
         yield pending[:limit], size
 
 
+def _lead(c):
+    """(continuation bytes, range of the first one) after a UTF-8 lead byte c, else None (RFC 3629 sec. 4)."""
+    if 0xC2 <= c <= 0xDF:
+        return 1, 0x80, 0xBF
+    if c == 0xE0:
+        return 2, 0xA0, 0xBF  # no overlong 3-byte form
+    if c == 0xED:
+        return 2, 0x80, 0x9F  # no surrogate
+    if 0xE1 <= c <= 0xEF:
+        return 2, 0x80, 0xBF
+    if c == 0xF0:
+        return 3, 0x90, 0xBF  # no overlong 4-byte form
+    if c == 0xF4:
+        return 3, 0x80, 0x8F  # nothing past U+10FFFF
+    if 0xF1 <= c <= 0xF3:
+        return 3, 0x80, 0xBF
+    return None
+
+
 def utf8_ok(b):
     """True when the bytes are well-formed UTF-8 (RFC 3629: no overlong form, surrogate or
     code point past U+10FFFF). MicroPython's decode() accepts some of those; CPython's not."""
     i = 0
     n = len(b)
     while i < n:
-        c = b[i]
-        if c < 0x80:
+        if b[i] < 0x80:
             i += 1
             continue
-        lo, hi = 0x80, 0xBF
-        if 0xC2 <= c <= 0xDF:
-            need = 1
-        elif 0xE0 <= c <= 0xEF:
-            need = 2
-            if c == 0xE0:
-                lo = 0xA0
-            elif c == 0xED:
-                hi = 0x9F
-        elif 0xF0 <= c <= 0xF4:
-            need = 3
-            if c == 0xF0:
-                lo = 0x90
-            elif c == 0xF4:
-                hi = 0x8F
-        else:
+        lead = _lead(b[i])
+        if lead is None or i + lead[0] >= n or not lead[1] <= b[i + 1] <= lead[2]:
             return False
-        if i + need >= n:
-            return False
-        if not lo <= b[i + 1] <= hi:
-            return False
-        for k in range(i + 2, i + need + 1):
+        for k in range(i + 2, i + lead[0] + 1):
             if not 0x80 <= b[k] <= 0xBF:
                 return False
-        i += need + 1
+        i += lead[0] + 1
     return True
 
 
