@@ -201,11 +201,14 @@ class Console:
         if fn is None:
             return "err unknown command %r (help lists them)" % (words[0][:20],)
         try:
-            return fn(words[1:])
+            reply = fn(words[1:])
         except ValueError as e:
             return "err %s: %s" % (words[0], e)
         except Exception as e:  # the loop must go on whatever a command hits
             return "err %s: internal error %s %s" % (words[0], type(e).__name__, e)
+        if reply[:4] == "err " and not reply.startswith("err " + words[0] + ":"):
+            reply = "err %s: %s" % (words[0], reply[4:])  # every err names its command
+        return reply
 
     # -- parsing ----------------------------------------------------------------------------
 
@@ -485,7 +488,17 @@ class Console:
         return self.cal_line(self._servo(args, 2, "L J (leg 1..6, coxa|femur|tibia)"))
 
     def _set_cal(self, k, trim, direction, lo, hi):
-        code = self.robot.calibrate(k, self.base[k][0] + trim, direction, lo, hi)
+        r = self.robot
+        code = r.calibrate(k, self.base[k][0] + trim, direction, lo, hi)
+        if code == tick.JOG_SERVO:
+            return "err leg %d %s: at %s deg it would need %d us, outside %d..%d us" % (
+                k // 3 + 1,
+                JOINTS[k % 3],
+                format_fixed(r.angles[k], 2),
+                lo - r.jog_excess if r.jog_code == 1 else hi + r.jog_excess,
+                lo,
+                hi,
+            )
         if code:
             return self._refused(code)
         self.trims[k] = trim
