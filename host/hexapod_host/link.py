@@ -9,6 +9,7 @@ person can act on: no such port, a port that cannot be opened, no answer within 
 (firmware not running, or a REPL prompt), a disconnect mid-session.
 """
 
+import contextlib
 import time
 
 import serial
@@ -64,10 +65,8 @@ class Link:
         self.close()
 
     def close(self):
-        try:
+        with contextlib.suppress(OSError, serial.SerialException):
             self.port.close()
-        except (OSError, serial.SerialException):
-            pass
 
     def request(self, line):
         """Send one command line; return its reply line ('ok ...' or 'err ...'), stripped."""
