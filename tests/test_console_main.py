@@ -94,3 +94,19 @@ def test_console_settings_are_checked_at_load(key, value, message):
         if key == "walk_timeout_ms" and ok == 8000:
             continue
         board.validate(b)
+
+
+def test_console_bench_rows(mp):
+    import json
+    import os
+
+    from hexapod_host import mpvm
+    from hexapod_host.tick_bench import CONSOLE_HEAP, CONSOLE_SCRIPT
+
+    assert os.path.exists(CONSOLE_SCRIPT)
+    result = json.loads(mpvm.run(script=CONSOLE_SCRIPT, heapsize=CONSOLE_HEAP, args=("3",)).strip().splitlines()[-1])
+    rows = {r["line"]: r for r in result["frames"]}
+    assert rows["(idle)"]["heap_bytes"] == 0  # the idle console frame allocates nothing
+    assert rows["x" * 24]["heap_bytes"] == 0  # an over-long line's reply is a constant
+    assert all(0 < r["median_us"] <= r["max_us"] for r in result["frames"] if r["line"] != "(idle)")
+    assert {"get 2", "status", "foot 2 130 5 -80", "nudge 2 0.5 0 0", "trim 2 femur 5"} <= set(rows)
