@@ -14,7 +14,7 @@ from hexapod_host import FIRMWARE, ROOT, mpvm
 
 VM_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm", "bench_tick.py")
 CONSOLE_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm", "bench_console.py")
-CONSOLE_HEAP = "256k"
+CONSOLE_HEAP = "512k"
 WALL_HEAP = "160k"
 
 
