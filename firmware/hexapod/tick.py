@@ -396,6 +396,14 @@ class Robot:
             return BUSY
         return OK
 
+    def _jog_servo_ready(self, leg, joint, name, value, unit):
+        """ValueError for a bad leg, joint or value; else _jog_ready()'s code."""
+        _check_leg(leg)
+        _check_joint(joint)
+        if not isinstance(value, int) or isinstance(value, bool):
+            raise ValueError("%s: need a whole number (%s), got %r" % (name, unit, value))
+        return self._jog_ready()
+
     def _servo_refused(self, k, code, excess):
         self.jog_servo = k
         self.jog_code = code
@@ -432,11 +440,7 @@ class Robot:
     def jog_joint(self, leg, joint, cdeg):
         """One servo (leg 0..5, joint 0 coxa 1 femur 2 tibia) to cdeg, inside the robot file's joint
         limit and the servo's calibrated range; only that servo changes (mode JOG)."""
-        _check_leg(leg)
-        _check_joint(joint)
-        if not isinstance(cdeg, int) or isinstance(cdeg, bool):
-            raise ValueError("angle: need a whole number (cdeg), got %r" % (cdeg,))
-        code = self._jog_ready()
+        code = self._jog_servo_ready(leg, joint, "angle", cdeg, "cdeg")
         if code != OK:
             return code
         lim = self.geometry.legs[leg].limits
@@ -461,11 +465,7 @@ class Robot:
     def jog_pulse(self, leg, joint, pulse_us):
         """One servo to a raw pulse width (us) inside its calibrated min..max (calibration); its
         angle becomes the servo map's inverse of it. Only that servo changes (mode JOG)."""
-        _check_leg(leg)
-        _check_joint(joint)
-        if not isinstance(pulse_us, int) or isinstance(pulse_us, bool):
-            raise ValueError("pulse: need a whole number (us), got %r" % (pulse_us,))
-        code = self._jog_ready()
+        code = self._jog_servo_ready(leg, joint, "pulse", pulse_us, "us")
         if code != OK:
             return code
         k = 3 * leg + joint
