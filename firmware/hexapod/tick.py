@@ -389,20 +389,13 @@ class Robot:
 
     # -- jogging and calibration (the console's single-servo moves) ---------------------
 
-    def _jog_ready(self):
-        if self.mode == WALKING:
-            return WALKING_NOW
-        if self.mode == MOVING or not self.body.settled():
-            return BUSY
-        return OK
-
     def _jog_servo_ready(self, leg, joint, name, value, unit):
-        """ValueError for a bad leg, joint or value; else _jog_ready()'s code."""
+        """ValueError for a bad leg, joint or value; else _can_move()'s code."""
         _check_leg(leg)
         _check_joint(joint)
         if not isinstance(value, int) or isinstance(value, bool):
             raise ValueError("%s: need a whole number (%s), got %r" % (name, unit, value))
-        return self._jog_ready()
+        return self._can_move()
 
     def _servo_refused(self, k, code, excess):
         self.jog_servo = k
@@ -415,7 +408,7 @@ class Robot:
         from the next frame on; the other servos keep their pulses (mode JOG). Returns OK, or
         JOG_IK / JOG_SERVO (jog_code, jog_excess say why) or WALKING_NOW / BUSY, changing nothing."""
         _check_leg(leg)
-        code = self._jog_ready()
+        code = self._can_move()
         if code != OK:
             return code
         k = 3 * leg
@@ -493,7 +486,7 @@ class Robot:
             raise ValueError("range: min_us %d must be below max_us %d" % (min_us, max_us))
         if direction != 1 and direction != -1:
             raise ValueError("direction: %r, allowed 1 or -1" % (direction,))
-        code = self._jog_ready()
+        code = self._can_move()
         if code != OK:
             return code
         s = self.servos[k]
