@@ -11,6 +11,7 @@ COMMAND_MODULES = (
     "hexapod_host.cmd_sim",
     "hexapod_host.cmd_plot",
     "hexapod_host.cmd_flash",
+    "hexapod_host.cmd_jog",
 )
 
 
