@@ -82,16 +82,41 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000, sampl
     return r
 
 
-def main(frames=-1, clock=None, board_name=BOARD, robot_name=ROBOT):
+def main(frames=-1, clock=None, board_name=BOARD, robot_name=ROBOT, reader=None):
     """Build, stand up (then follow the board's "follow" wall, if set), run frames (for ever
-    when -1) with a status line every 5 s; returns the Runner."""
-    r = build(board_name, robot_name, clock)
+    when -1) with a status line every 5 s; returns the Runner. With a console reader (the
+    board entry: console.SerialReader) the console and the calibration file take over from
+    the status line (docs/console.md); Ctrl-C relaxes the servos (or holds, on_exit)."""
+    global runner
+    r = runner = build(board_name, robot_name, clock)
+    if reader is not None:
+        import os
+
+        import console
+
+        console.start(r, reader, os, walk_timeout_ms=r.board.get("walk_timeout_ms") or console.WALK_TIMEOUT_MS)
     r.robot.stand_up()
     if r.board.get("follow"):
         r.follow_when_standing(r.board["follow"])
-    r.run(frames, STATUS_FRAMES)
+    if reader is not None and r.board.get("watchdog_ms"):
+        from microcontroller import watchdog
+        from watchdog import WatchDogMode
+
+        watchdog.timeout = r.board["watchdog_ms"] / 1000  # the one float: CircuitPython wants seconds
+        watchdog.mode = WatchDogMode.RESET
+        r.watchdog = watchdog
+    try:
+        r.run(frames, 0 if reader is not None else STATUS_FRAMES)
+    except KeyboardInterrupt:
+        hold = r.board.get("on_exit") == "hold"
+        r.leave(hold)
+        print("stopped: servos %s; runner.run() resumes" % ("held" if hold else "relaxed"))
     return r
 
 
+runner = None  # the Runner main() built: the REPL's handle after Ctrl-C
+
 if __name__ == "__main__":
-    main()
+    import console
+
+    main(reader=console.SerialReader())

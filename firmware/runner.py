@@ -42,6 +42,8 @@ class Runner:
         self.next_ms = clock.ticks_ms()
         self.follower = follow.Follower(self.robot, follow.DEFAULT_MOUNTS if mounts is None else mounts)
         self._start = None  # a follow setting waiting for the robot to stand
+        self.console = None  # console.Console: polled once a frame when set (console.start)
+        self.watchdog = None  # machine.WDT (the board file's watchdog_ms): fed once a frame
 
     def follow(self, side, setpoint, speed=None, form="yaw"):
         """Follow the `side` ("left" or "right") wall at `setpoint` (0.1 mm, the side sonar's
@@ -100,10 +102,22 @@ class Runner:
         n = 0
         while frames < 0 or n < frames:
             self.step()
+            if self.console is not None:
+                self.console.poll()
+            if self.watchdog is not None:
+                self.watchdog.feed()
             n += 1
             if status_every and n % status_every == 0:
                 print(status_line(self))
             self.wait()
+
+    def leave(self, hold=False):
+        """The loop is being left (Ctrl-C): servos limp at once, or (hold) keep the last frame.
+        Wall following ends either way; run() resumes from a relaxed robot."""
+        self._start = None
+        self.follower.off()
+        if not hold:
+            self.robot.go_limp()
 
 
 def status_line(r):

@@ -14,7 +14,8 @@ RUNTIMES = ("micropython", "circuitpython")
 LEGS = 6
 
 _TOP = ("name", "runtime", "i2c", "pca9685", "servos", "sensors")
-_OPTIONAL = ("notes", "follow")
+_OPTIONAL = ("notes", "follow", "watchdog_ms", "on_exit", "walk_timeout_ms")
+ON_EXIT = ("relax", "hold")  # what leaving the loop (Ctrl-C) does to the servos
 _FOLLOW = ("side", "setpoint")
 _FOLLOW_OPTIONAL = ("speed", "form")
 _I2C = ("id", "sda", "scl", "freq")
@@ -123,7 +124,20 @@ def validate(board):
     _servos(ck, ck.seq("servos", board["servos"], -1, "of servo tuples"), addresses)
     _sensors(ck, ck.seq("sensors", board["sensors"], -1, "of sensor tuples"), runtime, claim)
     _follow(ck, board)
+    _console(ck, board)
     return board
+
+
+def _console(ck, board):
+    """The console's settings (docs/console.md): watchdog_ms None or 1000..8000 (machine.WDT fed
+    every frame; the rp2 allows at most 8388 ms), on_exit "relax"/"hold", walk_timeout_ms
+    200..10000 (a console walk's life without renewal)."""
+    if board.get("watchdog_ms") is not None:
+        ck.int_in("watchdog_ms", board["watchdog_ms"], 1000, 8000, " ms (or None: no watchdog)")
+    if board.get("on_exit", "relax") not in ON_EXIT:
+        ck.fail("on_exit", "%r, allowed %s" % (board["on_exit"], " or ".join(repr(x) for x in ON_EXIT)))
+    if board.get("walk_timeout_ms") is not None:
+        ck.int_in("walk_timeout_ms", board["walk_timeout_ms"], 200, 10000, " ms")
 
 
 def _follow(ck, board):

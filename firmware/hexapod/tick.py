@@ -35,13 +35,16 @@ NOT_STANDING = const(22)
 UNREACHABLE = const(23)
 FRAME_IK = const(24)
 FRAME_SERVO = const(25)
+JOG_IK = const(26)  # a jog refused by the leg: jog_code (hexapod.leg code), jog_excess (0.1 mm or cdeg)
+JOG_SERVO = const(27)  # a jog or calibration refused by a servo: jog_servo, jog_code (servo code), jog_excess (us)
 
 RELAXED = const(0)
 SITTING = const(1)
 MOVING = const(2)
 STANDING = const(3)
 WALKING = const(4)
-MODE_NAMES = ("relaxed", "sitting", "moving", "standing", "walking")
+JOG = const(5)  # single servos or legs placed by hand (console jogging); each frame re-sends the held pulses
+MODE_NAMES = ("relaxed", "sitting", "moving", "standing", "walking", "jog")
 
 _WRAP = const(0x3FFFFFFF)  # time.ticks_ms() wraps at 2**30
 RHO_MIN = const(50)  # a leg needs a reach disc this wide (0.1 mm) to walk
@@ -57,6 +60,8 @@ def describe(code):
         UNREACHABLE: "refused: that would put a foot out of reach or a joint past its limit",
         FRAME_IK: "frame held: a foot was out of reach or a joint past its limit",
         FRAME_SERVO: "frame held: a pulse was outside its servo's calibrated range",
+        JOG_IK: "refused: that foot is out of reach or a joint past its limit",
+        JOG_SERVO: "refused: that pulse is outside the servo's calibrated range",
     }.get(code, "unknown reason %d" % code)
 
 
@@ -121,6 +126,9 @@ class Robot:
         self.fault_code = OK
         self._last_ms = 0
         self._timed = False
+        self.jog_servo = 0  # why the last jog or calibration was refused (JOG_IK, JOG_SERVO)
+        self.jog_code = OK
+        self.jog_excess = 0
         self.gait = TRIPOD
         self.cycle_ms = 1000
         disc_radii(self.walker, self._probe, self.walker.lift, self._rho)
@@ -148,6 +156,9 @@ class Robot:
             for k in range(18):
                 p[k] = 0
             self.frame.write_frame(p)
+            return OK
+        if m == JOG:
+            self.frame.write_frame(self.pulses)
             return OK
         if m == MOVING:
             if not self.posture.step(self.walker):
@@ -195,6 +206,11 @@ class Robot:
             return NOT_STANDING if self.mode != WALKING else WALKING_NOW
         if len(angles) != 18:
             raise ValueError("angles: need 18 values (cdeg), got %d" % len(angles))
+        self._feet_from(angles)
+        return OK
+
+    def _feet_from(self, angles):
+        """The walker's feet (body frame) where the 18 joint angles (cdeg) put them."""
         feet = [0] * 18
         for i in range(6):
             self.geometry.legs[i].fk(angles[3 * i], angles[3 * i + 1], angles[3 * i + 2], self._leg, 0)
@@ -209,7 +225,6 @@ class Robot:
             self.walker.fx[i] = feet[3 * i] << FINE_SHIFT
             self.walker.fy[i] = feet[3 * i + 1] << FINE_SHIFT
             self.walker.fz[i] = feet[3 * i + 2] << FINE_SHIFT
-        return OK
 
     def _can_move(self):
         if self.mode == WALKING:
@@ -223,6 +238,8 @@ class Robot:
         code = self._can_move()
         if code != OK:
             return code
+        if self.mode == JOG:
+            self._feet_from(self.angles)  # the posture move starts where the jog left the feet
         self.posture.stand_up(self.walker, self.rest_z)
         self.after = STANDING
         self.mode = MOVING
@@ -233,6 +250,8 @@ class Robot:
         code = self._can_move()
         if code != OK:
             return code
+        if self.mode == JOG:
+            self._feet_from(self.angles)
         self.posture.to_height(self.walker, self.rest_z)
         self.after = SITTING
         self.mode = MOVING
@@ -367,3 +386,148 @@ class Robot:
         if self.mode == WALKING:
             self.walker.stop()
         return OK
+
+    # -- jogging and calibration (the console's single-servo moves) ---------------------
+
+    def _jog_ready(self):
+        if self.mode == WALKING:
+            return WALKING_NOW
+        if self.mode == MOVING or not self.body.settled():
+            return BUSY
+        return OK
+
+    def _servo_refused(self, k, code, excess):
+        self.jog_servo = k
+        self.jog_code = code
+        self.jog_excess = excess
+        return JOG_SERVO
+
+    def jog_foot(self, leg, x, y, z):
+        """Leg `leg` (0..5)'s foot to (x, y, z), 0.1 mm in its leg frame, its three servos driven
+        from the next frame on; the other servos keep their pulses (mode JOG). Returns OK, or
+        JOG_IK / JOG_SERVO (jog_code, jog_excess say why) or WALKING_NOW / BUSY, changing nothing."""
+        _check_leg(leg)
+        code = self._jog_ready()
+        if code != OK:
+            return code
+        k = 3 * leg
+        a = self._angles
+        lg = self.geometry.legs[leg]
+        code = lg.ik(x, y, z, a, k)
+        if code != OK:
+            self.jog_code = code
+            self.jog_excess = lg.excess
+            return JOG_IK
+        p = self._pulses
+        for j in range(k, k + 3):
+            code = self.servos[j].pulse(a[j], p, j)
+            if code != OK:
+                return self._servo_refused(j, code, self.servos[j].excess)
+        for j in range(k, k + 3):
+            self.angles[j] = a[j]
+            self.pulses[j] = p[j]
+        self.mode = JOG
+        return OK
+
+    def jog_joint(self, leg, joint, cdeg):
+        """One servo (leg 0..5, joint 0 coxa 1 femur 2 tibia) to cdeg, inside the robot file's joint
+        limit and the servo's calibrated range; only that servo changes (mode JOG)."""
+        _check_leg(leg)
+        _check_joint(joint)
+        if not isinstance(cdeg, int) or isinstance(cdeg, bool):
+            raise ValueError("angle: need a whole number (cdeg), got %r" % (cdeg,))
+        code = self._jog_ready()
+        if code != OK:
+            return code
+        lim = self.geometry.legs[leg].limits
+        if cdeg < lim[2 * joint]:
+            self.jog_code = 3 + 2 * joint  # hexapod.leg COXA_LOW, FEMUR_LOW, TIBIA_LOW
+            self.jog_excess = lim[2 * joint] - cdeg
+            return JOG_IK
+        if cdeg > lim[2 * joint + 1]:
+            self.jog_code = 4 + 2 * joint
+            self.jog_excess = cdeg - lim[2 * joint + 1]
+            return JOG_IK
+        k = 3 * leg + joint
+        s = self.servos[k]
+        code = s.pulse(cdeg, self._pulses, k)
+        if code != OK:
+            return self._servo_refused(k, code, s.excess)
+        self.angles[k] = cdeg
+        self.pulses[k] = self._pulses[k]
+        self.mode = JOG
+        return OK
+
+    def jog_pulse(self, leg, joint, pulse_us):
+        """One servo to a raw pulse width (us) inside its calibrated min..max (calibration); its
+        angle becomes the servo map's inverse of it. Only that servo changes (mode JOG)."""
+        _check_leg(leg)
+        _check_joint(joint)
+        if not isinstance(pulse_us, int) or isinstance(pulse_us, bool):
+            raise ValueError("pulse: need a whole number (us), got %r" % (pulse_us,))
+        code = self._jog_ready()
+        if code != OK:
+            return code
+        k = 3 * leg + joint
+        s = self.servos[k]
+        if pulse_us < s.min_us:
+            return self._servo_refused(k, 1, s.min_us - pulse_us)  # hexapod.servo BELOW_MIN
+        if pulse_us > s.max_us:
+            return self._servo_refused(k, 2, pulse_us - s.max_us)  # ABOVE_MAX
+        self.angles[k] = s.angle(pulse_us)
+        self.pulses[k] = pulse_us
+        self.mode = JOG
+        return OK
+
+    def calibrate(self, k, centre_us, direction, min_us, max_us):
+        """Servo k (0..17)'s map: centre_us (pulse at angle 0, 500..2500), direction 1/-1 and
+        min_us < max_us within 500..2500 (ValueError naming the bad one). Refused (WALKING_NOW,
+        BUSY, or JOG_SERVO with jog_excess) when the servo is driven and its present angle would
+        map outside the new range; otherwise the driven servo moves to its new pulse at once."""
+        if not isinstance(k, int) or isinstance(k, bool) or k < 0 or k > 17:
+            raise ValueError("servo: %r, allowed 0..17" % (k,))
+        for name, v in (("centre_us", centre_us), ("min_us", min_us), ("max_us", max_us)):
+            if not isinstance(v, int) or isinstance(v, bool) or v < 500 or v > 2500:
+                raise ValueError("%s: %r is outside 500..2500 us" % (name, v))
+        if min_us >= max_us:
+            raise ValueError("range: min_us %d must be below max_us %d" % (min_us, max_us))
+        if direction != 1 and direction != -1:
+            raise ValueError("direction: %r, allowed 1 or -1" % (direction,))
+        code = self._jog_ready()
+        if code != OK:
+            return code
+        s = self.servos[k]
+        p = 0
+        if self.pulses[k]:
+            p = centre_us + direction * ((self.angles[k] * s.us_per_degree + 5000) // 10000)
+            if p < min_us:
+                return self._servo_refused(k, 1, min_us - p)
+            if p > max_us:
+                return self._servo_refused(k, 2, p - max_us)
+        s.centre_us = centre_us
+        s.direction = direction
+        s.min_us = min_us
+        s.max_us = max_us
+        if p:
+            self.pulses[k] = p
+        return OK
+
+    def go_limp(self):
+        """At once: every servo limp (a frame of zeros sent now), mode RELAXED; the loop is leaving."""
+        self.walker.stop()
+        self.walker.state = STOPPED
+        self.mode = RELAXED
+        p = self.pulses
+        for k in range(18):
+            p[k] = 0
+        self.frame.write_frame(p)
+
+
+def _check_leg(leg):
+    if not isinstance(leg, int) or isinstance(leg, bool) or leg < 0 or leg > 5:
+        raise ValueError("leg: %r, allowed 0..5 (legs 1..6)" % (leg,))
+
+
+def _check_joint(joint):
+    if not isinstance(joint, int) or isinstance(joint, bool) or joint < 0 or joint > 2:
+        raise ValueError("joint: %r, allowed 0 coxa, 1 femur, 2 tibia" % (joint,))

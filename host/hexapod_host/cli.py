@@ -12,6 +12,7 @@ COMMAND_MODULES = (
     "hexapod_host.cmd_plot",
     "hexapod_host.cmd_flash",
     "hexapod_host.cmd_jog",
+    "hexapod_host.cmd_console",
 )
 
 

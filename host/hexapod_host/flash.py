@@ -27,6 +27,7 @@ ARCH = {"pico": "armv6m", "esp32_devkit": "xtensawin"}
 # Modules of CircuitPython, MicroPython and the stdlib that the board provides itself.
 PROVIDED = {"machine", "time", "sys", "os", "array", "micropython", "gc", "select", "board", "busio", "digitalio"}
 PROVIDED |= {"microcontroller", "pulseio", "supervisor", "struct", "math", "hashlib", "errno", "io", "storage"}
+PROVIDED |= {"watchdog"}
 
 
 class FlashError(Exception):
@@ -115,6 +116,8 @@ def select_files(board, robot):
     core = [f for f in core if f.endswith(".py")]
     chosen = [os.path.join(ROOT, "boards", n) for n in ("__init__.py", board + ".py")]
     chosen += [os.path.join(ROOT, "robots", n) for n in ("__init__.py", robot + ".py")]
+    if cp and os.path.isfile(os.path.join(FIRMWARE, "boot.py")):
+        chosen.append(os.path.join(FIRMWARE, "boot.py"))  # makes the flash writable for `save`
     files, outside = closure(entry, core + chosen)
     libs = sorted(n for n in outside if n.startswith("adafruit_"))
     return os.path.basename(entry), files, libs

@@ -1,0 +1,147 @@
+"""The servo calibration file on the board's flash: trim, direction and range per servo.
+
+A text file: a version line, 18 rows "leg joint trim direction min_us max_us" (legs 1..6,
+joints coxa femur tibia, us), then "crc XXXX", the CRC-16/CCITT-FALSE of every byte before
+that line. `trim` is added to the board file's centre_us. Written atomically: the whole text
+goes to TMP, is read back, then renamed over FILE (where the filesystem cannot rename over an
+existing file, FILE is removed first; load() then takes the complete TMP). So a save cut at
+any point leaves the old calibration or the new one, never a broken one.
+
+Filesystem access is handed in (the `os` module and `open`) so tests can use a stub that
+loses power mid-write. Nothing here runs in the 50 Hz frame.
+"""
+
+VERSION = 1
+FILE = "hexapod_cal.txt"
+TMP = "hexapod_cal.tmp"
+JOINTS = ("coxa", "femur", "tibia")
+TRIM_MAX = 300  # largest |trim|, us
+_HEADER = "hexapod-cal %d\n"
+
+
+def crc16(data):
+    """CRC-16/CCITT-FALSE (poly 0x1021, initial 0xFFFF) of bytes; small ints only."""
+    crc = 0xFFFF
+    for b in data:
+        crc ^= b << 8
+        for _ in range(8):
+            crc = ((crc << 1) ^ 0x1021) & 0xFFFF if crc & 0x8000 else (crc << 1) & 0xFFFF
+    return crc
+
+
+def encode(rows):
+    """The file's text for 18 rows (trim, direction, min_us, max_us), leg/joint order."""
+    parts = [_HEADER % VERSION]
+    for k in range(18):
+        t, d, lo, hi = rows[k]
+        parts.append("%d %s %d %d %d %d\n" % (k // 3 + 1, JOINTS[k % 3], t, d, lo, hi))
+    body = "".join(parts)
+    return body + "crc %04x\n" % crc16(body.encode())
+
+
+def check_row(where, t, d, lo, hi):
+    """ValueError naming where and the bad value unless the row is a valid calibration."""
+    if t < -TRIM_MAX or t > TRIM_MAX:
+        raise ValueError("%s: trim %d is outside -%d..%d us" % (where, t, TRIM_MAX, TRIM_MAX))
+    if d != 1 and d != -1:
+        raise ValueError("%s: direction %d, allowed 1 or -1" % (where, d))
+    if lo < 500 or hi > 2500 or lo >= hi:
+        raise ValueError("%s: range %d..%d, allowed 500 <= min < max <= 2500 us" % (where, lo, hi))
+
+
+def decode(text):
+    """18 rows (trim, direction, min_us, max_us) from the file's text; ValueError says why not."""
+    end = text.rfind("crc ")
+    if end < 0 or not text.endswith("\n"):
+        raise ValueError("truncated (no checksum line)")
+    body = text[:end]
+    want = text[end + 4 :].strip()
+    if len(want) != 4 or "%04x" % crc16(body.encode()) != want:
+        raise ValueError("checksum mismatch (corrupt)")
+    lines = body.split("\n")
+    if lines[0] != (_HEADER % VERSION).strip():
+        raise ValueError("version line %r, this firmware reads %r" % (lines[0][:20], (_HEADER % VERSION).strip()))
+    if len(lines) != 20 or lines[19] != "":
+        raise ValueError("%d rows, need 18" % (len(lines) - 2))
+    rows = []
+    for k in range(18):
+        f = lines[k + 1].split()
+        where = "row %d" % (k + 1)
+        if len(f) != 6 or f[0] != str(k // 3 + 1) or f[1] != JOINTS[k % 3]:
+            raise ValueError("%s: expected leg %d %s" % (where, k // 3 + 1, JOINTS[k % 3]))
+        try:
+            row = (int(f[2]), int(f[3]), int(f[4]), int(f[5]))
+        except ValueError:
+            raise ValueError("%s: not whole numbers" % where) from None
+        check_row(where, *row)
+        rows.append(row)
+    return rows
+
+
+class Store:
+    """Reads and writes the calibration file through an `os` module and an `open` function."""
+
+    def __init__(self, os, opener=open, path=FILE, tmp=TMP):
+        self.os = os
+        self.open = opener
+        self.path = path
+        self.tmp = tmp
+
+    def _read(self, name):
+        f = self.open(name, "r")
+        try:
+            return f.read()
+        finally:
+            f.close()
+
+    def _exists(self, name):
+        try:
+            self.os.stat(name)
+            return True
+        except OSError:
+            return False
+
+    def load(self):
+        """(rows, where) from FILE, else from a complete TMP; OSError/ValueError say why neither."""
+        try:
+            return decode(self._read(self.path)), self.path
+        except OSError as e:
+            why = "no %s" % self.path if _errno(e) == 2 else "%s unreadable (%s)" % (self.path, e)
+        except ValueError as e:
+            why = "%s %s" % (self.path, e)
+        try:
+            return decode(self._read(self.tmp)), self.tmp
+        except (OSError, ValueError):
+            raise ValueError(why) from None
+
+    def save(self, rows):
+        """Write rows atomically; OSError (the old file kept) when the filesystem refuses."""
+        text = encode(rows)
+        if not self._exists(self.path) and self._exists(self.tmp):
+            # A save cut between remove and rename left the good copy in TMP: make it FILE first,
+            # so writing TMP again never destroys the only good copy.
+            try:
+                decode(self._read(self.tmp))
+                self.os.rename(self.tmp, self.path)
+            except ValueError:
+                pass
+        f = self.open(self.tmp, "w")
+        try:
+            for line in text.split("\n")[:-1]:
+                f.write(line + "\n")
+        finally:
+            f.close()
+        if self._read(self.tmp) != text:
+            raise OSError(28, "written file reads back different (filesystem full?)")
+        try:
+            self.os.rename(self.tmp, self.path)
+        except OSError:
+            if not self._exists(self.path):
+                raise
+            self.os.remove(self.path)  # FAT cannot rename over a file: TMP is complete by now
+            self.os.rename(self.tmp, self.path)
+        return crc16(text[: text.rfind("crc ")].encode())
+
+
+def _errno(e):
+    return e.args[0] if e.args and isinstance(e.args[0], int) else 0

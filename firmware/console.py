@@ -1,0 +1,605 @@
+"""The serial console: command lines read between 50 Hz frames, one reply line each.
+
+docs/console.md is the protocol. Console.poll() runs once per frame (runner.Runner.run): it
+takes the bytes waiting (at most MAX_BYTES a frame) into a preallocated line buffer and runs a
+complete line; an idle poll allocates nothing. Console.do(line) is the dispatcher as a plain
+call (the REPL, tests): it returns the reply and never raises. Units at the console: mm,
+degrees, us, mm/s, deg/s, cm (hexapod.units parses them without floats).
+
+Readers hand over one byte at a time: PollReader (MicroPython: select.poll on sys.stdin),
+SerialReader (CircuitPython: supervisor.runtime.serial_bytes_available), BufferReader (tests).
+"""
+
+from calstore import TRIM_MAX, Store
+from micropython import const
+
+from drivers import hcsr04
+from hexapod import follow, gait, tick
+from hexapod.leg import describe as leg_describe
+from hexapod.units import format_fixed, parse_fixed
+
+LINE_MAX = const(95)  # characters in a line, without its end
+MAX_BYTES = const(64)  # bytes taken per frame: a flood cannot stretch a frame
+WALK_TIMEOUT_MS = const(1000)
+JOINTS = ("coxa", "femur", "tibia")
+COMMANDS = (
+    "help status stand sit relax foot nudge joint pulse get walk stop gait sonar wall pid "
+    "cal trim dir range save load defaults"
+)
+_STATUS_WORDS = ("ok", "out_of_range", "no_echo", "stuck", "too_close", "wait")
+
+
+class PollReader:
+    """MicroPython: the bytes waiting on a stream (sys.stdin), without blocking or allocating."""
+
+    def __init__(self, stream=None):
+        import select
+        import sys
+
+        stream = sys.stdin if stream is None else stream
+        self._poll = select.poll()
+        self._poll.register(stream, select.POLLIN)
+        self._src = getattr(stream, "buffer", stream)
+        self._one = bytearray(1)
+
+    def read_byte(self):
+        """The next byte (0..255), or -1 when none is waiting."""
+        for _ in self._poll.ipoll(0):
+            if self._src.readinto(self._one) == 1:
+                return self._one[0]
+            return -1
+        return -1
+
+
+class SerialReader:
+    """CircuitPython: supervisor.runtime.serial_bytes_available, then sys.stdin.read(1)."""
+
+    def __init__(self):
+        import sys
+
+        import supervisor
+
+        self._rt = supervisor.runtime
+        self._in = sys.stdin
+
+    def read_byte(self):
+        if not self._rt.serial_bytes_available:
+            return -1
+        c = self._in.read(1)
+        if not c:
+            return -1
+        n = ord(c)
+        return n if n < 256 else 255  # a multi-byte character is not text the console takes
+
+
+class BufferReader:
+    """Bytes handed in by a test (feed()), read back one at a time."""
+
+    def __init__(self, data=b""):
+        self.data = bytearray(data)
+        self.pos = 0
+
+    def feed(self, data):
+        self.data.extend(data)
+
+    def read_byte(self):
+        if self.pos >= len(self.data):
+            return -1
+        self.pos += 1
+        return self.data[self.pos - 1]
+
+
+class Console:
+    """Command lines -> calls on a runner.Runner; replies through `out` (print on a board)."""
+
+    def __init__(self, runner, reader=None, out=print, store=None, walk_timeout_ms=WALK_TIMEOUT_MS):
+        """runner: runner.Runner; reader: has read_byte(); store: calstore.Store or None (no
+        file: save/load answer err); walk_timeout_ms: a console walk's life without renewal."""
+        self.runner = runner
+        self.robot = runner.robot
+        self.reader = reader
+        self.out = out
+        self.store = store
+        self.walk_timeout_ms = walk_timeout_ms
+        self._buf = bytearray(LINE_MAX)
+        self._n = 0
+        self._long = False
+        self._bad = -1  # the first non-text byte of the line being read
+        self._cr = False
+        self._walking = False  # a console walk runs, expiring at _deadline (ticks_ms)
+        self._deadline = 0
+        self.lines = 0  # lines answered
+        # The board file's calibration: (centre_us, direction, min_us, max_us) per servo.
+        self.base = tuple((s.centre_us, s.direction, s.min_us, s.max_us) for s in self.robot.servos)
+        self.trims = [0] * 18
+        self.cal_source = "defaults"
+        self._table = {
+            "help": self._help,
+            "status": self._status,
+            "stand": self._stand,
+            "sit": self._sit,
+            "relax": self._relax,
+            "foot": self._foot,
+            "nudge": self._nudge,
+            "joint": self._joint,
+            "pulse": self._pulse,
+            "get": self._get,
+            "walk": self._walk,
+            "stop": self._stop,
+            "gait": self._gait,
+            "sonar": self._sonar,
+            "wall": self._wall,
+            "pid": self._pid,
+            "cal": self._cal,
+            "trim": self._trim,
+            "dir": self._dir,
+            "range": self._range,
+            "save": self._save,
+            "load": self._load,
+            "defaults": self._defaults,
+        }
+
+    # -- the frame's part ---------------------------------------------------------------
+
+    def poll(self):
+        """Once per frame: take waiting bytes, run a complete line, expire a stale walk."""
+        if self._walking:
+            clock = self.runner.clock
+            if clock.ticks_diff(clock.ticks_ms(), self._deadline) >= 0:
+                self._walking = False
+                if self.robot.mode == tick.WALKING and not self.runner.follower.mode:
+                    self.robot.stop()
+        reader = self.reader
+        if reader is None:
+            return
+        for _ in range(MAX_BYTES):
+            b = reader.read_byte()
+            if b < 0:
+                return
+            if b == 10 or b == 13:
+                if b == 10 and self._cr:  # the \n of a \r\n
+                    self._cr = False
+                    continue
+                self._cr = b == 13
+                self._end_line()
+                continue
+            self._cr = False
+            if self._n >= LINE_MAX:
+                self._long = True
+            else:
+                self._buf[self._n] = b
+                self._n += 1
+            if ((b < 32 and b != 9) or b > 126) and self._bad < 0:
+                self._bad = b
+
+    def _end_line(self):
+        n = self._n
+        self._n = 0
+        if self._long:
+            reply = "err line too long (at most %d characters)" % LINE_MAX
+        elif self._bad >= 0:
+            reply = "err non-text byte 0x%02x in line (allowed: printable ASCII)" % self._bad
+        elif n == 0:
+            return
+        else:
+            reply = self.do(bytes(self._buf[:n]).decode())
+            if reply is None:
+                return
+        self._long = False
+        self._bad = -1
+        self.lines += 1
+        self.out(reply)
+
+    # -- the dispatcher -------------------------------------------------------------------
+
+    def do(self, line):
+        """Run one command line; the reply line ('ok ...' or 'err ...'), None for a blank line."""
+        words = line.replace("\t", " ").split()
+        if not words:
+            return None
+        fn = self._table.get(words[0])
+        if fn is None:
+            return "err unknown command %r (help lists them)" % (words[0][:20],)
+        try:
+            reply = fn(words[1:])
+        except ValueError as e:
+            return "err %s: %s" % (words[0], e)
+        except Exception as e:  # the loop must go on whatever a command hits
+            return "err %s: internal error %s %s" % (words[0], type(e).__name__, e)
+        if reply[:4] == "err " and not reply.startswith("err " + words[0] + ":"):
+            reply = "err %s: %s" % (words[0], reply[4:])  # every err names its command
+        return reply
+
+    # -- parsing ----------------------------------------------------------------------------
+
+    def _args(self, args, n, usage):
+        if len(args) != n:
+            raise ValueError("need %s, got %d argument%s" % (usage, len(args), "" if len(args) == 1 else "s"))
+
+    def _leg(self, text):
+        if text not in ("1", "2", "3", "4", "5", "6"):
+            raise ValueError("leg %r, allowed 1..6" % (text[:20],))
+        return int(text) - 1
+
+    def _joint_of(self, text):
+        for j in range(3):
+            if JOINTS[j] == text:
+                return j
+        raise ValueError("joint %r, allowed coxa, femur, tibia" % (text[:20],))
+
+    def _num(self, name, text, places, lo, hi, unit):
+        try:
+            v = parse_fixed(text, places)
+        except ValueError:
+            raise ValueError("%s %r is not a decimal number (%s)" % (name, text[:20], unit)) from None
+        if v < lo or v > hi:
+            lo = format_fixed(lo, places)
+            raise ValueError("%s %s is outside %s..%s %s" % (name, text[:20], lo, format_fixed(hi, places), unit))
+        return v
+
+    def _whole(self, name, text, lo, hi, unit):
+        body = text[1:] if text[:1] in ("-", "+") else text
+        if not body.isdigit() or len(body) > 9:
+            raise ValueError("%s %r is not a whole number (%s)" % (name, text[:20], unit))
+        v = int(text)
+        if v < lo or v > hi:
+            raise ValueError("%s %d is outside %d..%d %s" % (name, v, lo, hi, unit))
+        return v
+
+    # -- replies --------------------------------------------------------------------------
+
+    def leg_line(self, leg):
+        """'ok leg L angles C F T pulses PC PF PT foot X Y Z' for leg 0..5."""
+        r = self.robot
+        k = 3 * leg
+        a = r.angles
+        foot = [0, 0, 0]
+        r.geometry.legs[leg].fk(a[k], a[k + 1], a[k + 2], foot, 0)
+        p = r.pulses
+        return "ok leg %d angles %s %s %s pulses %d %d %d foot %s %s %s" % (
+            leg + 1,
+            format_fixed(a[k], 2),
+            format_fixed(a[k + 1], 2),
+            format_fixed(a[k + 2], 2),
+            p[k],
+            p[k + 1],
+            p[k + 2],
+            format_fixed(foot[0], 1),
+            format_fixed(foot[1], 1),
+            format_fixed(foot[2], 1),
+        )
+
+    def cal_line(self, k):
+        """'ok leg L joint J centre_us C trim T dir D min_us A max_us B' for servo 0..17."""
+        s = self.robot.servos[k]
+        return "ok leg %d joint %s centre_us %d trim %d dir %d min_us %d max_us %d" % (
+            k // 3 + 1,
+            JOINTS[k % 3],
+            self.base[k][0],
+            self.trims[k],
+            s.direction,
+            s.min_us,
+            s.max_us,
+        )
+
+    def _refused(self, code):
+        r = self.robot
+        if code == tick.JOG_IK:
+            return "err " + leg_describe(r.jog_code, r.jog_excess)
+        if code == tick.JOG_SERVO:
+            k = r.jog_servo
+            s = r.servos[k]
+            return "err leg %d %s: the pulse would be %d us %s its calibrated %d..%d us" % (
+                k // 3 + 1,
+                JOINTS[k % 3],
+                r.jog_excess,
+                "below" if r.jog_code == 1 else "above",
+                s.min_us,
+                s.max_us,
+            )
+        return "err " + tick.describe(code)
+
+    def _mode_reply(self, code):
+        if code:
+            return self._refused(code)
+        return "ok mode " + tick.MODE_NAMES[self.robot.mode]
+
+    def _no_follow(self):
+        if self.runner.follower.mode:
+            raise ValueError("the robot is following a wall; 'wall off' first")
+
+    # -- commands -------------------------------------------------------------------------
+
+    def _help(self, args):
+        return "ok " + COMMANDS
+
+    def _status(self, args):
+        self._args(args, 0, "no arguments")
+        r = self.runner
+        f = r.follower
+        left = 0
+        if self._walking:
+            left = r.clock.ticks_diff(self._deadline, r.clock.ticks_ms())
+            left = left if left > 0 else 0
+        on = f.mode != follow.OFF
+        return (
+            "ok frames %d held %d overruns %d bus_failed %d reinit %d sonar_faults %d faults %d mode %s gait %s "
+            "walk_ms %d wall %s wall_mode %s wall_d %s wall_angle %s wall_error %s wall_out %s wall_faults %d cal %s"
+            % (
+                r.frames,
+                r.held,
+                r.robot.overruns,
+                r.bank.failed_frames,
+                r.bank.reinits,
+                r.sonar_faults,
+                r.robot.faults,
+                tick.MODE_NAMES[r.robot.mode],
+                gait.NAMES[r.robot.gait],
+                left,
+                f.side if on else "off",
+                follow.MODE_NAMES[f.mode],
+                format_fixed(f.distance if on else 0, 1),
+                format_fixed(f.angle if on else 0, 2),
+                format_fixed(f.error if on else 0, 1),
+                format_fixed(f.output if on else 0, 2),
+                f.fault_total if on else 0,
+                self.cal_source,
+            )
+        )
+
+    def _stand(self, args):
+        self._args(args, 0, "no arguments")
+        self._no_follow()
+        return self._mode_reply(self.robot.stand_up())
+
+    def _sit(self, args):
+        self._args(args, 0, "no arguments")
+        self._no_follow()
+        return self._mode_reply(self.robot.sit_down())
+
+    def _relax(self, args):
+        self._args(args, 0, "no arguments")
+        self._no_follow()
+        return self._mode_reply(self.robot.relax())
+
+    def _foot(self, args):
+        self._args(args, 4, "L X Y Z (leg 1..6, mm in the leg frame)")
+        leg = self._leg(args[0])
+        x = self._num("x", args[1], 1, -5000, 5000, "mm")
+        y = self._num("y", args[2], 1, -5000, 5000, "mm")
+        z = self._num("z", args[3], 1, -5000, 5000, "mm")
+        return self._jogged(leg, self.robot.jog_foot(leg, x, y, z))
+
+    def _jogged(self, leg, code):
+        if code:
+            return self._refused(code)
+        self._walking = False
+        return self.leg_line(leg)
+
+    def _nudge(self, args):
+        self._args(args, 4, "L DX DY DZ (leg 1..6, mm in the leg frame)")
+        leg = self._leg(args[0])
+        d = [self._num(n, args[k + 1], 1, -1000, 1000, "mm") for k, n in enumerate(("dx", "dy", "dz"))]
+        r = self.robot
+        k = 3 * leg
+        if not (r.pulses[k] and r.pulses[k + 1] and r.pulses[k + 2]):
+            raise ValueError("leg %d has a limp servo: place it with 'foot' first" % (leg + 1))
+        foot = [0, 0, 0]
+        r.geometry.legs[leg].fk(r.angles[k], r.angles[k + 1], r.angles[k + 2], foot, 0)
+        return self._jogged(leg, r.jog_foot(leg, foot[0] + d[0], foot[1] + d[1], foot[2] + d[2]))
+
+    def _joint(self, args):
+        self._args(args, 3, "L J DEG (leg 1..6, coxa|femur|tibia, degrees)")
+        leg = self._leg(args[0])
+        j = self._joint_of(args[1])
+        a = self._num("angle", args[2], 2, -18000, 18000, "degrees")
+        return self._jogged(leg, self.robot.jog_joint(leg, j, a))
+
+    def _pulse(self, args):
+        self._args(args, 3, "L J US (leg 1..6, coxa|femur|tibia, microseconds)")
+        leg = self._leg(args[0])
+        j = self._joint_of(args[1])
+        s = self.robot.servos[3 * leg + j]
+        us = self._whole("pulse", args[2], s.min_us, s.max_us, "us (this servo's calibrated range)")
+        return self._jogged(leg, self.robot.jog_pulse(leg, j, us))
+
+    def _get(self, args):
+        self._args(args, 1, "L (leg 1..6)")
+        return self.leg_line(self._leg(args[0]))
+
+    def _walk(self, args):
+        self._args(args, 3, "VX VY WZ (mm/s, mm/s, deg/s)")
+        vx = self._num("vx", args[0], 1, -3000, 3000, "mm/s")
+        vy = self._num("vy", args[1], 1, -3000, 3000, "mm/s")
+        wz = self._num("wz", args[2], 2, -9000, 9000, "deg/s")
+        self._no_follow()
+        code = self.robot.walk(vx, vy, wz)
+        if code:
+            return self._refused(code)
+        clock = self.runner.clock
+        self._walking = bool(vx or vy or wz)
+        self._deadline = clock.ticks_add(clock.ticks_ms(), self.walk_timeout_ms)
+        return "ok walk %s %s %s timeout_ms %d" % (
+            format_fixed(vx, 1),
+            format_fixed(vy, 1),
+            format_fixed(wz, 2),
+            self.walk_timeout_ms,
+        )
+
+    def _stop(self, args):
+        self._args(args, 0, "no arguments")
+        self._walking = False
+        if self.runner.follower.mode:
+            self.runner.follow_off()
+        return self._mode_reply(self.robot.stop())
+
+    def _gait(self, args):
+        if args:
+            self._args(args, 1, "a gait name (tripod, tetrapod, ripple, wave)")
+            if args[0] not in gait.NAMES:
+                raise ValueError("%r, allowed %s" % (args[0][:20], ", ".join(gait.NAMES)))
+            code = self.robot.set_gait(gait.NAMES.index(args[0]))
+            if code:
+                return self._refused(code)
+        return "ok gait " + gait.NAMES[self.robot.gait]
+
+    def _sonar(self, args):
+        self._args(args, 0, "no arguments")
+        r = self.runner
+        parts = ["ok"]
+        for k in range(len(r.distances)):
+            st = r.sonar_status[k]
+            d = r.distances[k]
+            parts.append(hcsr04.SENSOR_NAMES[k])
+            parts.append(format_fixed(d, 1) if st == hcsr04.OK and d >= 0 else "-")
+            parts.append(_STATUS_WORDS[st] if 0 <= st < len(_STATUS_WORDS) else "unknown")
+        return " ".join(parts)
+
+    def _wall(self, args):
+        if len(args) == 1 and args[0] == "off":
+            self.runner.follow_off()
+            return "ok wall off"
+        self._args(args, 2, "left|right CM, or off")
+        if args[0] not in follow.SIDES:
+            raise ValueError("side %r, allowed left, right or off" % (args[0][:20],))
+        cm = self._num("set point", args[1], 2, follow.SETPOINT_MIN, follow.SETPOINT_MAX, "cm")
+        self._walking = False
+        code = self.runner.follow(args[0], cm)
+        if code:
+            return self._refused(code)
+        return "ok wall %s setpoint %s" % (args[0], format_fixed(cm, 2))
+
+    def _pid(self, args):
+        p = self.runner.follower.pid
+        if args:
+            self._args(args, 3, "KP KI KD (each 0..100, 3 decimals)")
+            top = 100000  # hexapod.pid.GAIN_MAX
+            kp = self._num("kp", args[0], 3, 0, top, "")
+            ki = self._num("ki", args[1], 3, 0, top, "")
+            kd = self._num("kd", args[2], 3, 0, top, "")
+            self.runner.follower.set_gains(kp, ki, kd)
+        return "ok pid %s %s %s" % (format_fixed(p.kp, 3), format_fixed(p.ki, 3), format_fixed(p.kd, 3))
+
+    def _servo(self, args, n, usage):
+        self._args(args, n, usage)
+        return 3 * self._leg(args[0]) + self._joint_of(args[1])
+
+    def _cal(self, args):
+        return self.cal_line(self._servo(args, 2, "L J (leg 1..6, coxa|femur|tibia)"))
+
+    def _set_cal(self, k, trim, direction, lo, hi):
+        r = self.robot
+        code = r.calibrate(k, self.base[k][0] + trim, direction, lo, hi)
+        if code == tick.JOG_SERVO:
+            return "err leg %d %s: at %s deg it would need %d us, outside %d..%d us" % (
+                k // 3 + 1,
+                JOINTS[k % 3],
+                format_fixed(r.angles[k], 2),
+                lo - r.jog_excess if r.jog_code == 1 else hi + r.jog_excess,
+                lo,
+                hi,
+            )
+        if code:
+            return self._refused(code)
+        self.trims[k] = trim
+        self.cal_source = "changed"
+        return self.cal_line(k)
+
+    def _trim(self, args):
+        k = self._servo(args, 3, "L J US (leg 1..6, coxa|femur|tibia, us)")
+        c = self.base[k][0]
+        lo = -TRIM_MAX if c - TRIM_MAX >= 500 else 500 - c
+        hi = TRIM_MAX if c + TRIM_MAX <= 2500 else 2500 - c
+        t = self._whole("trim", args[2], lo, hi, "us (centre_us %d + trim within 500..2500)" % c)
+        s = self.robot.servos[k]
+        return self._set_cal(k, t, s.direction, s.min_us, s.max_us)
+
+    def _dir(self, args):
+        k = self._servo(args, 3, "L J D (leg 1..6, coxa|femur|tibia, 1 or -1)")
+        if args[2] not in ("1", "-1", "+1"):
+            raise ValueError("direction %r, allowed 1 or -1" % (args[2][:20],))
+        s = self.robot.servos[k]
+        return self._set_cal(k, self.trims[k], int(args[2]), s.min_us, s.max_us)
+
+    def _range(self, args):
+        k = self._servo(args, 4, "L J MIN MAX (leg 1..6, coxa|femur|tibia, us)")
+        lo = self._whole("min_us", args[2], 500, 2500, "us")
+        hi = self._whole("max_us", args[3], 500, 2500, "us")
+        if lo >= hi:
+            raise ValueError("min_us %d must be below max_us %d" % (lo, hi))
+        s = self.robot.servos[k]
+        return self._set_cal(k, self.trims[k], s.direction, lo, hi)
+
+    def rows(self):
+        """The calibration in force: 18 (trim, direction, min_us, max_us)."""
+        return [(self.trims[k], s.direction, s.min_us, s.max_us) for k, s in enumerate(self.robot.servos)]
+
+    def apply(self, rows):
+        """Put 18 rows in force, all or none; returns 0 or the refusing reason code."""
+        old = self.rows()
+        for k in range(18):
+            t, d, lo, hi = rows[k]
+            code = self.robot.calibrate(k, self.base[k][0] + t, d, lo, hi)
+            if code:
+                for j in range(k):
+                    t, d, lo, hi = old[j]
+                    self.robot.calibrate(j, self.base[j][0] + t, d, lo, hi)
+                return code
+            self.trims[k] = t
+        return 0
+
+    def _save(self, args):
+        self._args(args, 0, "no arguments")
+        if self.store is None:
+            raise ValueError("no calibration file on this board")
+        try:
+            crc = self.store.save(self.rows())
+        except OSError as e:
+            why = "the filesystem is read-only" if e.args and e.args[0] == 30 else "the filesystem refused"
+            return "err save: %s (%s); the previous file is kept" % (why, e)
+        self.cal_source = "file"
+        return "ok saved %s crc %04x" % (self.store.path, crc)
+
+    def load_file(self):
+        """Calibration from the store, else the board file's defaults; returns the reply."""
+        if self.store is None:
+            raise ValueError("no calibration file on this board")
+        try:
+            rows, where = self.store.load()
+        except ValueError as e:
+            return "ok defaults (%s)" % (e,)
+        code = self.apply(rows)
+        if code:
+            return "err load: %s kept the calibration in force: %s" % (where, self._refused(code)[4:])
+        self.cal_source = "file"
+        return "ok loaded " + where
+
+    def _load(self, args):
+        self._args(args, 0, "no arguments")
+        reply = self.load_file()
+        if reply.startswith("ok defaults"):
+            self._defaults([])
+        return reply
+
+    def _defaults(self, args):
+        self._args(args, 0, "no arguments")
+        code = self.apply([(0, b[1], b[2], b[3]) for b in self.base])
+        if code:
+            return self._refused(code)
+        self.cal_source = "defaults"
+        return "ok defaults"
+
+
+def start(runner, reader, os=None, opener=open, out=print, walk_timeout_ms=WALK_TIMEOUT_MS):
+    """Attach a console to runner (runner.console) and load the calibration file (os: the
+    filesystem module, None: none). Prints one 'cal: ...' line when the file cannot be used."""
+    store = None if os is None else Store(os, opener)
+    c = Console(runner, reader, out, store, walk_timeout_ms)
+    if store is not None:
+        reply = c.load_file()
+        if reply.startswith("ok defaults ("):
+            out("cal: %s; the board file's calibration is in use" % reply[13:-1])
+        elif not reply.startswith("ok loaded"):
+            out("cal: " + reply[4:])
+    runner.console = c
+    return c

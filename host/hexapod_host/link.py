@@ -1,0 +1,106 @@
+"""The PC end of the serial console (docs/console.md): one request line, one reply line.
+
+    with Link.open("/dev/ttyACM0") as link:
+        reply = link.request("get 2")        # 'ok leg 2 angles ...' or 'err ...'
+
+Lines from the board that start with neither `ok` nor `err` (boot text, a calibration notice,
+a traceback) are kept in `link.other` and skipped. Errors are LinkError with a sentence a
+person can act on: no such port, a port that cannot be opened, no answer within the timeout
+(firmware not running, or a REPL prompt), a disconnect mid-session.
+"""
+
+import contextlib
+import time
+
+import serial
+from serial.tools import list_ports
+
+BAUD = 115200  # USB CDC ignores it; a USB-serial bridge (ESP32 DevKit) needs it
+TIMEOUT_S = 2.0
+# USB vendor ids of the boards this project runs on: Raspberry Pi (Pico), Adafruit (Feather),
+# Espressif (native USB), and the USB-serial bridges on ESP32 DevKits (CP210x, CH340, FTDI).
+BOARD_VIDS = {0x2E8A: "Raspberry Pi", 0x239A: "Adafruit", 0x303A: "Espressif", 0x10C4: "CP210x", 0x1A86: "CH340"}
+BOARD_VIDS[0x0403] = "FTDI"
+
+
+class LinkError(Exception):
+    """The board cannot be reached or stopped answering; the message says what to check."""
+
+
+def ports():
+    """Serial ports as (device, description, vendor or ''), board-looking ones first."""
+    rows = []
+    for p in list_ports.comports():
+        vendor = BOARD_VIDS.get(p.vid, "") if p.vid is not None else ""
+        rows.append((p.device, p.description or "", vendor))
+    rows.sort(key=lambda r: (r[2] == "", r[0]))
+    return rows
+
+
+class Link:
+    """A request/reply client on an open serial-like object (has write, readline, close)."""
+
+    def __init__(self, port, timeout=TIMEOUT_S, name="?"):
+        self.port = port
+        self.timeout = timeout
+        self.name = name
+        self.other = []  # lines that were not replies
+
+    @classmethod
+    def open(cls, device, timeout=TIMEOUT_S, baud=BAUD):
+        """Open a serial port by path; LinkError when it does not exist or cannot be opened."""
+        try:
+            port = serial.Serial(device, baud, timeout=0.05, write_timeout=timeout)
+        except serial.SerialException as e:
+            text = str(e)
+            if "No such file" in text or "FileNotFoundError" in text:
+                raise LinkError("no such port %s (hexapod ports lists them)" % device) from None
+            raise LinkError("cannot open %s: %s" % (device, text)) from None
+        return cls(port, timeout, device)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def close(self):
+        with contextlib.suppress(OSError, serial.SerialException):
+            self.port.close()
+
+    def request(self, line):
+        """Send one command line; return its reply line ('ok ...' or 'err ...'), stripped."""
+        if "\n" in line or "\r" in line:
+            raise LinkError("one command per request: %r holds a line break" % line)
+        try:
+            self.port.write((line + "\n").encode("ascii", "replace"))
+            self.port.flush()
+        except (OSError, serial.SerialException) as e:
+            raise LinkError("lost the board on %s while sending (%s): unplugged?" % (self.name, e)) from None
+        return self.read_reply(line)
+
+    def read_reply(self, line=""):
+        deadline = time.monotonic() + self.timeout
+        buf = b""
+        while True:
+            try:
+                chunk = self.port.readline()
+            except (OSError, serial.SerialException) as e:
+                raise LinkError("lost the board on %s (%s): unplugged or reset?" % (self.name, e)) from None
+            buf += chunk
+            if buf.endswith(b"\n"):
+                text = buf.decode("ascii", "replace").strip()
+                buf = b""
+                if text == "ok" or text.startswith(("ok ", "err ")) or text == "err":
+                    return text
+                if text:
+                    self.other.append(text)
+                continue
+            if time.monotonic() > deadline:
+                hint = ""
+                if any(t.startswith(">>>") for t in self.other) or buf.startswith(b">>>"):
+                    hint = " (the board is at the REPL: run main.py or reset it)"
+                raise LinkError(
+                    "no answer to %r from %s within %.1f s: is the hexapod firmware running?%s"
+                    % (line, self.name, self.timeout, hint)
+                )

@@ -1,0 +1,74 @@
+# Runs inside the MicroPython VM: the board's loop (main.build on the stub machine with the
+# PCA9685 and HC-SR04 models) with the serial console on stdin/stdout, paced to real time.
+# `hexapod virtual-board` starts it on a pseudo-terminal. Arguments: board name, robot name,
+# calibration directory ('' = no calibration file), frames to run (-1 = for ever).
+#
+# Virtual time drives the models (sonar echoes, the PCA9685's clock); after each frame the
+# script sleeps until the real clock has caught up with the virtual one, so a client sees a
+# 50 Hz board. One command beyond the firmware's: `model` answers the PCA9685 models' pulse
+# widths (us, chip 0x40 channels 0-15 then 0x41), for tests and the curious.
+import os
+import sys
+import time
+
+import _stub_clock as clock
+import _stub_i2c
+import _stub_pins
+import console
+import hcsr04_model
+import main
+from _stub_i2c import shared_bus
+from pca9685_model import PCA9685Model
+
+from hexapod import board as boards
+
+BOARD = sys.argv[1] if len(sys.argv) > 1 else "pico"
+ROBOT = sys.argv[2] if len(sys.argv) > 2 else "default"
+CAL_DIR = sys.argv[3] if len(sys.argv) > 3 else ""
+FRAMES = int(sys.argv[4]) if len(sys.argv) > 4 else -1
+
+clock.reset(0)
+_stub_pins.reset()
+_stub_i2c.reset()
+bus = shared_bus(0)
+bus.clock_us = clock.now_us
+board = boards.load(BOARD)
+chips = []
+for c in board["pca9685"]["chips"]:
+    m = PCA9685Model(c["address"], osc_hz=c["osc_hz"])
+    bus.attach(m)
+    chips.append(m)
+# Walls 30-70 cm away, one per sensor, so `sonar` has something to show.
+sonars = [hcsr04_model.HCSR04(t, e, distance=3000 + 1000 * k) for k, (t, e) in enumerate(boards.sensor_pins(board))]
+
+r = main.build(BOARD, ROBOT, clock=clock)
+if CAL_DIR:
+    os.chdir(CAL_DIR)
+con = console.start(
+    r, console.PollReader(), os if CAL_DIR else None, walk_timeout_ms=board.get("walk_timeout_ms") or 1000
+)
+
+
+def model(args):
+    parts = ["ok model"]
+    for m in chips:
+        parts.append("0x%02x" % m.address)
+        for ch in range(16):
+            parts.append(str(m.pulse_us(ch)))
+    return " ".join(parts)
+
+
+con._table["model"] = model
+print("virtual board %s (robot %s) ready: 50 Hz, console on this line; 'help' lists commands" % (BOARD, ROBOT))
+
+t0 = time.ticks_ms()
+v0 = clock.ticks_ms()
+n = 0
+while FRAMES < 0 or n < FRAMES:
+    r.step()
+    con.poll()
+    r.wait()
+    n += 1
+    ahead = clock.ticks_diff(clock.ticks_ms(), v0) - time.ticks_diff(time.ticks_ms(), t0)
+    if ahead > 0:
+        time.sleep_ms(ahead)

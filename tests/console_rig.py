@@ -1,0 +1,78 @@
+"""Source text shared by the console tests: the pico board's loop on the stub machine (PCA9685
+and HC-SR04 models, virtual clock) with a console reading from a BufferReader. Runs on CPython
+and in the MicroPython VM.
+
+    say(line) -> the reply line, after the frames it took (one poll per frame, as Runner.run)
+    frames(n) -> runs n frames
+    channels() -> the PCA9685 models' 18 servo pulse widths (us), leg/joint order
+    unsafe() -> servos whose output is neither off nor inside their calibrated min..max
+"""
+
+RIG = """
+import _stub_clock as clock
+import _stub_i2c
+import _stub_pins
+import hcsr04_model
+from _stub_i2c import shared_bus
+from pca9685_model import PCA9685Model
+from hexapod import board as boards
+import console
+import main
+
+clock.reset(0)
+_stub_pins.reset()
+_stub_i2c.reset()
+bus = shared_bus(0)
+bus.clock_us = clock.now_us
+BOARD = boards.load("pico")
+TABLE = boards.servo_table(BOARD)
+chips = {}
+for c in BOARD["pca9685"]["chips"]:
+    chips[c["address"]] = PCA9685Model(c["address"], osc_hz=c["osc_hz"])
+    bus.attach(chips[c["address"]])
+SONAR = [hcsr04_model.HCSR04(t, e, distance=3000 + 1000 * k) for k, (t, e) in enumerate(boards.sensor_pins(BOARD))]
+r = main.build(clock=clock)
+reader = console.BufferReader()
+REPLIES = []
+con = console.start(r, reader, None, out=REPLIES.append)
+SERVOS = r.robot.servos
+
+
+def frames(n):
+    for _ in range(n):
+        r.step()
+        con.poll()
+        r.wait()
+
+
+def say(line):
+    before = len(REPLIES)
+    reader.feed(line.encode() + b"\\n")
+    for _ in range(20):
+        frames(1)
+        if len(REPLIES) > before:
+            return REPLIES[-1]
+    return None
+
+
+def channels():
+    return [chips[a].pulse_us(ch) for a, ch, _ in TABLE]
+
+
+def unsafe():
+    bad = []
+    for k in range(18):
+        a, ch, _ = TABLE[k]
+        s = SERVOS[k]
+        ns = chips[a].pulse_ns(ch)
+        m = chips[a]
+        half = (m.prescale() + 1) * 500000000 // m.clock_hz() + 1
+        if ns and not s.min_us * 1000 - half <= ns <= s.max_us * 1000 + half:
+            bad.append((k, ns))
+    return bad
+
+
+def state():
+    return (list(r.robot.pulses), list(r.robot.angles), r.robot.mode,
+            [(s.centre_us, s.direction, s.min_us, s.max_us) for s in SERVOS], list(con.trims))
+"""

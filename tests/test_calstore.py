@@ -1,0 +1,263 @@
+"""The calibration file (firmware/calstore.py): CRC, format, and saves cut by a power loss at
+every step of the write, on a filesystem that renames over a file (littlefs) and on one that
+cannot (FAT): the next boot always finds the old calibration or the new one."""
+
+import ast
+import binascii
+
+from tests.console_rig import RIG
+
+# A filesystem that loses power after `budget` operations (open for writing, each write,
+# close, rename, remove). A cut write leaves half its bytes: open("w") truncates at once,
+# so the stub is harsher than littlefs (which keeps the old data until close).
+STUB_FS = """
+class PowerCut(Exception):
+    pass
+
+
+class StubFS:
+    def __init__(self, files=None, budget=-1, fat=False, readonly=False):
+        self.files = dict(files or {})
+        self.budget = budget
+        self.fat = fat
+        self.readonly = readonly
+        self.ops = 0
+
+    def _op(self):
+        if self.budget >= 0 and self.ops >= self.budget:
+            raise PowerCut()
+        self.ops += 1
+
+    def stat(self, name):
+        if name not in self.files:
+            raise OSError(2, "ENOENT")
+        return (0,)
+
+    def rename(self, a, b):
+        if a not in self.files:
+            raise OSError(2, "ENOENT")
+        if self.fat and b in self.files:
+            raise OSError(17, "EEXIST")
+        self._op()
+        self.files[b] = self.files.pop(a)
+
+    def remove(self, name):
+        if name not in self.files:
+            raise OSError(2, "ENOENT")
+        self._op()
+        del self.files[name]
+
+    def open(self, name, mode="r"):
+        if mode == "r":
+            if name not in self.files:
+                raise OSError(2, "ENOENT")
+            return Reader(self.files[name])
+        if self.readonly:
+            raise OSError(30, "EROFS")
+        self._op()
+        self.files[name] = ""
+        return Writer(self, name)
+
+
+class Reader:
+    def __init__(self, text):
+        self.text = text
+
+    def read(self):
+        return self.text
+
+    def close(self):
+        pass
+
+
+class Writer:
+    def __init__(self, fs, name):
+        self.fs = fs
+        self.name = name
+
+    def write(self, s):
+        try:
+            self.fs._op()
+        except PowerCut:
+            self.fs.files[self.name] += s[: len(s) // 2]
+            raise
+        self.fs.files[self.name] += s
+        return len(s)
+
+    def close(self):
+        self.fs._op()
+"""
+
+CUTS = (
+    STUB_FS
+    + """
+import calstore
+
+OLD = [(0, 1, 600, 2400)] * 18
+NEW = [(k - 9, -1 if k % 2 else 1, 700 + k, 2300 - k) for k in range(18)]
+NEWER = [(5, 1, 650, 2350)] * 18
+
+
+def boot(fs):
+    try:
+        return calstore.Store(fs, fs.open).load()[0]
+    except ValueError:
+        return None
+
+
+def save(fs, rows):
+    try:
+        calstore.Store(fs, fs.open).save(rows)
+        return True
+    except PowerCut:
+        return False
+
+
+def cuts(fat, start, nested):
+    seen = {}
+    n = 0
+    for b1 in range(40):
+        fs = StubFS({calstore.FILE: calstore.encode(OLD)} if start else {}, b1, fat)
+        done1 = save(fs, NEW)
+        plans = range(40) if nested and not done1 else [-1]
+        for b2 in plans:
+            fs2 = StubFS(fs.files, b2, fat)
+            done2 = save(fs2, NEWER) if b2 >= 0 else False
+            got = boot(StubFS(fs2.files, -1, fat))
+            name = "old" if got == OLD else "new" if got == NEW else "newer" if got == NEWER else repr(got)[:20]
+            key = (done1, done2, name)
+            seen[key] = seen.get(key, 0) + 1
+            n += 1
+        if done1:
+            break
+    return sorted(seen.items()), n
+"""
+)
+
+
+def test_crc16_is_ccitt_false():
+    import calstore
+
+    assert calstore.crc16(b"123456789") == 0x29B1  # the catalogue's check value
+    data = bytes(range(256)) * 3
+    assert calstore.crc16(data) == binascii.crc_hqx(data, 0xFFFF)
+
+
+def test_format_round_trips_and_refuses_damage(rt):
+    src = """
+import calstore
+ROWS = [(k - 9, -1 if k % 2 else 1, 700 + k, 2300 - k) for k in range(18)]
+text = calstore.encode(ROWS)
+print(repr(calstore.decode(text) == ROWS))
+def why(t):
+    try:
+        calstore.decode(t)
+        return "accepted"
+    except ValueError as e:
+        return str(e)
+flip = text.replace("2 femur -5", "2 femur -6")
+print(repr([why(text[:n]) for n in (0, 10, len(text) // 2, len(text) - 1)]))
+print(repr(why(flip)))
+print(repr(why(text.replace("hexapod-cal 1", "hexapod-cal 2"))))
+body = text[: text.rfind("crc ")].replace("700 2300", "2400 2300")
+print(repr(why(body + "crc %04x\\n" % calstore.crc16(body.encode()))))
+print(repr(text.splitlines()[:2] + text.splitlines()[-1:]))
+"""
+    out = [ast.literal_eval(x) for x in rt.run(src).splitlines()]
+    assert out[0] is True
+    assert out[1] == ["truncated (no checksum line)"] * 4
+    assert out[2] == "checksum mismatch (corrupt)"
+    assert out[3] == "checksum mismatch (corrupt)"  # the CRC covers the version line too
+    assert out[4] == "row 1: range 2400..2300, allowed 500 <= min < max <= 2500 us"
+    assert out[5][:2] == ["hexapod-cal 1", "1 coxa -9 1 700 2300"] and out[5][2].startswith("crc ")
+
+
+def test_a_save_cut_at_every_step_keeps_old_or_new(rt):
+    src = (
+        CUTS
+        + """
+for fat in (False, True):
+    print(repr(cuts(fat, True, False)))
+    print(repr(cuts(fat, False, False)))
+"""
+    )
+    out = [ast.literal_eval(x) for x in rt.run(src, heapsize="4m").splitlines()]
+    for k, (seen, n) in enumerate(out):
+        names = {name for (_, _, name), _ in seen}
+        if k % 2 == 0:  # an old file: every cut boots old (before the rename) or new (after)
+            assert names <= {"old", "new"} and "old" in names and "new" in names, seen
+        else:  # no file yet: defaults (None) or the new one, never a broken one
+            assert names <= {"None", "new"} and "new" in names, seen
+        assert n >= 22  # 18 row writes + header + crc + open + close + rename at least: every one cut
+        assert [c for (done, _, name), c in seen if done] == [1] and [name for (d, _, name), _ in seen if d] == ["new"]
+
+
+def test_two_cut_saves_in_a_row_never_lose_the_last_good_file():
+    # A first save cut between FAT's remove and rename leaves the good copy only in the temp
+    # file; a second save must not overwrite it before making it the file again.
+    ns = {}
+    exec(CUTS, ns)  # noqa: S102 (test source)
+    for fat in (False, True):
+        seen, n = ns["cuts"](fat, True, True)
+        names = {name for (_, _, name), _ in seen}
+        assert names <= {"old", "new", "newer"}, seen
+        assert n > 500
+
+
+def test_read_only_filesystem_refuses_save_and_keeps_the_file(rt):
+    src = (
+        RIG
+        + STUB_FS
+        + """
+import calstore
+fs = StubFS({calstore.FILE: calstore.encode([(0, 1, 600, 2400)] * 18)}, -1, True, True)
+con.store = calstore.Store(fs, fs.open)
+print(repr(say("trim 1 coxa 40")))
+print(repr(say("save")))
+print(repr(fs.files[calstore.FILE] == calstore.encode([(0, 1, 600, 2400)] * 18)))
+fs.readonly = False
+print(repr(say("save")))
+print(repr(say("defaults")))
+print(repr(say("cal 1 coxa")))
+print(repr(say("load")))
+print(repr(say("cal 1 coxa")))
+print(repr(say("status").split()[-2:]))
+"""
+    )
+    out = [ast.literal_eval(x) for x in rt.run(src, heapsize="4m").splitlines()]
+    assert out[0].endswith("trim 40 dir 1 min_us 600 max_us 2400")
+    assert out[1].startswith("err save: the filesystem is read-only (") and out[1].endswith("the previous file is kept")
+    assert out[2] is True
+    assert out[3].startswith("ok saved hexapod_cal.txt crc ")
+    assert out[4] == "ok defaults" and out[5].endswith("trim 0 dir 1 min_us 600 max_us 2400")
+    assert out[6] == "ok loaded hexapod_cal.txt" and out[7].endswith("trim 40 dir 1 min_us 600 max_us 2400")
+    assert out[8] == ["cal", "file"]
+
+
+def test_boot_with_missing_or_broken_file_says_so_once_and_uses_the_board_file(rt):
+    src = (
+        RIG
+        + STUB_FS
+        + """
+import calstore
+good = calstore.encode([(25, 1, 600, 2400)] * 18)
+for files in ({}, {calstore.FILE: good[:40]}, {calstore.FILE: good.replace("25", "26", 1)},
+              {calstore.FILE: good}, {calstore.FILE: "x", calstore.TMP: good}):
+    fs = StubFS(files)
+    said = []
+    c = console.start(r, None, fs, fs.open, out=said.append)
+    print(repr((said, c.cal_source, c.trims[0], r.robot.servos[0].centre_us)))
+    c.do("defaults")  # the next boot starts from the board file again
+"""
+    )
+    out = [ast.literal_eval(x) for x in rt.run(src, heapsize="4m").splitlines()]
+    assert out[0] == (["cal: no hexapod_cal.txt; the board file's calibration is in use"], "defaults", 0, 1500)
+    assert out[1] == (
+        ["cal: hexapod_cal.txt truncated (no checksum line); the board file's calibration is in use"],
+        "defaults",
+        0,
+        1500,
+    )
+    assert out[2][0] == ["cal: hexapod_cal.txt checksum mismatch (corrupt); the board file's calibration is in use"]
+    assert out[3] == ([], "file", 25, 1525)
+    assert out[4] == ([], "file", 25, 1525)  # a complete temp file left by a cut save

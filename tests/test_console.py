@@ -1,0 +1,332 @@
+"""The serial console on the board's loop (docs/console.md): replies, jogging against the float
+IK oracle, refusals that change nothing, the line reader's limits, walk expiry, calibration
+commands. Core/console logic runs on CPython and in the MicroPython VM, bit-identically."""
+
+import ast
+import re
+
+import pytest
+
+from hexapod_host import reference
+from tests.console_rig import RIG
+
+# seed 004's leg (robots/default.py), mm
+LEG = dict(coxa=30.0, femur=85.0, tibia=125.0, femur_offset=32.0)
+LEG_LINE = re.compile(
+    r"^ok leg (\d) angles (-?\d+\.\d\d) (-?\d+\.\d\d) (-?\d+\.\d\d) pulses (\d+) (\d+) (\d+) "
+    r"foot (-?\d+\.\d) (-?\d+\.\d) (-?\d+\.\d)$"
+)
+
+
+def transcript(runtime, lines, tail=""):
+    src = RIG + "\nfor line in %r:\n    print(repr(say(line)))\n" % (lines,) + tail
+    return runtime.run(src, heapsize="4m")
+
+
+def test_jogging_matches_the_float_ik_and_the_servo_map(rt):
+    out = transcript(rt, ["foot 2 130 0 -80", "nudge 2 5 -10 2.5", "get 2"]).splitlines()
+    replies = [ast.literal_eval(x) for x in out]
+    for reply, (x, y, z) in zip(replies, [(130, 0, -80), (135, -10, -77.5), (135, -10, -77.5)], strict=True):
+        m = LEG_LINE.match(reply)
+        assert m, reply
+        angles = [float(v) for v in m.group(2, 3, 4)]
+        want = reference.ik(x, y, z, **LEG)
+        assert max(abs(a - w) for a, w in zip(angles, want, strict=True)) <= 0.011
+        # pico.py leg 2: coxa, femur centre 1500, tibia centre 2400, all direction 1, 10 us/deg
+        pulses = [int(v) for v in m.group(5, 6, 7)]
+        assert [
+            abs(p - q) <= 0.5 + 1e-9
+            for p, q in zip(
+                pulses, [1500 + 10 * a for a in (angles[0], angles[1])] + [2400 + 10 * angles[2]], strict=True
+            )
+        ] == [True] * 3
+        foot = [float(v) for v in m.group(8, 9, 10)]
+        assert max(abs(f - w) for f, w in zip(foot, (x, y, z), strict=True)) <= 0.1
+
+
+def test_commands_reply_one_line_each_on_both_runtimes(both_runtimes):
+    lines = [
+        "help",
+        "get 1",
+        "foot 2 130 0 -80",
+        "joint 2 femur 12.5",
+        "pulse 2 tibia 1600",
+        "cal 2 femur",
+        "trim 2 femur 20",
+        "dir 2 coxa -1",
+        "range 2 tibia 700 2300",
+        "stand",
+        "gait ripple",
+        "gait",
+        "pid",
+        "pid 20 0.25 2",
+        "sonar",
+        "wall off",
+        "stop",
+        "defaults",
+        "save",
+        "load",
+    ]
+    src = RIG + "\nfor line in %r:\n    print(repr(say(line)))\n    if line == 'stand':\n        frames(120)\n" % (
+        lines,
+    )
+    cp, mp = both_runtimes(src + "print(unsafe())\n", heapsize="4m")
+    assert cp == mp
+    replies = [ast.literal_eval(x) for x in cp.splitlines()]
+    assert replies[-1] == []
+    replies = replies[:-1]
+    assert len(replies) == len(lines)
+    assert replies[0] == (
+        "ok help status stand sit relax foot nudge joint pulse get walk stop gait sonar wall pid "
+        "cal trim dir range save load defaults"
+    )
+    assert replies[3].startswith("ok leg 2 angles 0.00 12.50 ") and " pulses 1500 1625 " in replies[3]
+    assert " angles 0.00 12.50 -80.00 pulses 1500 1625 1600 " in replies[4]  # 2400 + 10 x -80
+    assert replies[5] == "ok leg 2 joint femur centre_us 1500 trim 0 dir 1 min_us 600 max_us 2400"
+    assert replies[6] == "ok leg 2 joint femur centre_us 1500 trim 20 dir 1 min_us 600 max_us 2400"
+    assert replies[7] == "ok leg 2 joint coxa centre_us 1500 trim 0 dir -1 min_us 600 max_us 2400"
+    assert replies[8] == "ok leg 2 joint tibia centre_us 2400 trim 0 dir 1 min_us 700 max_us 2300"
+    assert replies[9] == "ok mode moving"
+    assert replies[10:12] == ["ok gait ripple", "ok gait ripple"]
+    assert replies[12:14] == ["ok pid 25.000 0.500 1.000", "ok pid 20.000 0.250 2.000"]
+    assert replies[14].startswith("ok front 300.0 ok left_front ")
+    assert replies[15:17] == ["ok wall off", "ok mode standing"]
+    assert replies[17] == "ok defaults"
+    assert replies[18:] == [
+        "err save: no calibration file on this board",
+        "err load: no calibration file on this board",
+    ]
+
+
+def test_trim_dir_range_move_a_held_servo_by_what_the_map_says(rt):
+    out = transcript(
+        rt,
+        [
+            "joint 3 femur 20",
+            "trim 3 femur -35",
+            "dir 3 femur -1",
+            "range 3 femur 1400 1500",
+            "range 3 femur 1200 1500",
+            "get 3",
+        ],
+        "print(channels()[7])\n",
+    ).splitlines()
+    r = [ast.literal_eval(x) for x in out]
+    assert " pulses 0 1700 0 " in r[0]  # 1500 + 20 deg x 10 us; the leg's other servos stay limp
+    assert r[1].endswith("trim -35 dir 1 min_us 600 max_us 2400")
+    assert r[2].endswith("trim -35 dir -1 min_us 600 max_us 2400")  # 1465 - 200 = 1265 us now
+    assert r[3] == "err range: leg 3 femur: at 20.00 deg it would need 1265 us, outside 1400..1500 us"
+    assert r[4].endswith("min_us 1200 max_us 1500")
+    assert " pulses 0 1265 0 " in r[5]
+    assert abs(r[6] - 1265) <= 3  # the PCA9685 model: 4.9 us per count at 50 Hz
+
+
+BAD = [
+    "foot 7 100 0 -80",
+    "foot 0 100 0 -80",
+    "foot 2 100 0",
+    "foot 2 100 0 -80 1",
+    "foot 2 abc 0 -80",
+    "foot 2 1e2 0 -80",
+    "foot 2 600 0 -80",
+    "foot 2 300 0 -80",
+    "foot 2 30 0 30",
+    "foot 2 -130 0 -80",
+    "foot 2 0x10 0 -80",
+    "foot 2 nan 0 -80",
+    "foot 2 -- 0 -80",
+    "foot 2 1.2.3 0 -80",
+    "foot two 100 0 -80",
+    "nudge 2 0 0 200",
+    "nudge 1 0 0 1",
+    "joint 2 knee 10",
+    "joint 2 femur 95",
+    "joint 2 tibia 5",
+    "joint 2 coxa 181",
+    "joint 2 femur",
+    "pulse 2 femur 2401",
+    "pulse 2 femur 599",
+    "pulse 2 femur 1500.5",
+    "pulse 2 femur -1500",
+    "pulse 2 elbow 1500",
+    "get 9",
+    "get",
+    "get 2 3",
+    "walk 1 2",
+    "walk 400 0 0",
+    "walk 0 0 91",
+    "walk a b c",
+    "gait trot",
+    "wall up 8",
+    "wall left 3",
+    "wall left 51",
+    "wall left",
+    "pid 1 2",
+    "pid -1 0 0",
+    "pid 101 0 0",
+    "cal 2",
+    "cal 2 foot",
+    "trim 2 femur 301",
+    "trim 2 femur -301",
+    "trim 2 tibia 101",
+    "trim 2 femur 1.5",
+    "dir 2 femur 0",
+    "dir 2 femur 2",
+    "range 2 femur 1500 1500",
+    "range 2 femur 400 2400",
+    "range 2 femur 600 2600",
+    "range 2 femur 2000 1000",
+    "save 1",
+    "load now",
+    "defaults x",
+    "status x",
+    "jump",
+    "STAND",
+    "stand up",
+    "foot 2 +-1 0 0",
+    "foot 2 . 0 0",
+    "foot 2 1234567890 0 0",
+    "walk 0.0.0 0 0",
+]
+
+
+def test_bad_lines_are_refused_and_change_nothing(rt):
+    out = transcript(
+        rt,
+        ["foot 2 130 0 -80"],
+        "frames(3)\nbefore = state()\nprint(repr(before))\n"
+        "for line in %r:\n    print(repr(say(line)))\n    assert state() == before, line\nprint(unsafe())\n" % (BAD,),
+    ).splitlines()
+    replies = [ast.literal_eval(x) for x in out[2:-1]]
+    assert len(replies) == len(BAD)
+    for line, reply in zip(BAD, replies, strict=True):
+        word = line.split()[0]
+        assert reply.startswith("err %s: " % word) or reply.startswith("err unknown command"), (line, reply)
+        assert "internal" not in reply
+    assert out[-1] == "[]"
+    by = dict(zip(BAD, replies, strict=True))
+    assert by["foot 7 100 0 -80"] == "err foot: leg '7', allowed 1..6"
+    assert by["foot 2 600 0 -80"] == "err foot: x 600 is outside -500.0..500.0 mm"
+    assert by["foot 2 1e2 0 -80"] == "err foot: x '1e2' is not a decimal number (mm)"
+    assert by["joint 2 femur 95"] == "err joint: femur above its limit by 5.00 deg"
+    assert by["pulse 2 femur 2401"] == "err pulse: pulse 2401 is outside 600..2400 us (this servo's calibrated range)"
+    assert by["nudge 1 0 0 1"] == "err nudge: leg 1 has a limp servo: place it with 'foot' first"
+    assert by["walk 1 2"] == "err walk: need VX VY WZ (mm/s, mm/s, deg/s), got 2 arguments"
+    assert by["jump"] == "err unknown command 'jump' (help lists them)"
+    # 130 mm beyond reach: the float IK's reach is femur + tibia from the femur joint
+    far = reference.ik(300, 0, -80, **LEG)
+    assert far is None and by["foot 2 300 0 -80"].startswith("err foot: too far: ")
+    d = ((300 - 30) ** 2 + (-80 - 32) ** 2) ** 0.5 - 210
+    # far outside, leg.solve quarters the coordinates: its excess is good to +-0.5 mm
+    assert abs(float(by["foot 2 300 0 -80"].split()[4]) - d) <= 0.5
+
+
+def test_line_reader_limits(rt):
+    src = (
+        RIG
+        + """
+reader.feed(b"get 1\\r\\nget 2\\rget 3\\n\\n\\r\\n")
+frames(1)
+print(repr(REPLIES))
+del REPLIES[:]
+reader.feed(b"x" * 96 + b"\\nget 4\\n")
+frames(1)   # 64 bytes a frame: the long line is not over yet
+n1 = len(REPLIES)
+frames(2)
+print(repr((n1, REPLIES)))
+del REPLIES[:]
+reader.feed(b"get 1\\xff\\xfe\\n\\x00\\x1b[A\\nget\\t5\\n")
+frames(2)
+print(repr(REPLIES))
+del REPLIES[:]
+reader.feed(b"x" * 95 + b"\\n")
+frames(3)
+print(repr(REPLIES[0][:30]))
+"""
+    )
+    out = [ast.literal_eval(x) for x in rt.run(src, heapsize="4m").splitlines()]
+    assert [x.split()[2] for x in out[0]] == ["1", "2", "3"]  # \r\n, \r, \n end a line; blank lines: no reply
+    n1, replies = out[1]
+    assert n1 == 0 and replies[0] == "err line too long (at most 95 characters)" and replies[1].startswith("ok leg 4 ")
+    assert out[2][0] == "err non-text byte 0xff in line (allowed: printable ASCII)"
+    assert out[2][1] == "err non-text byte 0x00 in line (allowed: printable ASCII)"
+    assert out[2][2].startswith("ok leg 5 ")  # a tab separates words
+    assert out[3] == "err unknown command 'xxxxxxxxxxxxxxxxxxxx'"[:30]  # exactly 95 characters is a line
+
+
+def test_walk_expires_unless_renewed(rt):
+    src = (
+        RIG
+        + """
+from hexapod import tick, walk
+say("stand")
+while r.robot.mode != tick.STANDING:
+    frames(1)
+t0 = clock.ticks_ms()
+print(repr(say("walk 60 0 0")))
+t_walk = clock.ticks_ms()
+seen = []
+for k in range(100):
+    if k == 30:
+        say("walk 60 0 5")   # renewed 0.6 s in: a new 1 s
+        t_walk = clock.ticks_ms()
+    frames(1)
+    if r.robot.walker.state == walk.STOPPING or r.robot.walker.state == walk.STOPPED:
+        seen.append(clock.ticks_diff(clock.ticks_ms(), t_walk))
+        break
+print(repr(seen))
+"""
+    )
+    out = rt.run(src, heapsize="4m").splitlines()
+    assert ast.literal_eval(out[0]) == "ok walk 60.0 0.0 0.00 timeout_ms 1000"
+    (after,) = ast.literal_eval(out[1])
+    assert 1000 <= after <= 1040  # stopping within two 20 ms frames after the 1 s deadline
+
+
+def test_idle_console_frame_allocates_nothing(mp):
+    from hexapod_host.testing import HEAP_PROBE
+
+    src = (
+        RIG
+        + HEAP_PROBE
+        + """
+say("foot 2 130 0 -80")
+def idle(n):
+    for _ in range(n):
+        con.poll()
+def run(n):
+    frames(n)
+print((heap_bytes(idle, 200), heap_bytes(run, 50)))
+"""
+    )
+    assert mp.value(src, heapsize="4m") == (0, 0)
+
+
+@pytest.mark.parametrize("start", ["relaxed", "standing"])
+def test_jog_changes_only_that_legs_channels(rt, start):
+    src = (
+        RIG
+        + """
+from hexapod import tick
+if %r == "standing":
+    say("stand")
+    while r.robot.mode != tick.STANDING:
+        frames(1)
+frames(2)
+before = channels()
+print(repr(say("foot 2 140 10 -70")))
+frames(2)
+print(repr((before, channels(), unsafe())))
+"""
+        % (start,)
+    )
+    out = rt.run(src, heapsize="4m").splitlines()
+    m = LEG_LINE.match(ast.literal_eval(out[0]))
+    before, after, bad = ast.literal_eval(out[1])
+    assert bad == []
+    changed = [k for k in range(18) if before[k] != after[k]]
+    assert set(changed) <= {3, 4, 5} and after[3:6] != before[3:6]
+    want = reference.ik(140, 10, -70, **LEG)
+    for k, (centre, a) in enumerate(zip((1500, 1500, 2400), want, strict=True)):
+        assert abs(after[3 + k] - (centre + 10 * a)) <= 2.6  # half a PCA9685 count (2.44 us) + IK 0.01 deg
+    assert int(m.group(5)) == after[3] or abs(int(m.group(5)) - after[3]) <= 3
