@@ -158,6 +158,20 @@ def test_dry_run_plan_for_a_circuitpython_drive(tmp_path, capsys):
     assert "# 1 of %d files changed on %s: robots/default.py" % (len(files), drive) in out
 
 
+def test_a_read_only_drive_says_how_to_free_it(tmp_path):
+    stage, drive = str(tmp_path / "stage"), tmp_path / "drive"
+    _, image, _ = flash.stage("feather_rp2040", "default", stage)
+    drive.mkdir()
+    real = flash.shutil.copyfile
+    flash.shutil.copyfile = lambda src, dest: (_ for _ in ()).throw(OSError(30, "Read-only file system"))
+    try:
+        with pytest.raises(flash.FlashError, match=r"the drive is read-only \(boot.py .* hold A2 low while resetting"):
+            flash.flash_drive(str(drive), stage, sorted(image), say=lambda s: None)
+    finally:
+        flash.shutil.copyfile = real
+    assert [f for _, _, fs in os.walk(drive) for f in fs] == []  # no file (an empty folder may stay)
+
+
 def test_a_full_drive_replaces_nothing(tmp_path):
     """The copy stops at the first write that fails: no file replaced, no temporary left."""
     stage, drive = str(tmp_path / "stage"), tmp_path / "drive"

@@ -9,6 +9,7 @@ end, so a failed copy replaces nothing. CircuitPython boards: .py files onto the
 
 import ast
 import contextlib
+import errno
 import hashlib
 import json
 import os
@@ -397,7 +398,13 @@ def flash_drive(drive, staged, copy, say=print):
         for dest in written + [os.path.join(drive, copy[len(written)].replace("/", os.sep))]:
             with contextlib.suppress(OSError):
                 os.remove(dest + NEW)
-        why = "the drive is full" if err.errno == 28 else str(err)
+        why = {
+            errno.ENOSPC: "the drive is full",
+            errno.EROFS: "the drive is read-only (boot.py gave the flash to code.py for `save`: hold A2 low while "
+            "resetting, then flash again)",
+            errno.EACCES: "the drive is read-only (boot.py gave the flash to code.py for `save`: hold A2 low while "
+            "resetting, then flash again)",
+        }.get(err.errno, str(err))
         raise FlashError("%s; copying stopped, no file was replaced (temporary files removed)" % why) from None
     landed = []
     try:
