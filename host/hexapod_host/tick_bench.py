@@ -13,6 +13,8 @@ import tempfile
 from hexapod_host import FIRMWARE, ROOT, mpvm
 
 VM_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm", "bench_tick.py")
+CONSOLE_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm", "bench_console.py")
+CONSOLE_HEAP = "512k"
 WALL_HEAP = "160k"
 
 
@@ -46,6 +48,10 @@ def bench_tick(args, ticks=10000, repeats=5):
     gaits = [r for r in rows if "gait" in r]
     wall = [r for r in rows if r.get("row") == "wall-follow"][0]
     wall["heap"] = WALL_HEAP
+    # A console command frame (docs/console.md): poll a whole line, run it, reply, tick. From
+    # sources on the stub machine, so a VM of its own with room for the compiler.
+    console = json.loads(mpvm.run(script=CONSOLE_SCRIPT, heapsize=CONSOLE_HEAP, args=("50",)).strip().splitlines()[-1])
+    console["heap"] = CONSOLE_HEAP
     return {
         "bench": "tick",
         "runtime": "micropython",
@@ -56,4 +62,5 @@ def bench_tick(args, ticks=10000, repeats=5):
         "heap_bytes_per_tick": max(g["heap_bytes_per_tick"] for g in gaits),
         # The wall follower's frame (sonar result in, PID, walk command, tripod tick), same method.
         "wall_follow": wall,
+        "console_frames": console,
     }

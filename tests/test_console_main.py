@@ -1,0 +1,112 @@
+"""main.py with the console: the calibration notice at boot, Ctrl-C relaxes (or holds) the
+servos and leaves `runner` for the REPL, the watchdog is fed every frame; the board file's
+console settings are checked at load."""
+
+import ast
+
+import pytest
+
+from tests.console_rig import RIG
+
+CTRL_C = """
+class CtrlC(console.BufferReader):
+    def __init__(self, after):
+        console.BufferReader.__init__(self, b"get 1\\n")
+        self.after = after
+        self.calls = 0
+
+    def read_byte(self):
+        self.calls += 1
+        if self.calls > self.after:
+            raise KeyboardInterrupt
+        return console.BufferReader.read_byte(self)
+"""
+
+
+@pytest.mark.parametrize("on_exit", ["relax", "hold"])
+def test_ctrl_c_relaxes_or_holds_and_leaves_the_runner(rt, on_exit):
+    src = (
+        RIG
+        + CTRL_C
+        + """
+import boards.pico
+boards.pico.BOARD["on_exit"] = %r
+boards.pico.BOARD["watchdog_ms"] = 2000
+try:
+    r2 = main.main(clock=clock, reader=CtrlC(400))
+finally:
+    del boards.pico.BOARD["on_exit"]
+    del boards.pico.BOARD["watchdog_ms"]
+print(repr((r2 is main.runner, r2.frames, channels(), r2.robot.mode, r2.watchdog.expired(), r2.watchdog.timeout_ms)))
+"""
+        % (on_exit,)
+    )
+    out = rt.run(src, heapsize="4m").splitlines()
+    assert out[0] == "cal: no hexapod_cal.txt; the board file's calibration is in use"
+    assert out[1].startswith("ok leg 1 angles ")  # the console answered while the loop ran
+    assert out[2] == "stopped: servos %s; runner.run() resumes" % ("relaxed" if on_exit == "relax" else "held")
+    same, frames, widths, mode, expired, timeout = ast.literal_eval(out[3])
+    assert same and frames > 5 and not expired and timeout == 2000
+    if on_exit == "relax":
+        assert widths == [0] * 18 and mode == 0
+    else:
+        assert 0 not in widths and mode != 0  # every servo still holds its last pulse
+
+
+def test_watchdog_starves_when_the_loop_stops(rt):
+    src = (
+        RIG
+        + """
+from machine import WDT
+r.watchdog = WDT(timeout=1000)
+r.run(60)
+fed = r.watchdog.expired()
+clock.advance_us(1100000)   # a loop hung for 1.1 s
+print(repr((fed, r.watchdog.expired())))
+"""
+    )
+    assert rt.value(src, heapsize="4m") == (False, True)
+
+
+@pytest.mark.parametrize(
+    "key, value, message",
+    [
+        ("watchdog_ms", 500, "board 'pico': watchdog_ms: 500, allowed 1000..8000 ms (or None: no watchdog)"),
+        ("watchdog_ms", 9000, "board 'pico': watchdog_ms: 9000, allowed 1000..8000 ms (or None: no watchdog)"),
+        ("watchdog_ms", "2s", "board 'pico': watchdog_ms: '2s', allowed 1000..8000 ms (or None: no watchdog)"),
+        ("on_exit", "freeze", "board 'pico': on_exit: 'freeze', allowed 'relax' or 'hold'"),
+        ("walk_timeout_ms", 100, "board 'pico': walk_timeout_ms: 100, allowed 200..10000 ms"),
+    ],
+)
+def test_console_settings_are_checked_at_load(key, value, message):
+    import copy
+
+    import boards.pico
+    from hexapod import board
+
+    b = copy.deepcopy(boards.pico.BOARD)
+    b[key] = value
+    with pytest.raises(ValueError) as e:
+        board.validate(b)
+    assert str(e.value) == message
+    for ok in (1000, 8000, None):
+        b[key] = ok if key != "on_exit" else "hold"
+        if key == "walk_timeout_ms" and ok == 8000:
+            continue
+        board.validate(b)
+
+
+def test_console_bench_rows(mp):
+    import json
+    import os
+
+    from hexapod_host import mpvm
+    from hexapod_host.tick_bench import CONSOLE_HEAP, CONSOLE_SCRIPT
+
+    assert os.path.exists(CONSOLE_SCRIPT)
+    result = json.loads(mpvm.run(script=CONSOLE_SCRIPT, heapsize=CONSOLE_HEAP, args=("3",)).strip().splitlines()[-1])
+    rows = {r["line"]: r for r in result["frames"]}
+    assert rows["(idle)"]["heap_bytes"] == 0  # the idle console frame allocates nothing
+    assert rows["x" * 24]["heap_bytes"] == 0  # an over-long line's reply is a constant
+    assert all(0 < r["median_us"] <= r["max_us"] for r in result["frames"] if r["line"] != "(idle)")
+    assert {"get 2", "status", "foot 2 130 5 -80", "nudge 2 0.5 0 0", "trim 2 femur 5"} <= set(rows)
