@@ -9,6 +9,7 @@ import subprocess
 import pytest
 
 from hexapod_host import FIRMWARE, ROOT, STUBS, cli, flash, mpvm
+from tests.test_runner import SETUP
 
 CORE = sorted("hexapod/" + f for f in os.listdir(os.path.join(FIRMWARE, "hexapod")) if f.endswith(".py"))
 # What main.py and runner.py import (read by hand from them): the MicroPython drivers.
@@ -238,36 +239,19 @@ def test_mpremote_failures_read_clearly():
 
 # The staged image, alone on the path after the stub machine, boots and runs frames: the chip models
 # see every servo inside its calibrated range, the same widths as the firmware sources give on CPython.
-BOOT = """
-import sys
-import _stub_clock as clock
-import _stub_i2c
-import _stub_pins
-from _stub_i2c import shared_bus
-from pca9685_model import PCA9685Model
-import main
-from hexapod import board as boards
+BOOT = (
+    SETUP
+    + """
 from hexapod import leg
-
-clock.reset(0)
-_stub_pins.reset()
-_stub_i2c.reset()
-bus = shared_bus(0)
-bus.clock_us = clock.now_us
-table = boards.servo_table(boards.load(main.BOARD))
-chips = {}
-for a in (0x40, 0x41):
-    chips[a] = PCA9685Model(a)
-    bus.attach(chips[a])
+plug(0x40)
+plug(0x41)
 r = main.build(clock=clock)
 r.robot.stand_up()
-for _ in range(120):
-    r.step()
-    r.wait()
-widths = [chips[a].pulse_us(ch) for a, ch, _ in table]
-inside = [m.min_us <= w <= m.max_us for w, (_, _, m) in zip(widths, table)]
-print(repr((main.__file__, leg.__file__, main.BOARD, r.frames, r.held, r.robot.mode, inside, widths)))
+bad = frames(r, 120)
+widths = [chips[a].pulse_us(ch) for a, ch, _ in TABLE]
+print(repr((main.__file__, leg.__file__, main.BOARD, r.frames, r.held, r.robot.mode, bad, widths)))
 """
+)
 
 
 def test_the_staged_image_boots_in_the_vm(tmp_path):
@@ -283,9 +267,10 @@ def test_the_staged_image_boots_in_the_vm(tmp_path):
         [mpvm.executable(), "-X", "heapsize=4m", "-c", BOOT], capture_output=True, text=True, env=env, cwd=stage
     )
     assert proc.returncode == 0, proc.stdout + proc.stderr
-    main_file, leg_file, board, n, held, mode, inside, widths = eval(proc.stdout.strip().splitlines()[-1])
+    main_file, leg_file, board, n, held, mode, bad, widths = eval(proc.stdout.strip().splitlines()[-1])
     assert main_file.endswith("main.py") and leg_file.endswith("hexapod/leg.mpy") and board == "pico"
-    assert n == 120 and held == 0 and inside == [True] * 18
+    # Every frame every servo inside its calibrated range (test_runner's unsafe()), none limp at the end.
+    assert n == 120 and held == 0 and bad == [] and 0 not in widths
     # The firmware sources on CPython, same board, same frames: the same 18 widths.
     cp = subprocess.run(
         [os.sys.executable, "-c", "import hexapod_host\n" + BOOT], capture_output=True, text=True, cwd=ROOT
@@ -340,9 +325,9 @@ def test_flash_through_mpremote_into_a_fake_board_then_boot_it(tmp_path, fake_bo
     env = dict(os.environ, MICROPYPATH=os.pathsep.join((STUBS, str(root))))
     proc = subprocess.run([mpvm.executable(), "-X", "heapsize=4m", "-c", BOOT], capture_output=True, text=True, env=env)
     assert proc.returncode == 0, proc.stdout + proc.stderr
-    main_file, leg_file, _, n, held, _, inside, _ = eval(proc.stdout.strip().splitlines()[-1])
+    main_file, leg_file, _, n, held, _, bad, widths = eval(proc.stdout.strip().splitlines()[-1])
     assert main_file == str(root / "main.py") and leg_file == str(root / "hexapod" / "leg.mpy")
-    assert n == 120 and held == 0 and inside == [True] * 18
+    assert n == 120 and held == 0 and bad == [] and 0 not in widths
     # Again: nothing changed, nothing copied; a file the board's manifest disagrees on: only that one.
     assert flash.flash_micropython(port, stage, image, say=said.append) == []
     text = (root / "hexapod.manifest").read_text()
