@@ -377,3 +377,21 @@ def test_a_board_that_is_not_micropython(tmp_path, fake_board):
         "the board on %s did not answer within 2 s (mpremote could not enter the raw REPL)" % port
     ) and str(err.value).endswith("nothing was copied")
     assert tree(root) == []
+
+
+def test_a_rename_that_fails_names_the_files_that_landed(tmp_path, fake_board):
+    port, root = fake_board()
+    (root / "hexapod" / "walk.mpy" / "in_the_way").mkdir(parents=True)  # a folder where a file goes
+    stage = str(tmp_path / "stage")
+    _, image, _ = flash.stage("pico", "default", stage)
+    with pytest.raises(flash.FlashError) as err:
+        flash.flash_micropython(port, stage, image, say=lambda s: None)
+    before = [p for p in sorted(image) if p < "hexapod/walk.mpy"]  # renamed in sorted order
+    assert "renaming stopped after %d of %d files: landed %s;" % (len(before), len(image), ", ".join(before)) in str(
+        err.value
+    )
+    assert "the rest wait as NAME.new; the board has no manifest now, the next flash copies everything" in str(
+        err.value
+    )
+    assert not (root / "hexapod.manifest").exists()
+    assert all((root / p).read_bytes() == (tmp_path / "stage" / p).read_bytes() for p in before)

@@ -363,8 +363,9 @@ def flash_micropython(port, staged, image, say=print, full=False, probe_s=15):
         if what == "rename into place" and status:
             landed = [ln.split(None, 1)[1] for ln in out.splitlines() if ln.startswith("landed ")]
             raise FlashError(
-                "%s; renaming stopped after %d of %d files: landed %s; the board has no manifest now, the next flash "
-                "copies everything" % (explain_mpremote(port, out), len(landed), len(copy), ", ".join(landed) or "none")
+                "%s; renaming stopped after %d of %d files: landed %s; the rest wait as NAME.new; the board has no "
+                "manifest now, the next flash copies everything"
+                % (explain_mpremote(port, out), len(landed), len(copy), ", ".join(landed) or "none")
             )
         if status and what != "reset":
             raise FlashError(explain_mpremote(port, out))
