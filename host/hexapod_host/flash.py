@@ -213,6 +213,7 @@ PROBE = (
 s = os.statvfs("/")
 print("impl", sys.implementation.name)
 print("free", s[0] * s[3], s[0])
+print("mpy", getattr(sys.implementation, "_mpy", 0))
 try:
     print(open("%s").read())
 except OSError:
@@ -305,15 +306,66 @@ def run(cmd, timeout=120):
 
 
 def parse_probe(text):
-    """(runtime name, free bytes, block bytes, manifest {path: sha256}) from the probe's output."""
-    impl, free, block = None, None, 4096
+    """(runtime name, free bytes, block bytes, sys.implementation._mpy, manifest {path: sha256}) from the probe."""
+    impl, free, block, mpy = None, None, 4096, 0
     for line in text.splitlines():
         parts = line.split()
         if parts[:1] == ["impl"] and len(parts) == 2:
             impl = parts[1]
         elif parts[:1] == ["free"] and len(parts) == 3:
             free, block = int(parts[1]), int(parts[2])
-    return impl, free, block, parse_manifest(text)
+        elif parts[:1] == ["mpy"] and len(parts) == 2 and parts[1].isdigit():
+            mpy = int(parts[1])
+    return impl, free, block, mpy, parse_manifest(text)
+
+
+# MicroPython's native architecture numbers (.mpy header, sys.implementation._mpy >> 10).
+ARCH_NUMBER = {"x86": 1, "x64": 2, "armv6": 3, "armv6m": 4, "armv7m": 5, "armv7em": 6, "armv7emsp": 7}
+ARCH_NUMBER.update({"armv7emdp": 8, "xtensa": 9, "xtensawin": 10, "rv32imc": 11})
+
+
+def image_abi(staged):
+    """(.mpy version, native arch number, sub-version) of the staged files; arch 0 when none holds native code."""
+    version, arch, sub = None, 0, 0
+    for d, _, files in os.walk(staged):
+        for f in files:
+            if f.endswith(".mpy"):
+                with open(os.path.join(d, f), "rb") as fh:
+                    head = fh.read(3)
+                version = head[1]
+                if head[2] >> 2:
+                    arch, sub = head[2] >> 2, head[2] & 3
+    return version, arch, sub
+
+
+def check_abi(port, board_mpy, staged):
+    """FlashError unless the board's MicroPython can load the staged .mpy files (docs: reference/mpyfiles)."""
+    version, arch, sub = image_abi(staged)
+    if not board_mpy or version is None:
+        return
+    names = {n: a for a, n in ARCH_NUMBER.items()}
+    b_version, b_sub, b_arch = board_mpy & 0xFF, (board_mpy >> 8) & 3, board_mpy >> 10
+    if b_version != version:
+        raise FlashError(
+            "the MicroPython on %s loads .mpy version %d, these files are version %d (mpy-cross %s): update "
+            "MicroPython on the board; nothing was copied" % (port, b_version, version, "1.29")
+        )
+    if arch and b_arch != arch:
+        boards = [b for b, a in sorted(ARCH.items()) if ARCH_NUMBER[a] == b_arch]
+        raise FlashError(
+            "the board on %s runs %s code, the image was compiled for %s: %s; nothing was copied"
+            % (
+                port,
+                names.get(b_arch, "architecture %d" % b_arch),
+                names.get(arch, arch),
+                "flash it with --board " + " or ".join(boards) if boards else "no board file here is for it",
+            )
+        )
+    if arch and b_sub != sub:
+        raise FlashError(
+            "the MicroPython on %s loads native .mpy code of version %d.%d, these files are %d.%d (the viper IK needs "
+            "the same): update MicroPython on the board; nothing was copied" % (port, b_version, b_sub, version, sub)
+        )
 
 
 def space_needed(staged, copy, block):
@@ -337,11 +389,12 @@ def flash_micropython(port, staged, image, say=print, full=False, probe_s=15):
         )
     if status:
         raise FlashError(explain_mpremote(port, out) + "; nothing was copied")
-    impl, free, block, on_board = parse_probe(out)
+    impl, free, block, board_mpy, on_board = parse_probe(out)
     if impl != "micropython":
         raise FlashError(
             "the board on %s runs %s, not MicroPython; nothing was copied (CircuitPython: --drive PATH)" % (port, impl)
         )
+    check_abi(port, board_mpy, staged)
     copy, stale = changes(image, {} if full else on_board)
     say("board manifest: %d files; copying %d, removing %d" % (len(on_board), len(copy), len(stale)))
     need = space_needed(staged, copy, block)
