@@ -158,7 +158,8 @@ def screen_until(text, timeout=5.0):
 def test_jog_in_a_terminal_as_a_person_would():
     fake = FakeConsole()
     path, stop = serve_pty(fake)
-    cmd = "%s -m hexapod_host.cli jog --port %s" % (sys.executable, path)
+    # The shell prints jog's exit status after it, and stays a moment so the screen can be read.
+    cmd = "%s -m hexapod_host.cli jog --port %s; echo exit=$?; sleep 5" % (sys.executable, path)
     tmux("kill-server")
     try:
         assert tmux("new-session", "-d", "-s", "jog", "-x", "100", "-y", "30", cmd).returncode == 0
@@ -170,11 +171,14 @@ def test_jog_in_a_terminal_as_a_person_would():
         tmux("send-keys", "-t", "jog", ":", "status", "Enter")
         shown = screen_until("status: ok frames")
         assert "status: ok frames 100" in shown, shown
+        stop()  # the cable comes out
+        tmux("send-keys", "-t", "jog", "Down")
+        shown = screen_until("DISCONNECTED")
+        assert "DISCONNECTED nudge 5 -10 0 0: lost the board on %s" % path in shown, shown
+        assert "foot   x    140.0  y      0.0  z    -90.0" in shown  # the last position the board confirmed
         tmux("send-keys", "-t", "jog", "q")
-        end = time.monotonic() + 5
-        while tmux("has-session", "-t", "jog").returncode == 0 and time.monotonic() < end:
-            time.sleep(0.05)
-        assert tmux("has-session", "-t", "jog").returncode != 0  # q left the tool
+        shown = screen_until("exit=")
+        assert "hexapod jog: nudge 5 -10 0 0: lost the board on %s" % path in shown and "exit=1" in shown, shown
     finally:
         tmux("kill-server")
         stop()
