@@ -421,3 +421,22 @@ def test_a_board_that_cannot_load_the_image(tmp_path, fake_board, mpy, says):
         flash.flash_micropython(port, stage, image, say=lambda s: None)
     assert says in str(err.value) and str(err.value).endswith("nothing was copied")
     assert tree(root) == []
+
+
+def test_the_cli_flashes_a_board_and_make_flash_calls_it(tmp_path, fake_board, capsys):
+    port, root = fake_board()
+    argv = ["flash", "--board", "pico", "--port", port, "--stage-dir", str(tmp_path / "stage")]
+    status, out, _ = hexapod(argv, capsys)
+    n = len(expected("pico", "main.py", MP_DRIVERS))
+    assert status == 0 and out.splitlines()[-1] == "flashed pico on %s: %d of %d files copied" % (port, n, n), out
+    assert "board manifest: 0 files; copying %d, removing 0" % n in out and "\n# reset\n" in out
+    assert tree(root) == sorted(as_mpy(expected("pico", "main.py", MP_DRIVERS)) + ["hexapod.manifest"])
+    status, out, _ = hexapod(argv, capsys)
+    assert status == 0 and out.splitlines()[-1] == "flashed pico on %s: 0 of %d files copied" % (port, n)
+    make = subprocess.run(
+        ["make", "-n", "flash", "BOARD=esp32_devkit", "PORT=/dev/ttyUSB0", "DRY_RUN=1"],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
+    assert ".venv/bin/hexapod flash --board esp32_devkit --port /dev/ttyUSB0  --dry-run" in make.stdout, make.stdout
