@@ -368,6 +368,7 @@ class Console:
         x = self._num("x", args[1], 1, -5000, 5000, "mm")
         y = self._num("y", args[2], 1, -5000, 5000, "mm")
         z = self._num("z", args[3], 1, -5000, 5000, "mm")
+        self._no_follow()
         return self._jogged(leg, self.robot.jog_foot(leg, x, y, z))
 
     def _jogged(self, leg, code):
@@ -380,6 +381,7 @@ class Console:
         self._args(args, 4, "L DX DY DZ (leg 1..6, mm in the leg frame)")
         leg = self._leg(args[0])
         d = [self._num(n, args[k + 1], 1, -1000, 1000, "mm") for k, n in enumerate(("dx", "dy", "dz"))]
+        self._no_follow()
         r = self.robot
         k = 3 * leg
         if not (r.pulses[k] and r.pulses[k + 1] and r.pulses[k + 2]):
@@ -393,6 +395,7 @@ class Console:
         leg = self._leg(args[0])
         j = self._joint_of(args[1])
         a = self._num("angle", args[2], 2, -18000, 18000, "degrees")
+        self._no_follow()
         return self._jogged(leg, self.robot.jog_joint(leg, j, a))
 
     def _pulse(self, args):
@@ -401,6 +404,7 @@ class Console:
         j = self._joint_of(args[1])
         s = self.robot.servos[3 * leg + j]
         us = self._whole("pulse", args[2], s.min_us, s.max_us, "us (this servo's calibrated range)")
+        self._no_follow()
         return self._jogged(leg, self.robot.jog_pulse(leg, j, us))
 
     def _get(self, args):

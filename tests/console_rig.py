@@ -8,6 +8,8 @@ and in the MicroPython VM.
     unsafe() -> servos whose output is neither off nor inside their calibrated min..max
 """
 
+import pytest
+
 RIG = """
 import _stub_clock as clock
 import _stub_i2c
@@ -76,3 +78,16 @@ def state():
     return (list(r.robot.pulses), list(r.robot.angles), r.robot.mode,
             [(s.centre_us, s.direction, s.min_us, s.max_us) for s in SERVOS], list(con.trims))
 """
+
+
+@pytest.fixture(autouse=True)
+def clean_stubs():
+    """The CPython runs share this process's stub modules: leave no bus, chip or wire behind."""
+    yield
+    import _stub_clock
+    import _stub_i2c
+    import _stub_pins
+
+    _stub_i2c.reset()
+    _stub_pins.reset()
+    _stub_clock.reset(0)

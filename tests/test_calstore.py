@@ -5,7 +5,7 @@ cannot (FAT): the next boot always finds the old calibration or the new one."""
 import ast
 import binascii
 
-from tests.console_rig import RIG
+from tests.console_rig import RIG, clean_stubs  # noqa: F401 (autouse fixture)
 
 # A filesystem that loses power after `budget` operations (open for writing, each write,
 # close, rename, remove). A cut write leaves half its bytes: open("w") truncates at once,

@@ -8,7 +8,7 @@ import re
 import pytest
 
 from hexapod_host import reference
-from tests.console_rig import RIG
+from tests.console_rig import RIG, clean_stubs  # noqa: F401 (autouse fixture)
 
 # seed 004's leg (robots/default.py), mm
 LEG = dict(coxa=30.0, femur=85.0, tibia=125.0, femur_offset=32.0)
@@ -330,3 +330,17 @@ print(repr((before, channels(), unsafe())))
     for k, (centre, a) in enumerate(zip((1500, 1500, 2400), want, strict=True)):
         assert abs(after[3 + k] - (centre + 10 * a)) <= 2.6  # half a PCA9685 count (2.44 us) + IK 0.01 deg
     assert int(m.group(5)) == after[3] or abs(int(m.group(5)) - after[3]) <= 3
+
+
+def test_while_following_a_wall_jogs_and_walks_are_refused_until_wall_off(rt):
+    out = transcript(
+        rt,
+        ["stand"],
+        "frames(120)\nfor line in %r:\n    print(repr(say(line)))\n"
+        % (["wall left 40", "foot 2 130 0 -80", "joint 1 coxa 5", "walk 50 0 0", "relax", "wall off", "stop"],),
+    ).splitlines()
+    r = [ast.literal_eval(x) for x in out]
+    assert r[0] == "ok mode moving" and r[1] == "ok wall left setpoint 40.00"
+    for reply, word in zip(r[2:6], ("foot", "joint", "walk", "relax"), strict=True):
+        assert reply == "err %s: the robot is following a wall; 'wall off' first" % word
+    assert r[6] == "ok wall off" and r[7].startswith("ok mode ")

@@ -9,7 +9,7 @@ import random
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from tests.console_rig import RIG
+from tests.console_rig import RIG, clean_stubs  # noqa: F401 (autouse fixture)
 
 WORDS = [
     "help",

@@ -6,7 +6,7 @@ import ast
 
 import pytest
 
-from tests.console_rig import RIG
+from tests.console_rig import RIG, clean_stubs  # noqa: F401 (autouse fixture)
 
 CTRL_C = """
 class CtrlC(console.BufferReader):
@@ -110,3 +110,46 @@ def test_console_bench_rows(mp):
     assert rows["x" * 24]["heap_bytes"] == 0  # an over-long line's reply is a constant
     assert all(0 < r["median_us"] <= r["max_us"] for r in result["frames"] if r["line"] != "(idle)")
     assert {"get 2", "status", "foot 2 130 5 -80", "nudge 2 0.5 0 0", "trim 2 femur 5"} <= set(rows)
+
+
+def test_poll_reader_on_an_open_line_with_nothing_waiting_allocates_nothing(mp):
+    """MicroPython's reader itself (select.poll on stdin, kept open and silent): 0 bytes a frame;
+    then a line written to it is answered."""
+    import os
+    import subprocess
+
+    from hexapod_host import mpvm
+    from hexapod_host.testing import HEAP_PROBE
+
+    src = (
+        RIG
+        + HEAP_PROBE
+        + """
+con.reader = console.PollReader()
+con.out = print
+def run(n):
+    frames(n)
+print(repr(heap_bytes(run, 100)))
+import sys
+sys.stdout.flush() if hasattr(sys.stdout, "flush") else None
+while not con.lines:
+    frames(1)
+"""
+    )
+    proc = subprocess.Popen(
+        [mpvm.executable(), "-X", "heapsize=4m", "-c", src],
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        env=dict(os.environ, MICROPYPATH=mpvm.search_path()),
+    )
+    try:
+        first = proc.stdout.readline()
+        assert first == b"0\n"
+        proc.stdin.write(b"get 6\n")
+        proc.stdin.flush()
+        assert proc.stdout.readline().startswith(b"ok leg 6 angles ")
+        assert proc.wait(30) == 0
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()

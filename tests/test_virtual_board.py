@@ -134,3 +134,30 @@ def test_virtual_board_command_prints_its_path_first_and_stops_on_sigterm(tmp_pa
         if proc.poll() is None:
             proc.kill()
             proc.wait()
+
+
+def status_of(link):
+    words = link.request("status").split()
+    return dict(zip(words[1::2], words[2::2], strict=False))
+
+
+def test_a_walk_not_renewed_stops_in_real_time(board):
+    path, link = board()
+    assert link.request("stand") == "ok mode moving"
+    deadline = time.monotonic() + 15
+    while status_of(link)["mode"] != "standing":
+        assert time.monotonic() < deadline
+        time.sleep(0.1)
+    for _ in range(4):  # renewed every 0.4 s: it keeps walking
+        assert link.request("walk 60 0 0") == "ok walk 60.0 0.0 0.00 timeout_ms 1000"
+        time.sleep(0.4)
+        assert status_of(link)["mode"] == "walking"
+    t0 = time.monotonic()
+    while status_of(link)["walk_ms"] != "0":
+        time.sleep(0.02)
+    waited = time.monotonic() - t0
+    assert 0.4 <= waited <= 1.0  # the last walk was 0.4 s old: it expired 0.6 s later
+    deadline = time.monotonic() + 5
+    while status_of(link)["mode"] != "standing":  # the steps under way finish, the feet land
+        assert time.monotonic() < deadline
+        time.sleep(0.05)

@@ -389,12 +389,13 @@ class Robot:
 
     # -- jogging and calibration (the console's single-servo moves) ---------------------
 
-    def _jog_ready(self):
-        if self.mode == WALKING:
-            return WALKING_NOW
-        if self.mode == MOVING or not self.body.settled():
-            return BUSY
-        return OK
+    def _jog_servo_ready(self, leg, joint, name, value, unit):
+        """ValueError for a bad leg, joint or value; else _can_move()'s code."""
+        _check_leg(leg)
+        _check_joint(joint)
+        if not isinstance(value, int) or isinstance(value, bool):
+            raise ValueError("%s: need a whole number (%s), got %r" % (name, unit, value))
+        return self._can_move()
 
     def _servo_refused(self, k, code, excess):
         self.jog_servo = k
@@ -407,7 +408,7 @@ class Robot:
         from the next frame on; the other servos keep their pulses (mode JOG). Returns OK, or
         JOG_IK / JOG_SERVO (jog_code, jog_excess say why) or WALKING_NOW / BUSY, changing nothing."""
         _check_leg(leg)
-        code = self._jog_ready()
+        code = self._can_move()
         if code != OK:
             return code
         k = 3 * leg
@@ -432,11 +433,7 @@ class Robot:
     def jog_joint(self, leg, joint, cdeg):
         """One servo (leg 0..5, joint 0 coxa 1 femur 2 tibia) to cdeg, inside the robot file's joint
         limit and the servo's calibrated range; only that servo changes (mode JOG)."""
-        _check_leg(leg)
-        _check_joint(joint)
-        if not isinstance(cdeg, int) or isinstance(cdeg, bool):
-            raise ValueError("angle: need a whole number (cdeg), got %r" % (cdeg,))
-        code = self._jog_ready()
+        code = self._jog_servo_ready(leg, joint, "angle", cdeg, "cdeg")
         if code != OK:
             return code
         lim = self.geometry.legs[leg].limits
@@ -461,11 +458,7 @@ class Robot:
     def jog_pulse(self, leg, joint, pulse_us):
         """One servo to a raw pulse width (us) inside its calibrated min..max (calibration); its
         angle becomes the servo map's inverse of it. Only that servo changes (mode JOG)."""
-        _check_leg(leg)
-        _check_joint(joint)
-        if not isinstance(pulse_us, int) or isinstance(pulse_us, bool):
-            raise ValueError("pulse: need a whole number (us), got %r" % (pulse_us,))
-        code = self._jog_ready()
+        code = self._jog_servo_ready(leg, joint, "pulse", pulse_us, "us")
         if code != OK:
             return code
         k = 3 * leg + joint
@@ -493,7 +486,7 @@ class Robot:
             raise ValueError("range: min_us %d must be below max_us %d" % (min_us, max_us))
         if direction != 1 and direction != -1:
             raise ValueError("direction: %r, allowed 1 or -1" % (direction,))
-        code = self._jog_ready()
+        code = self._can_move()
         if code != OK:
             return code
         s = self.servos[k]

@@ -1,0 +1,78 @@
+"""hexapod_host.link and `hexapod ports` on fake serial ports: board-looking ports first, other
+lines skipped, a REPL prompt and a disconnect named."""
+
+import types
+
+import pytest
+import serial
+
+from hexapod_host import cli, link
+from hexapod_host.link import Link, LinkError
+
+
+class FakePort:
+    def __init__(self, lines=(), fail_after=None):
+        self.lines = list(lines)
+        self.written = []
+        self.fail_after = fail_after
+
+    def write(self, data):
+        self.written.append(data)
+
+    def flush(self):
+        pass
+
+    def readline(self):
+        if self.fail_after is not None:
+            if self.fail_after == 0:
+                raise serial.SerialException("device reports readiness to read but returned no data")
+            self.fail_after -= 1
+        return self.lines.pop(0) if self.lines else b""
+
+    def close(self):
+        pass
+
+
+def test_request_skips_other_lines_and_returns_the_reply():
+    port = FakePort([b"MicroPython v1.22\r\n", b"cal: no hexapod_cal.txt; ...\r\n", b"ok leg 2 angles 0.00\r\n"])
+    lk = Link(port, timeout=0.2, name="/dev/fake")
+    assert lk.request("get 2") == "ok leg 2 angles 0.00"
+    assert port.written == [b"get 2\n"]
+    assert lk.other == ["MicroPython v1.22", "cal: no hexapod_cal.txt; ..."]
+    with pytest.raises(LinkError, match="one command per request"):
+        lk.request("get 2\nget 3")
+
+
+def test_a_repl_prompt_and_a_disconnect_are_named():
+    lk = Link(FakePort([b"Traceback (most recent call last):\r\n", b">>> \r\n"]), timeout=0.2, name="/dev/fake")
+    with pytest.raises(LinkError) as e:
+        lk.request("status")
+    assert str(e.value) == (
+        "no answer to 'status' from /dev/fake within 0.2 s: is the hexapod firmware running?"
+        " (the board is at the REPL: run main.py or reset it)"
+    )
+    lk = Link(FakePort([b"ok\r\n"], fail_after=1), timeout=1, name="/dev/fake")
+    assert lk.request("stop") == "ok"
+    with pytest.raises(LinkError) as e:
+        lk.request("status")
+    assert str(e.value).startswith("lost the board on /dev/fake (") and str(e.value).endswith("unplugged or reset?")
+
+
+def test_ports_lists_boards_first(monkeypatch, capsys):
+    def port(device, vid, description):
+        return types.SimpleNamespace(device=device, vid=vid, description=description)
+
+    fake = [
+        port("/dev/ttyS0", None, "n/a"),
+        port("/dev/ttyUSB0", 0x10C4, "CP2102 USB to UART"),
+        port("/dev/ttyACM1", 0x2E8A, "Board in FS mode"),
+        port("/dev/ttyACM0", 0x1234, "some modem"),
+    ]
+    monkeypatch.setattr(link.list_ports, "comports", lambda: fake)
+    assert [r[0] for r in link.ports()] == ["/dev/ttyACM1", "/dev/ttyUSB0", "/dev/ttyACM0", "/dev/ttyS0"]
+    assert cli.main(["ports"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].split()[:2] == ["/dev/ttyACM1", "Raspberry"] and lines[1].split()[:2] == ["/dev/ttyUSB0", "CP210x"]
+    monkeypatch.setattr(link.list_ports, "comports", lambda: [])
+    assert cli.main(["ports"]) == 0
+    assert capsys.readouterr().out == "no serial ports found (is the board plugged in with a data cable?)\n"
