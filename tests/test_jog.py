@@ -86,6 +86,7 @@ def test_servo_nudges_in_microseconds_and_trim():
     assert abs(float(tool.view.angles[1]) - (reference.ik(130.0, 0.0, -80.0, **LEG)[1] + 9.9)) <= 0.02
     press(tool, "0")
     assert tool.view.angles[1] == "0.00" and tool.view.pulses[1] == 1500
+    assert tool.view.message == "joint 3 femur 0: ok"  # the key's own command, not the refresh after it
     press(tool, ">", "}")  # trim +5 us
     assert fake.lines[-2:] == ["trim 3 femur 5", "get 3"]
     assert tool.view.cal["trim"] == 5 and tool.view.pulses[1] == 1505

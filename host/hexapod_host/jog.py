@@ -194,6 +194,9 @@ class Jog:
         self.view = View()
 
     def send(self, lines):
+        """Send lines in order, stopping at the first err; the status line keeps the first line's answer
+        (the rest only refresh the view)."""
+        first = None
         for line in lines:
             try:
                 reply = self.link.request(line)
@@ -205,6 +208,9 @@ class Jog:
             apply(self.view, line, reply)
             if reply.startswith("err"):
                 return
+            first = first or self.view.message
+        if first:
+            self.view.message = first
 
     def start(self):
         self.send(refresh(self.view))
