@@ -110,6 +110,8 @@ def test_second_flash_copies_only_what_changed(tmp_path, capsys):
     assert status == 0 and "# 0 of %d files changed: none" % n in out
     fs_cp = [c for c in plan_lines(out) if "fs" in c][0]
     assert [a for a in fs_cp if a.startswith(":")] == [":hexapod.manifest.new"]
+    status, out, _ = hexapod(argv + ["--manifest-from", str(same), "--full"], capsys)
+    assert status == 0 and "# %d of %d files changed" % (n, n) in out  # --full: whatever the board says
     # leg.mpy differs on the board, and the board holds a file the image no longer has.
     edited = [("0" * 64 + " hexapod/leg.mpy") if ln.endswith(" hexapod/leg.mpy") else ln for ln in lines]
     old = tmp_path / "old.manifest"
