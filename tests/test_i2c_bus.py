@@ -171,6 +171,7 @@ def test_default_bus_is_shared_per_id(rt):
     src = """
 import machine, _stub_i2c
 from pca9685_model import PCA9685Model
+_stub_i2c.reset()  # other tests in this process (the console's rig) leave chips on bus 0
 _stub_i2c.shared_bus(1).attach(PCA9685Model(0x41))
 print([machine.I2C(1).scan(), machine.I2C(0).scan()])
 """

@@ -17,6 +17,8 @@ COMMAND_MODULES = (
     "hexapod_host.cmd_bench",
     "hexapod_host.cmd_sim",
     "hexapod_host.cmd_plot",
+    "hexapod_host.cmd_flash",
+    "hexapod_host.cmd_jog",
     "hexapod_host.cmd_console",
 )
 

