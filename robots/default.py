@@ -32,3 +32,27 @@ BODY_HEIGHT_MIN = 600  # allowed range of the body height setting
 BODY_HEIGHT_MAX = 1000
 SIT_HEIGHT = 300  # coxa joints above the ground with the body resting on it, 0.1 mm
 FOOT_CLEARANCE = 100  # how far feet lift off the ground while the body rests, 0.1 mm
+
+# The servos (MG996R class at 6 V), integers: stall torque (mN m), no-load speed (ms per 60
+# degrees), mass (g), position gain of the servo's loop (mN m per rad) and the motor's
+# inertia seen at the horn through the gears (armature, g cm^2). The walker keeps joint
+# speeds under the no-load speed; the MuJoCo model (hexapod sim physics) uses all of it.
+SERVO = {
+    "stall_torque_mnm": 1100,
+    "speed_ms_per_60deg": 170,
+    "mass_g": 55,
+    "kp_mnm_per_rad": 20000,
+    "armature_g_cm2": 20000,
+}
+
+# For physics only (host/hexapod_host/mjcf.py): masses without the servos (g), the body's
+# thickness (0.1 mm), the foot's friction with the floor (per mille) and its sphere (0.1 mm).
+PHYSICS = {
+    "body_g": 600,
+    "coxa_g": 15,
+    "femur_g": 20,
+    "tibia_g": 25,
+    "body_thickness": 400,
+    "foot_friction_permille": 900,
+    "foot_radius": 50,
+}

@@ -11,6 +11,14 @@ from hexapod.leg import OK, Leg, describe
 LEG_NAMES = ("RF", "RM", "RR", "LR", "LM", "LF")
 MOUNT_MAX = 5000  # largest |x|, |y| of a coxa axis, 0.1 mm
 HEIGHT_MAX = 3000  # largest body height, 0.1 mm
+# The optional SERVO dict of a robot file: key -> (smallest, largest allowed, unit).
+SERVO_FIELDS = (
+    ("stall_torque_mnm", 50, 100000, "mN m"),
+    ("speed_ms_per_60deg", 20, 2000, "ms per 60 degrees, no load"),
+    ("mass_g", 1, 1000, "g"),
+    ("kp_mnm_per_rad", 100, 10000000, "mN m per rad"),
+    ("armature_g_cm2", 0, 10000000, "g cm^2"),
+)
 _FIELDS = (
     "COXA",
     "FEMUR",
@@ -55,6 +63,10 @@ class Geometry:
         self.sit_height = data["SIT_HEIGHT"]
         self.foot_clearance = data["FOOT_CLEARANCE"]
         self.limits = tuple(data["LIMITS"])
+        servo = data.get("SERVO")
+        # No-load servo speed as the most a joint may turn in one 20 ms tick, cdeg (0: no limit).
+        self.servo_step = 0 if servo is None else 6000 * 20 // servo["speed_ms_per_60deg"]
+        self.servo = servo
 
     def neutral_xy(self, i, out, j=0):
         """Body-frame (x, y) of leg i's neutral foot (0-based i), 0.1 mm, into out[j:j+2]."""
@@ -72,6 +84,8 @@ def load(module):
         if not hasattr(module, field):
             raise ValueError("robot %r: %s is missing" % (name, field))
         data[field] = getattr(module, field)
+    if hasattr(module, "SERVO"):
+        data["SERVO"] = module.SERVO
     return from_data(name, data)
 
 
@@ -96,6 +110,8 @@ def from_data(name, data):
     _int(pre, "BODY_HEIGHT", data["BODY_HEIGHT"], data["BODY_HEIGHT_MIN"], data["BODY_HEIGHT_MAX"])
     _int(pre, "SIT_HEIGHT", data["SIT_HEIGHT"], 0, data["BODY_HEIGHT_MIN"] - 1)
     _int(pre, "FOOT_CLEARANCE", data["FOOT_CLEARANCE"], 0, data["SIT_HEIGHT"])
+    if data.get("SERVO") is not None:
+        check_servo(pre, data["SERVO"])
     g = Geometry(name, data)
     # Every height the robot may stand or rest at must be a reachable neutral stance.
     leg = g.legs[0]
@@ -115,6 +131,20 @@ def from_data(name, data):
                 % (g.neutral_reach, label, h, describe(code, leg.excess))
             )
     return g
+
+
+def check_servo(pre, servo):
+    """ValueError (prefixed by pre) unless servo is a dict of exactly the SERVO_FIELDS, each in range."""
+    if not isinstance(servo, dict):
+        raise ValueError(pre + "SERVO: need a dict of %s, got %r" % (", ".join(f[0] for f in SERVO_FIELDS), servo))
+    names = [f[0] for f in SERVO_FIELDS]
+    for key in servo:
+        if key not in names:
+            raise ValueError(pre + "SERVO: unknown key %r, allowed: %s" % (key, ", ".join(names)))
+    for name, lo, hi, unit in SERVO_FIELDS:
+        if name not in servo:
+            raise ValueError(pre + "SERVO: %s is missing (%s, %d..%d)" % (name, unit, lo, hi))
+        _int(pre, "SERVO %s (%s)" % (name, unit), servo[name], lo, hi)
 
 
 def _check_mounts(pre, mounts):
