@@ -98,9 +98,10 @@ def build(geometry, servo, physics, *, flip=None):
         '  <option timestep="%s" integrator="implicitfast"/>' % _f(TIMESTEP_S),
         '  <visual><global offwidth="640" offheight="480"/></visual>',
         "  <asset>",
+        '    <texture type="skybox" builtin="gradient" rgb1=".95 .96 .98" rgb2=".75 .8 .88" width="32" height="32"/>',
         '    <texture name="grid" type="2d" builtin="checker" rgb1=".82 .84 .86" rgb2=".70 .72 .75" '
         'width="256" height="256"/>',
-        '    <material name="grid" texture="grid" texrepeat="20 20" texuniform="false"/>',
+        '    <material name="grid" texture="grid" texrepeat="8 8" texuniform="true"/>',
         "  </asset>",
         "  <default>",
         '    <joint damping="%s" armature="%s"/>' % (_f(sm["kv"]), _f(sm["armature"])),
@@ -109,8 +110,8 @@ def build(geometry, servo, physics, *, flip=None):
         "  </default>",
         "  <worldbody>",
         '    <light pos="0 0 3" dir="0 0 -1" directional="true"/>',
-        '    <geom name="floor" type="plane" size="20 20 0.1" material="grid" contype="1" conaffinity="1" '
-        'friction="%s 0.005 0.0001"/>' % _f(mu),
+        '    <geom name="floor" type="plane" size="20 20 0.1" material="grid" rgba="1 1 1 1" '
+        'contype="1" conaffinity="1" friction="%s 0.005 0.0001"/>' % _f(mu),
         '    <body name="body" pos="0 0 %s">' % _f(z0),
         "      <freejoint/>",
         '      <geom name="body" type="box" size="%s" mass="%s" contype="1" rgba=".3 .3 .35 1"/>'
