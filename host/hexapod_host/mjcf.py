@@ -14,6 +14,7 @@ motor inertia is the joint armature. Only the feet and the body box touch the fl
 """
 
 import math
+import os
 
 from hexapod.geometry import LEG_NAMES
 
@@ -29,6 +30,14 @@ PHYSICS_FIELDS = (
 TIMESTEP_S = 0.002
 JOINTS = ("coxa", "femur", "tibia")
 JOINT_AXES = ("0 0 1", "0 -1 0", "0 -1 0")
+
+
+def import_mujoco():
+    """The mujoco module, with offscreen rendering (MUJOCO_GL=egl) chosen before its first import."""
+    os.environ.setdefault("MUJOCO_GL", "egl")
+    import mujoco
+
+    return mujoco
 
 
 def check_physics(name, physics):

@@ -59,11 +59,8 @@ class Run:
     """One walk of the model: set up, then step() per tick; results() summarises."""
 
     def __init__(self, g, servo, physics, *, flip=None):
-        # Offscreen rendering needs the GL platform chosen before mujoco is first imported.
-        os.environ.setdefault("MUJOCO_GL", "egl")
-        import mujoco
-
-        self.mj = mujoco
+        self.mj = mjcf.import_mujoco()
+        mujoco = self.mj
         self.g = g
         self.sm = mjcf.servo_model(servo)
         self.physics = physics
@@ -223,7 +220,7 @@ class Run:
             gx = math.cos(yaw[0]) * ux - math.sin(yaw[0]) * uy
             gy = math.sin(yaw[0]) * ux + math.cos(yaw[0]) * uy
             dx, dy = pos[-1, 0] - pos[0, 0], pos[-1, 1] - pos[0, 1]
-            cross = abs(dx * gy - dy * gx) * 1000
+            cross = float(abs(dx * gy - dy * gx) * 1000)
         height = (pos[:, 2] - self.foot_r) * 1000
         roll, pitch = np.degrees(np.abs(s["rp"][:, 0])), np.degrees(np.abs(s["rp"][:, 1]))
         dem = np.abs(s["demand"])
