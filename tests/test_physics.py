@@ -82,11 +82,9 @@ def test_servo_model_from_the_datasheet_figures():
     assert sum(m.body_mass) == pytest.approx(0.6 + 18 * 0.055 + 6 * 0.06 + 6 * 0.002)
 
 
-def failures(res, *, lo=0.9, hi=1.05, yaw_lo=0.85):
+def failures(res, *, lo=0.9, hi=1.05, yaw_lo=0.9):
     """The issue's checks on one walk; returns the list of those that failed."""
     bad = []
-    # Turning in place measured 0.887 before the touch-down change (the swing landing with no
-    # ground speed fights the stance): yaw_lo holds what was measured, not the goal.
     for key, low in (("speed_ratio", lo), ("yaw_ratio", yaw_lo)):
         v = res[key]
         if v is not None and not low <= v <= hi:
@@ -123,6 +121,21 @@ def test_tripod_walks_as_commanded(name, kw):
         assert a["vx_mm_s"] * c["vx_mm_s"] + a["vy_mm_s"] * c["vy_mm_s"] > 0
     else:
         assert a["yaw_deg_s"] * c["yaw_deg_s"] > 0 and abs(a["vx_mm_s"]) < 1 and abs(a["vy_mm_s"]) < 1
+
+
+GOALS = [(g, kw) for g in ("tripod", "ripple") for kw in (dict(speed=60.0), dict(speed=120.0), dict(turn=30.0))]
+
+
+@pytest.mark.parametrize("gait,kw", GOALS, ids=["%s %s" % (g, kw) for g, kw in GOALS])
+def test_touch_down_wastes_no_speed(gait, kw):
+    # The issue's goal: >= 97 % of the commanded speed, >= 95 % of the yaw rate. Before the
+    # swing carried the foot at the stance's speed at both ends: tripod 60 mm/s 0.908,
+    # 120 mm/s 0.922, turning 0.893; ripple 0.957, 0.972, 0.945.
+    res = sp.simulate(gait=gait, seconds=5.0, **dict(dict(speed=0.0), **kw))
+    if "turn" in kw:
+        assert 0.95 <= res["yaw_ratio"] <= 1.05
+    else:
+        assert 0.97 <= res["speed_ratio"] <= 1.05
 
 
 def test_ten_seconds_straight_keep_heading_within_2_degrees():
