@@ -34,15 +34,21 @@ SIT_HEIGHT = 300  # coxa joints above the ground with the body resting on it, 0.
 FOOT_CLEARANCE = 100  # how far feet lift off the ground while the body rests, 0.1 mm
 
 # The servos (MG996R class at 6 V), integers: stall torque (mN m), no-load speed (ms per 60
-# degrees), mass (g), position gain of the servo's loop (mN m per rad) and the motor's
-# inertia seen at the horn through the gears (armature, g cm^2). The walker keeps joint
-# speeds under the no-load speed; the MuJoCo model (hexapod sim physics) uses all of it.
+# degrees), mass (g), position gain of the servo's loop (mN m per rad), the motor's inertia
+# seen at the horn through the gears (armature, g cm^2) and how much of the no-load speed
+# the walk may use. The MuJoCo model (hexapod sim physics) uses all of it.
 SERVO = {
     "stall_torque_mnm": 1100,
     "speed_ms_per_60deg": 170,
     "mass_g": 55,
     "kp_mnm_per_rad": 20000,
     "armature_g_cm2": 20000,
+    # Optional: the walk turns no joint faster than this share of the no-load speed, scaling
+    # commands and refusing gait/cycle/lift settings that would need more (docs/physics.md).
+    # 400 (282 cdeg a tick) keeps the tripod under 80 % of stall in physics; its stance
+    # femurs already spend ~75 % holding the body up. Off here: at 400 the tripod needs a
+    # cycle of 0.92 s or more, ripple 1.44 s, wave 2.76 s, and other tests walk them at 1 s.
+    # "planner_share_permille": 400,
 }
 
 # For physics only (host/hexapod_host/mjcf.py): masses without the servos (g), the body's

@@ -18,7 +18,9 @@ SERVO_FIELDS = (
     ("mass_g", 1, 1000, "g"),
     ("kp_mnm_per_rad", 100, 10000000, "mN m per rad"),
     ("armature_g_cm2", 0, 10000000, "g cm^2"),
+    ("planner_share_permille", 50, 1000, "per mille of the no-load speed the walk may ask"),
 )
+SERVO_OPTIONAL = ("planner_share_permille",)  # absent: the walk does not limit joint speeds
 _FIELDS = (
     "COXA",
     "FEMUR",
@@ -64,8 +66,11 @@ class Geometry:
         self.foot_clearance = data["FOOT_CLEARANCE"]
         self.limits = tuple(data["LIMITS"])
         servo = data.get("SERVO")
-        # No-load servo speed as the most a joint may turn in one 20 ms tick, cdeg (0: no limit).
-        self.servo_step = 0 if servo is None else 6000 * 20 // servo["speed_ms_per_60deg"]
+        # The most the walk may turn a joint in one 20 ms tick, cdeg: the planner's share of
+        # the no-load speed (0: no servo given, no limit).
+        self.servo_step = 0
+        if servo is not None and "planner_share_permille" in servo:
+            self.servo_step = 6000 * 20 * servo["planner_share_permille"] // (servo["speed_ms_per_60deg"] * 1000)
         self.servo = servo
 
     def neutral_xy(self, i, out, j=0):
@@ -142,6 +147,8 @@ def check_servo(pre, servo):
         if key not in names:
             raise ValueError(pre + "SERVO: unknown key %r, allowed: %s" % (key, ", ".join(names)))
     for name, lo, hi, unit in SERVO_FIELDS:
+        if name not in servo and name in SERVO_OPTIONAL:
+            continue
         if name not in servo:
             raise ValueError(pre + "SERVO: %s is missing (%s, %d..%d)" % (name, unit, lo, hi))
         _int(pre, "SERVO %s (%s)" % (name, unit), servo[name], lo, hi)

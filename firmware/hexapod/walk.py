@@ -25,9 +25,10 @@ no foot is in the air (new swings are held back until then).
 
 from micropython import const
 
-from hexapod.body import FINE, FINE_SHIFT
+from hexapod.body import FINE, FINE_SHIFT, Body
 from hexapod.fixmath import cos, isqrt, mul_q15, sin
-from hexapod.gait import TICK_MS, TRIPOD, GaitClock, actual_cycle_ms, check_cycle_ms, check_gait
+from hexapod.gait import TICK_MS, TRIPOD, GaitClock, actual_cycle_ms, check_cycle_ms, check_gait, swing_stance_ticks
+from hexapod.reach import servo_radii
 from hexapod.trajectory import swing_shape, swing_stroke
 
 STOPPED = const(0)
@@ -35,6 +36,8 @@ STARTING = const(1)
 WALKING = const(2)
 STOPPING = const(3)
 STATE_NAMES = ("stopped", "starting", "walking", "stopping")
+OK = const(0)
+SERVO_SPEED = const(26)  # configure: even a step of nothing would turn a joint too fast
 
 SPEED_MAX = const(3000)  # largest |vx|, |vy| accepted, 0.1 mm/s
 YAW_RATE_MAX = const(9000)  # largest |yaw rate| accepted, cdeg/s
@@ -61,6 +64,10 @@ class Walker:
         self.nx = [0] * 6  # neutral feet, body frame, fine
         self.ny = [0] * 6
         self.rho = [0] * 6  # reach disc radius around each neutral foot, 0.1 mm
+        self.srho = [STEP_MAX] * 6  # largest half stance the servos' speed allows, 0.1 mm
+        self.next_srho = [STEP_MAX] * 6
+        self.servo_peak = 0  # largest joint change (cdeg/tick) of a swing without a step, last configure
+        self.pose_body = None  # the Body whose pose the servo-speed check uses (else level)
         self.fx = [0] * 6  # current feet, body frame, fine
         self.fy = [0] * 6
         self.fz = [0] * 6
@@ -128,11 +135,25 @@ class Walker:
 
     def configure(self, gait, cycle_ms, lift, step, rho):
         """Gait, cycle time (ms), lift and step (0.1 mm) with their reach discs; checked, then
-        taken now when stopped, else at the next moment with every foot on the ground."""
+        taken now when stopped, else at the next moment with every foot on the ground.
+
+        Returns OK, or SERVO_SPEED (and changes nothing) when the robot file's servos could
+        not even lift and lower a foot in this gait's swing at this cycle time and lift."""
         check_gait(gait)
         check_cycle_ms(cycle_ms)
         self.check_lift(lift)
         self.check_step(step)
+        limit = self.geometry.servo_step
+        if limit:
+            body = self.pose_body if self.pose_body is not None else Body(self.geometry)
+            ticks = swing_stance_ticks(gait, cycle_ms, [0, 0])
+            srho = [0] * 6
+            peak = servo_radii(self, body, ticks[0], ticks[1], lift, limit, rho, srho)
+            self.servo_peak = peak
+            if peak > limit:
+                return SERVO_SPEED
+            for i in range(6):
+                self.next_srho[i] = srho[i]
         self.step = step
         self.next_gait = gait
         self.next_cycle_ms = cycle_ms
@@ -141,7 +162,7 @@ class Walker:
             self.next_rho[i] = rho[i]
         same = gait == self.clock.gait and self.clock.cycle_ms == actual_cycle_ms(gait, cycle_ms) and lift == self.lift
         for i in range(6):
-            if rho[i] != self.rho[i]:
+            if rho[i] != self.rho[i] or self.next_srho[i] != self.srho[i]:
                 same = False
         if self.state == STOPPED:
             self._apply()
@@ -151,12 +172,14 @@ class Walker:
         else:
             self.pending = 1
             self._rescale()
+        return OK
 
     def _apply(self):
         self.clock.set(self.next_gait, self.next_cycle_ms)
         self.lift = self.next_lift
         for i in range(6):
             self.rho[i] = self.next_rho[i]
+            self.srho[i] = self.next_srho[i]
         self.phase = 0
         self.pending = 0
         self._rescale()
@@ -221,6 +244,8 @@ class Walker:
             for i in range(6):
                 e = self.half_stance(i, vx * k // 1000, vy * k // 1000, w * k // 1000)
                 lim = self.rho[i] if self.rho[i] < self.step else self.step
+                if self.srho[i] < lim:
+                    lim = self.srho[i]  # the servos' speed: a longer step needs a faster swing
                 if e > lim:
                     # The shortfall sets the next try; rounding can leave it a hair short.
                     kk = k * lim // e
