@@ -7,6 +7,8 @@ the per-tick joint budget (60 deg / 8.5 ticks * 0.4 = 282 cdeg); the joint angle
 sent, frame by frame, must stay inside it.
 """
 
+import ast
+
 import pytest
 
 import robots.default as d
@@ -107,3 +109,24 @@ def test_nothing_the_guard_accepts_saturates_a_servo_in_physics(gait, cycle, kw)
         # (1 s cycle: 50.4 mm/s). Without the guard, 120 mm/s peaks at 1.13 N m (saturated).
         assert res["torque_peak_nm"] <= 0.8 * res["stall_nm"]
         assert res["commanded"]["vx_mm_s"] > 45.0 and res["speed_ratio"] >= 0.97
+
+
+def test_guard_is_bit_identical_on_both_runtimes(both_runtimes):
+    cp, mp = both_runtimes(
+        """
+import robots.default as d
+from hexapod import geometry, tick
+data = {k: getattr(d, k) for k in dir(d) if k.isupper()}
+servo = dict(d.SERVO)
+servo["planner_share_permille"] = 400
+data["SERVO"] = servo
+g = geometry.from_data("default", data)
+robot = tick.Robot(g, tick.default_servos(g), tick.FrameBuffer())
+w = robot.walker
+print([g.servo_step, list(w.srho), w.servo_peak, robot.set_gait(3), robot.set_params(cycle_ms=2000), list(w.srho)])
+"""
+    )
+    assert cp == mp
+    step, srho, peak, wave, slower, srho2 = ast.literal_eval(cp.strip())
+    assert step == 282 and min(srho) > 0 and peak <= step
+    assert wave == tick.SERVO_SPEED and slower == tick.OK and min(srho2) > max(srho)
