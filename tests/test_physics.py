@@ -244,7 +244,7 @@ def test_bad_servo_spec_is_refused_naming_it(servo, word):
 
 def test_servo_limits_at_the_edges_load():
     data = {k: getattr(d, k) for k in dir(d) if k.isupper()}
-    for lo_hi in ((50, 20, 1, 100, 0), (100000, 2000, 1000, 10000000, 10000000)):
+    for lo_hi in ((50, 20, 1, 100, 0, 50), (100000, 2000, 1000, 10000000, 10000000, 1000)):
         data["SERVO"] = dict(zip([f[0] for f in geometry.SERVO_FIELDS], lo_hi, strict=True))
         assert geometry.from_data("default", data).servo == data["SERVO"]
 
@@ -263,3 +263,14 @@ BAD_PHYSICS = [
 def test_bad_physics_data_is_refused_naming_it(physics, word):
     with pytest.raises(ValueError, match="robot 'default': " + word if word.startswith("PHYSICS") else word):
         mjcf.check_physics("default", physics)
+
+
+@pytest.mark.parametrize("share,ok", [(49, False), (50, True), (1000, True), (1001, False), (400.0, False)])
+def test_planner_share_edges(share, ok):
+    data = {k: getattr(d, k) for k in dir(d) if k.isupper()}
+    data["SERVO"] = dict(SERVO, planner_share_permille=share)
+    if ok:
+        assert geometry.from_data("default", data).servo_step == 6000 * 20 * share // (170 * 1000)
+    else:
+        with pytest.raises(ValueError, match="planner_share_permille"):
+            geometry.from_data("default", data)

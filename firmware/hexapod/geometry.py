@@ -139,19 +139,25 @@ def from_data(name, data):
 
 
 def check_servo(pre, servo):
-    """ValueError (prefixed by pre) unless servo is a dict of exactly the SERVO_FIELDS, each in range."""
-    if not isinstance(servo, dict):
-        raise ValueError(pre + "SERVO: need a dict of %s, got %r" % (", ".join(f[0] for f in SERVO_FIELDS), servo))
-    names = [f[0] for f in SERVO_FIELDS]
-    for key in servo:
+    """ValueError (prefixed by pre) unless servo is a dict of the SERVO_FIELDS, each in range."""
+    check_table(pre, "SERVO", servo, SERVO_FIELDS, SERVO_OPTIONAL)
+
+
+def check_table(pre, label, table, fields, optional=()):
+    """ValueError (pre + label ...) unless table is a dict of exactly `fields` ((key, lo, hi,
+    unit), whole numbers in lo..hi), keys in `optional` may be left out."""
+    names = [f[0] for f in fields]
+    if not isinstance(table, dict):
+        raise ValueError(pre + "%s: need a dict of %s, got %r" % (label, ", ".join(names), table))
+    for key in table:
         if key not in names:
-            raise ValueError(pre + "SERVO: unknown key %r, allowed: %s" % (key, ", ".join(names)))
-    for name, lo, hi, unit in SERVO_FIELDS:
-        if name not in servo and name in SERVO_OPTIONAL:
-            continue
-        if name not in servo:
-            raise ValueError(pre + "SERVO: %s is missing (%s, %d..%d)" % (name, unit, lo, hi))
-        _int(pre, "SERVO %s (%s)" % (name, unit), servo[name], lo, hi)
+            raise ValueError(pre + "%s: unknown key %r, allowed: %s" % (label, key, ", ".join(names)))
+    for name, lo, hi, unit in fields:
+        if name not in table:
+            if name in optional:
+                continue
+            raise ValueError(pre + "%s: %s is missing (%s, %d..%d)" % (label, name, unit, lo, hi))
+        _int(pre, "%s %s (%s)" % (label, name, unit), table[name], lo, hi)
 
 
 def _check_mounts(pre, mounts):

@@ -16,7 +16,7 @@ motor inertia is the joint armature. Only the feet and the body box touch the fl
 import math
 import os
 
-from hexapod.geometry import LEG_NAMES
+from hexapod.geometry import LEG_NAMES, check_table
 
 PHYSICS_FIELDS = (
     ("body_g", 10, 100000, "g"),
@@ -42,19 +42,7 @@ def import_mujoco():
 
 def check_physics(name, physics):
     """ValueError naming the robot and the field unless physics holds every PHYSICS_FIELDS key in range."""
-    pre = "robot %r: PHYSICS" % (name,)
-    if not isinstance(physics, dict):
-        raise ValueError("%s: need a dict of %s, got %r" % (pre, ", ".join(f[0] for f in PHYSICS_FIELDS), physics))
-    names = [f[0] for f in PHYSICS_FIELDS]
-    for key in physics:
-        if key not in names:
-            raise ValueError("%s: unknown key %r, allowed: %s" % (pre, key, ", ".join(names)))
-    for key, lo, hi, unit in PHYSICS_FIELDS:
-        v = physics.get(key)
-        if v is None:
-            raise ValueError("%s: %s is missing (%s, %d..%d)" % (pre, key, unit, lo, hi))
-        if not isinstance(v, int) or isinstance(v, bool) or v < lo or v > hi:
-            raise ValueError("%s %s: %r is outside %d..%d (%s)" % (pre, key, v, lo, hi, unit))
+    check_table("robot %r: " % (name,), "PHYSICS", physics, PHYSICS_FIELDS)
     return physics
 
 
