@@ -274,3 +274,13 @@ def test_planner_share_edges(share, ok):
     else:
         with pytest.raises(ValueError, match="planner_share_permille"):
             geometry.from_data("default", data)
+
+
+def test_cli_table(capsys):
+    status, out, _ = run_cli(capsys, "--table", "--json")
+    assert status == 0
+    rows = json.loads(out)
+    assert [(r["gait"], r["case"]) for r in rows] == [(g, label) for g, label, _ in sp.TABLE_CASES]
+    assert all(r["frame_faults"] == 0 for r in rows)
+    text = sp.format_table(rows)
+    assert text.count("\n") == 10 and "| tripod | 60 mm/s | 60.0 mm/s |" in text

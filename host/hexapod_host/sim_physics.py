@@ -406,6 +406,11 @@ def register(sub):
     p.add_argument("--servo", default="", help="SERVO overrides, KEY=INT,...: e.g. stall_torque_mnm=1500")
     p.add_argument("--render", metavar="DIR", default=None, help="write PNG frames and walk.gif here")
     p.add_argument("--json", action="store_true", help="print the results as JSON")
+    p.add_argument(
+        "--table",
+        action="store_true",
+        help="tripod, ripple, wave at 60, 120 mm/s and turning 30 deg/s (8 s each, on every core): a table",
+    )
     p.set_defaults(func=main)
 
 
@@ -435,6 +440,10 @@ def main(args):
     from hexapod_host.cli import UsageError
 
     servo = check_args(args)
+    if args.table:
+        rows = table(servo=servo, cycle_ms=args.cycle, progress=sys.stderr.isatty() and not args.json)
+        print(json.dumps(rows, indent=1) if args.json else format_table(rows))
+        return 0
     try:
         res = simulate(
             gait=args.gait,
@@ -454,6 +463,57 @@ def main(args):
     else:
         print(report(res))
     return 0
+
+
+TABLE_CASES = [
+    (gait, label, kw)
+    for gait in ("tripod", "ripple", "wave")
+    for label, kw in (
+        ("60 mm/s", dict(speed=60.0)),
+        ("120 mm/s", dict(speed=120.0)),
+        ("turn 30 deg/s", dict(turn=30.0)),
+    )
+]
+
+
+def _table_case(job):
+    gait, label, kw, servo, cycle_ms = job
+    res = simulate(gait=gait, seconds=8.0, servo=servo, cycle_ms=cycle_ms, **dict(dict(speed=0.0), **kw))
+    res.pop("joints")
+    return dict(case=label, **res)
+
+
+def table(*, servo=None, cycle_ms=None, progress=False):
+    """The README's table: each gait at 60 and 120 mm/s and turning at 30 deg/s, 8 s each, on every core."""
+    import multiprocessing
+
+    jobs = [(g, label, kw, servo, cycle_ms) for g, label, kw in TABLE_CASES]
+    rows = []
+    with multiprocessing.get_context("spawn").Pool(min(len(jobs), os.cpu_count() or 1)) as pool:
+        for k, row in enumerate(pool.imap(_table_case, jobs)):
+            rows.append(row)
+            if progress:
+                done = (k + 1) * 30 // len(jobs)
+                sys.stderr.write("\r[%s%s] %d/%d walks" % ("#" * done, "." * (30 - done), k + 1, len(jobs)))
+                sys.stderr.write("\n" if k + 1 == len(jobs) else "")
+                sys.stderr.flush()
+    return rows
+
+
+def format_table(rows):
+    """Rows of table() as a Markdown table."""
+    out = [
+        "| gait | case | commanded | achieved | peak torque | saturated |",
+        "|---|---|---|---|---|---|",
+    ]
+    for r in rows:
+        turn = r["yaw_ratio"] is not None
+        c = r["commanded"]["yaw_deg_s"] if turn else r["commanded"]["vx_mm_s"]
+        ratio = r["yaw_ratio"] if turn else r["speed_ratio"]
+        unit = "deg/s" if turn else "mm/s"
+        values = (r["gait"], r["case"], c, unit, ratio * 100, r["torque_peak_nm"], r["saturated_pct"])
+        out.append("| %s | %s | %.1f %s | %.1f %% | %.2f N m | %.1f %% |" % values)
+    return "\n".join(out)
 
 
 def report(res):
