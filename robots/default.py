@@ -45,7 +45,7 @@ SERVO = {
     "armature_g_cm2": 20000,
     # Optional: the walk turns no joint faster than this share of the no-load speed, scaling
     # commands and refusing gait/cycle/lift settings that would need more (docs/physics.md).
-    # 400 (282 cdeg a tick) keeps the tripod under 80 % of stall in physics; its stance
+    # 400 (282 cdeg a tick) keeps the tripod under 80 % of stall in physics at 1 s; its stance
     # femurs already spend ~75 % holding the body up. Off here: at 400 the tripod needs a
     # cycle of 0.92 s or more, tetrapod 1.38 s, ripple 1.44 s, wave 2.76 s, and other tests walk them at 1 s.
     # "planner_share_permille": 400,
