@@ -32,3 +32,33 @@ BODY_HEIGHT_MIN = 600  # allowed range of the body height setting
 BODY_HEIGHT_MAX = 1000
 SIT_HEIGHT = 300  # coxa joints above the ground with the body resting on it, 0.1 mm
 FOOT_CLEARANCE = 100  # how far feet lift off the ground while the body rests, 0.1 mm
+
+# The servos (MG996R class at 6 V), integers: stall torque (mN m), no-load speed (ms per 60
+# degrees), mass (g), position gain of the servo's loop (mN m per rad), the motor's inertia
+# seen at the horn through the gears (armature, g cm^2) and how much of the no-load speed
+# the walk may use. The MuJoCo model (hexapod sim physics) uses all of it.
+SERVO = {
+    "stall_torque_mnm": 1100,
+    "speed_ms_per_60deg": 170,
+    "mass_g": 55,
+    "kp_mnm_per_rad": 20000,
+    "armature_g_cm2": 20000,
+    # Optional: the walk turns no joint faster than this share of the no-load speed, scaling
+    # commands and refusing gait/cycle/lift settings that would need more (docs/physics.md).
+    # 400 (282 cdeg a tick) keeps the tripod under 80 % of stall in physics at 1 s; its stance
+    # femurs already spend ~75 % holding the body up. Off here: at 400 the tripod needs a
+    # cycle of 0.92 s or more, tetrapod 1.38 s, ripple 1.44 s, wave 2.76 s, and other tests walk them at 1 s.
+    # "planner_share_permille": 400,
+}
+
+# For physics only (host/hexapod_host/mjcf.py): masses without the servos (g), the body's
+# thickness (0.1 mm), the foot's friction with the floor (per mille) and its sphere (0.1 mm).
+PHYSICS = {
+    "body_g": 600,
+    "coxa_g": 15,
+    "femur_g": 20,
+    "tibia_g": 25,
+    "body_thickness": 400,
+    "foot_friction_permille": 900,
+    "foot_radius": 50,
+}

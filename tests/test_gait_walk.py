@@ -330,3 +330,48 @@ print(res)
 """
     )
     assert got == [[0, True], [0, 200, True], [1, 300, 400], [0, 400]]
+
+
+@pytest.mark.parametrize("gait", ["tripod", "ripple", "wave"])
+@pytest.mark.parametrize("vx,vy,yaw", [(1111, 0, 0), (-800, 500, 0), (0, 0, 2000)])
+def test_swing_leaves_and_meets_the_ground_at_the_stance_speed(both_runtimes, gait, vx, vy, yaw):
+    # The swing ends moving as the stance feet do (Hermite velocity terms), so a foot that
+    # touches down a tick early or lifts a tick late does not fight the stance. Oracle: the
+    # rigid ground motion under the body, from the command alone (float).
+    rows = scenario(
+        both_runtimes,
+        """
+robot.set_gait(%d)
+robot.walk(%d, %d, %d)
+run(150)
+print([w.clock.swing_ticks] + list(w.cmd))
+for _ in range(w.clock.cycle_ticks + 2):
+    run(1)
+    print([[w.su[i], w.fx[i], w.fy[i]] for i in range(6)])
+"""
+        % (["tripod", "tetrapod", "ripple", "wave"].index(gait), vx, vy, yaw),
+    )
+    (swing, cvx, cvy, cyaw), rows = rows[0], rows[1:]
+    assert (cvx, cvy, cyaw) != (0, 0, 0)  # (the longer stances of ripple and wave scale it down)
+    dt = 0.02
+    w = math.radians(cyaw / 100.0)
+
+    def ground(x, y):  # fine units per tick, at body point (x, y) fine
+        return (-(cvx * 16 * dt) + w * dt * y, -(cvy * 16 * dt) - w * dt * x)
+
+    checked = 0
+    for a, b in zip(rows, rows[1:], strict=False):
+        for i in range(6):
+            if a[i][0] < 0 and b[i][0] == 1:  # lift-off: the first tick of the swing
+                d, (gx, gy) = (b[i][1] - a[i][1], b[i][2] - a[i][2]), ground(a[i][1], a[i][2])
+            elif a[i][0] == swing - 1 and b[i][0] < 0:  # the landing tick
+                d, (gx, gy) = (b[i][1] - a[i][1], b[i][2] - a[i][2]), ground(b[i][1], b[i][2])
+            else:
+                continue
+            # Before this change the first and last ticks moved the foot with the body (0 %,
+            # or the sine's tail forward); now exactly as the stance (rounding, and the
+            # turn's per-tick arc taken as straight: 1 %).
+            g = math.hypot(gx, gy)
+            assert math.hypot(d[0] - gx, d[1] - gy) <= 0.01 * g + 3, (i, d, (gx, gy))
+            checked += 1
+    assert checked >= 6

@@ -128,3 +128,23 @@ print(rows)
         assert up[w - 1] <= eq14_last * math.sin(math.radians(180 / w)) + 2
         assert up[w - 1] < eq14_last
         assert up[1] == up[w - 1]
+
+
+def test_swing_stroke(rt):
+    rows = rt.value(
+        """
+from hexapod.trajectory import swing_stroke
+out = [0, 0]
+print([[list(swing_stroke(u, w, out)) for u in range(w + 1)] for w in (4, 8, 25, 50, 208)])
+"""
+    )
+    for shape in rows:
+        w = len(shape) - 1
+        for u, (stroke, carry) in enumerate(shape):
+            # Float oracle: eq. 12/13's (1 + sin) / 2 over ticks 1..w-1; none on the first
+            # and last tick (those move the foot with the stance only).
+            k, n = u - 1, w - 2
+            want = 0.0 if k <= 0 else 1.0 if k >= n else (1 + math.sin(math.radians((2 * k - n) * 90 / n))) / 2
+            assert abs(stroke - want * 32768) <= 2, (w, u)
+            assert carry == (u * 32768) // w
+        assert shape[1][0] == 0 and shape[w - 1][0] == 32768

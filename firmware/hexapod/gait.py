@@ -76,6 +76,14 @@ def actual_cycle_ms(gait, cycle_ms):
     return slot_ticks(gait, cycle_ms) * _SLOTS[gait] * TICK_MS
 
 
+def swing_stance_ticks(gait, cycle_ms, out):
+    """(swing ticks, stance ticks) of a gait at a cycle time (ms), into out[0:2]."""
+    st = slot_ticks(gait, cycle_ms)
+    out[0] = st * _SWING_SLOTS[gait]
+    out[1] = st * _SLOTS[gait] - out[0]
+    return out
+
+
 class GaitClock:
     """Tick timing of one gait at one cycle time: slot, swing and stance lengths in ticks."""
 

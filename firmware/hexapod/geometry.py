@@ -11,6 +11,16 @@ from hexapod.leg import OK, Leg, describe
 LEG_NAMES = ("RF", "RM", "RR", "LR", "LM", "LF")
 MOUNT_MAX = 5000  # largest |x|, |y| of a coxa axis, 0.1 mm
 HEIGHT_MAX = 3000  # largest body height, 0.1 mm
+# The optional SERVO dict of a robot file: key -> (smallest, largest allowed, unit).
+SERVO_FIELDS = (
+    ("stall_torque_mnm", 50, 100000, "mN m"),
+    ("speed_ms_per_60deg", 20, 2000, "ms per 60 degrees, no load"),
+    ("mass_g", 1, 1000, "g"),
+    ("kp_mnm_per_rad", 100, 10000000, "mN m per rad"),
+    ("armature_g_cm2", 0, 10000000, "g cm^2"),
+    ("planner_share_permille", 50, 1000, "per mille of the no-load speed the walk may ask"),
+)
+SERVO_OPTIONAL = ("planner_share_permille",)  # absent: the walk does not limit joint speeds
 _FIELDS = (
     "COXA",
     "FEMUR",
@@ -55,6 +65,13 @@ class Geometry:
         self.sit_height = data["SIT_HEIGHT"]
         self.foot_clearance = data["FOOT_CLEARANCE"]
         self.limits = tuple(data["LIMITS"])
+        servo = data.get("SERVO")
+        # The most the walk may turn a joint in one 20 ms tick, cdeg: the planner's share of
+        # the no-load speed (0: no servo given, no limit).
+        self.servo_step = 0
+        if servo is not None and "planner_share_permille" in servo:
+            self.servo_step = 6000 * 20 * servo["planner_share_permille"] // (servo["speed_ms_per_60deg"] * 1000)
+        self.servo = servo
 
     def neutral_xy(self, i, out, j=0):
         """Body-frame (x, y) of leg i's neutral foot (0-based i), 0.1 mm, into out[j:j+2]."""
@@ -72,6 +89,8 @@ def load(module):
         if not hasattr(module, field):
             raise ValueError("robot %r: %s is missing" % (name, field))
         data[field] = getattr(module, field)
+    if hasattr(module, "SERVO"):
+        data["SERVO"] = module.SERVO
     return from_data(name, data)
 
 
@@ -96,6 +115,8 @@ def from_data(name, data):
     _int(pre, "BODY_HEIGHT", data["BODY_HEIGHT"], data["BODY_HEIGHT_MIN"], data["BODY_HEIGHT_MAX"])
     _int(pre, "SIT_HEIGHT", data["SIT_HEIGHT"], 0, data["BODY_HEIGHT_MIN"] - 1)
     _int(pre, "FOOT_CLEARANCE", data["FOOT_CLEARANCE"], 0, data["SIT_HEIGHT"])
+    if data.get("SERVO") is not None:
+        check_servo(pre, data["SERVO"])
     g = Geometry(name, data)
     # Every height the robot may stand or rest at must be a reachable neutral stance.
     leg = g.legs[0]
@@ -115,6 +136,28 @@ def from_data(name, data):
                 % (g.neutral_reach, label, h, describe(code, leg.excess))
             )
     return g
+
+
+def check_servo(pre, servo):
+    """ValueError (prefixed by pre) unless servo is a dict of the SERVO_FIELDS, each in range."""
+    check_table(pre, "SERVO", servo, SERVO_FIELDS, SERVO_OPTIONAL)
+
+
+def check_table(pre, label, table, fields, optional=()):
+    """ValueError (pre + label ...) unless table is a dict of exactly `fields` ((key, lo, hi,
+    unit), whole numbers in lo..hi), keys in `optional` may be left out."""
+    names = [f[0] for f in fields]
+    if not isinstance(table, dict):
+        raise ValueError(pre + "%s: need a dict of %s, got %r" % (label, ", ".join(names), table))
+    for key in table:
+        if key not in names:
+            raise ValueError(pre + "%s: unknown key %r, allowed: %s" % (label, key, ", ".join(names)))
+    for name, lo, hi, unit in fields:
+        if name not in table:
+            if name in optional:
+                continue
+            raise ValueError(pre + "%s: %s is missing (%s, %d..%d)" % (label, name, unit, lo, hi))
+        _int(pre, "%s %s (%s)" % (label, name, unit), table[name], lo, hi)
 
 
 def _check_mounts(pre, mounts):

@@ -26,7 +26,7 @@ from hexapod.posture import Posture
 from hexapod.reach import disc_radii
 from hexapod.servo import ServoMap
 from hexapod.turns import sweep_command
-from hexapod.walk import STEP_MAX, STOPPED, Walker
+from hexapod.walk import SERVO_SPEED, STEP_MAX, STOPPED, Walker
 
 # Reason codes (leg IK codes 1..9 come through in fault_code with fault_leg).
 WALKING_NOW = const(20)
@@ -62,6 +62,7 @@ def describe(code):
         FRAME_SERVO: "frame held: a pulse was outside its servo's calibrated range",
         JOG_IK: "refused: that foot is out of reach or a joint past its limit",
         JOG_SERVO: "refused: that pulse is outside the servo's calibrated range",
+        SERVO_SPEED: "refused: the servos are too slow for this gait's swing (longer cycle or lower lift)",
     }.get(code, "unknown reason %d" % code)
 
 
@@ -132,6 +133,7 @@ class Robot:
         self.gait = TRIPOD
         self.cycle_ms = 1000
         disc_radii(self.walker, self._probe, self.walker.lift, self._rho)
+        self.walker.pose_body = self._probe  # the servo-speed check sees the pose asked for
         self.walker.configure(TRIPOD, 1000, self.walker.lift, self.walker.step, self._rho)
         # Until told otherwise (assume_angles), the robot rests on its body, feet at neutral.
         for i in range(6):
@@ -283,7 +285,10 @@ class Robot:
             w.ground = old
             return UNREACHABLE
         disc_radii(w, self.body, w.lift, self._rho)
-        w.configure(self.gait, self.cycle_ms, w.lift, w.step, self._rho)
+        code = w.configure(self.gait, self.cycle_ms, w.lift, w.step, self._rho)
+        if code != OK:
+            w.ground = old
+            return code
         if self.mode == STANDING:
             self.posture.to_height(w, w.ground)
             self.after = STANDING
@@ -312,7 +317,9 @@ class Robot:
             return UNREACHABLE
         w = self.walker
         disc_radii(w, probe, w.lift, self._rho)
-        w.configure(self.gait, self.cycle_ms, w.lift, w.step, self._rho)
+        code = w.configure(self.gait, self.cycle_ms, w.lift, w.step, self._rho)
+        if code != OK:
+            return code
         self.body.set_target(pose)
         return OK
 
@@ -320,9 +327,10 @@ class Robot:
         """Switch gait (gait.TRIPOD ...): now when stopped, else when no foot is in the air."""
         check_gait(gait)
         w = self.walker
-        w.configure(gait, self.cycle_ms, w.next_lift, w.step, w.next_rho)
-        self.gait = gait
-        return OK
+        code = w.configure(gait, self.cycle_ms, w.next_lift, w.step, w.next_rho)
+        if code == OK:
+            self.gait = gait
+        return code
 
     def set_params(self, step_length=None, lift_height=None, cycle_ms=None):
         """Step length and lift height (0.1 mm), cycle time (ms); each bounded (ValueError)."""
@@ -338,9 +346,10 @@ class Robot:
         disc_radii(w, self._probe, lift, self._rho)
         if self.mode == WALKING and not self._roomy(self._rho):
             return UNREACHABLE  # that lift would leave a walking leg no room to step
-        w.configure(self.gait, cycle, lift, step, self._rho)
-        self.cycle_ms = cycle
-        return OK
+        code = w.configure(self.gait, cycle, lift, step, self._rho)
+        if code == OK:
+            self.cycle_ms = cycle
+        return code
 
     def walk(self, vx, vy, yaw_rate):
         """Walk at vx, vy (0.1 mm/s) turning at yaw_rate (cdeg/s); scaled down to what reach allows."""

@@ -105,3 +105,24 @@ def swing_shape(u, w, out):
     h = sin90(w - t if t >= 0 else w + t, w)
     out[1] = mul_q15(h, h)
     return out
+
+
+def swing_stroke(u, w, out):
+    """The swing's forward stroke at tick u of w: (stroke fraction, u / w), Q15, into out[0:2].
+
+    The foot is carried at the stance's speed through the whole swing (the u / w part) and
+    the stroke, eq. 12/13's (1 + sin) / 2 over the middle w - 2 ticks only, brings it
+    forward to the touch-down point: the first and the last tick of every swing move the
+    foot exactly as the stance feet move, so a foot that meets the ground a tick early or
+    leaves it a tick late does not fight the stance.
+    """
+    n = w - 2 if w > 3 else w
+    k = u - 1 if w > 3 else u
+    if k <= 0:
+        out[0] = 0
+    elif k >= n:
+        out[0] = ONE
+    else:
+        out[0] = (ONE + sin90((k << 1) - n, n) + 1) >> 1
+    out[1] = (u << 15) // w
+    return out

@@ -25,16 +25,19 @@ no foot is in the air (new swings are held back until then).
 
 from micropython import const
 
-from hexapod.body import FINE, FINE_SHIFT
+from hexapod.body import FINE, FINE_SHIFT, Body
 from hexapod.fixmath import cos, isqrt, mul_q15, sin
-from hexapod.gait import TICK_MS, TRIPOD, GaitClock, actual_cycle_ms, check_cycle_ms, check_gait
-from hexapod.trajectory import swing_shape
+from hexapod.gait import TICK_MS, TRIPOD, GaitClock, actual_cycle_ms, check_cycle_ms, check_gait, swing_stance_ticks
+from hexapod.reach import servo_radii
+from hexapod.trajectory import swing_shape, swing_stroke
 
 STOPPED = const(0)
 STARTING = const(1)
 WALKING = const(2)
 STOPPING = const(3)
 STATE_NAMES = ("stopped", "starting", "walking", "stopping")
+OK = const(0)
+SERVO_SPEED = const(28)  # configure: even a step of nothing would turn a joint too fast
 
 SPEED_MAX = const(3000)  # largest |vx|, |vy| accepted, 0.1 mm/s
 YAW_RATE_MAX = const(9000)  # largest |yaw rate| accepted, cdeg/s
@@ -61,6 +64,10 @@ class Walker:
         self.nx = [0] * 6  # neutral feet, body frame, fine
         self.ny = [0] * 6
         self.rho = [0] * 6  # reach disc radius around each neutral foot, 0.1 mm
+        self.srho = [STEP_MAX] * 6  # largest half stance the servos' speed allows, 0.1 mm
+        self.next_srho = [STEP_MAX] * 6
+        self.servo_peak = 0  # largest joint change (cdeg/tick) of a swing without a step, last configure
+        self.pose_body = None  # the Body whose pose the servo-speed check uses (else level)
         self.fx = [0] * 6  # current feet, body frame, fine
         self.fy = [0] * 6
         self.fz = [0] * 6
@@ -92,6 +99,10 @@ class Walker:
         self.next_lift = 300
         self.next_rho = [0] * 6
         self._shape = [0, 0]
+        self._stroke = [0, 0]  # swing_stroke's (stroke, carry) fractions
+        # The stance's ground motion over one swing at the command: x, y shift (fine), turn (Q15 rad).
+        self._carry = [0, 0, 0]
+        self._cv = [0, 0, 0, 0]  # this swing's carries at lift-off (x, y) and touch-down (x, y), fine
         self._aim = [0, 0, 0, 0, 0, 0]  # cos, sin of half the stance turn, half-stance shift x, y
         self._xy = [0, 0]
         for i in range(6):
@@ -124,11 +135,25 @@ class Walker:
 
     def configure(self, gait, cycle_ms, lift, step, rho):
         """Gait, cycle time (ms), lift and step (0.1 mm) with their reach discs; checked, then
-        taken now when stopped, else at the next moment with every foot on the ground."""
+        taken now when stopped, else at the next moment with every foot on the ground.
+
+        Returns OK, or SERVO_SPEED (and changes nothing) when the robot file's servos could
+        not even lift and lower a foot in this gait's swing at this cycle time and lift."""
         check_gait(gait)
         check_cycle_ms(cycle_ms)
         self.check_lift(lift)
         self.check_step(step)
+        limit = self.geometry.servo_step
+        if limit:
+            body = self.pose_body if self.pose_body is not None else Body(self.geometry)
+            ticks = swing_stance_ticks(gait, cycle_ms, [0, 0])
+            srho = [0] * 6
+            peak = servo_radii(self, body, ticks[0], ticks[1], lift, limit, rho, srho)
+            self.servo_peak = peak
+            if peak > limit:
+                return SERVO_SPEED
+            for i in range(6):
+                self.next_srho[i] = srho[i]
         self.step = step
         self.next_gait = gait
         self.next_cycle_ms = cycle_ms
@@ -137,7 +162,7 @@ class Walker:
             self.next_rho[i] = rho[i]
         same = gait == self.clock.gait and self.clock.cycle_ms == actual_cycle_ms(gait, cycle_ms) and lift == self.lift
         for i in range(6):
-            if rho[i] != self.rho[i]:
+            if rho[i] != self.rho[i] or self.next_srho[i] != self.srho[i]:
                 same = False
         if self.state == STOPPED:
             self._apply()
@@ -147,12 +172,14 @@ class Walker:
         else:
             self.pending = 1
             self._rescale()
+        return OK
 
     def _apply(self):
         self.clock.set(self.next_gait, self.next_cycle_ms)
         self.lift = self.next_lift
         for i in range(6):
             self.rho[i] = self.next_rho[i]
+            self.srho[i] = self.next_srho[i]
         self.phase = 0
         self.pending = 0
         self._rescale()
@@ -217,6 +244,8 @@ class Walker:
             for i in range(6):
                 e = self.half_stance(i, vx * k // 1000, vy * k // 1000, w * k // 1000)
                 lim = self.rho[i] if self.rho[i] < self.step else self.step
+                if self.srho[i] < lim:
+                    lim = self.srho[i]  # the servos' speed: a longer step needs a faster swing
                 if e > lim:
                     # The shortfall sets the next try; rounding can leave it a hair short.
                     kk = k * lim // e
@@ -264,6 +293,23 @@ class Walker:
         out[1] = mul_q15(nx, a[1]) + mul_q15(ny, a[0]) + a[3]
         return out
 
+    def _carry_for(self, vx, vy, w, ticks):
+        """How the ground moves under the body in `ticks` ticks at (vx, vy, w): into _carry."""
+        ms = ticks * TICK_MS
+        k = self._carry
+        k[0] = -(vx * ms * FINE // 1000)
+        k[1] = -(vy * ms * FINE // 1000)
+        # The turn in Q15 radians: cdeg * pi / 18000 * 2**15 = cdeg * 5.71935.
+        k[2] = (w * ms // 1000) * 5719 // 1000
+
+    def carry_at(self, x, y, out, j):
+        """The ground's move (fine) under body point (x, y) (fine) over one swing, into out[j:j+2]."""
+        k = self._carry
+        # A turn w moves a ground point at p by -w x p = (w y, -w x); p in 0.1 mm keeps it small.
+        out[j] = k[0] + (((y >> FINE_SHIFT) * k[2]) >> 11)
+        out[j + 1] = k[1] - (((x >> FINE_SHIFT) * k[2]) >> 11)
+        return out
+
     # -- the tick ----------------------------------------------------------------------
 
     def update(self):
@@ -285,6 +331,7 @@ class Walker:
         # Swings aim for the commanded velocity, not the ramp's: the feet land ready for it.
         c = self.cmd
         self.aim_for(c[0], c[1], c[2])
+        self._carry_for(c[0], c[1], c[2], clock.swing_ticks)
         airborne = 0
         for i in range(6):
             if self.su[i] >= 0:
@@ -346,8 +393,27 @@ class Walker:
         sh = swing_shape(u, w, self._shape)
         sx = self.sx[i]
         sy = self.sy[i]
-        self.fx[i] = sx + mul_q15(t[0] - sx, sh[0])
-        self.fy[i] = sy + mul_q15(t[1] - sy, sh[0])
+        cv = self._cv
+        self.carry_at(sx, sy, cv, 0)
+        self.carry_at(t[0], t[1], cv, 2)
+        st = swing_stroke(u, w, self._stroke)
+        # The carry turns from lift-off's to touch-down's as the stroke goes (they differ
+        # when turning); x = S + C u / w + (T - S - C) stroke.
+        cx = cv[0] + mul_q15(cv[2] - cv[0], st[0])
+        cy = cv[1] + mul_q15(cv[3] - cv[1], st[0])
+        x = sx + mul_q15(cx, st[1]) + mul_q15(t[0] - sx - cx, st[0])
+        y = sy + mul_q15(cy, st[1]) + mul_q15(t[1] - sy - cy, st[0])
+        # Leaving and meeting the ground at the stance's speed carries the foot a little past
+        # both ends of the swing: keep it inside the reach disc.
+        dx = (x - self.nx[i]) >> FINE_SHIFT
+        dy = (y - self.ny[i]) >> FINE_SHIFT
+        e2 = dx * dx + dy * dy
+        if e2 > r * r:
+            e = isqrt(e2)
+            x = self.nx[i] + (dx * r // e << FINE_SHIFT)
+            y = self.ny[i] + (dy * r // e << FINE_SHIFT)
+        self.fx[i] = x
+        self.fy[i] = y
         self.fz[i] = self.ground + mul_q15(self.lift << FINE_SHIFT, sh[1])
         if u >= w:
             self.su[i] = -1
