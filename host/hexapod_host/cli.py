@@ -10,6 +10,7 @@ COMMAND_MODULES = (
     "hexapod_host.cmd_bench",
     "hexapod_host.cmd_sim",
     "hexapod_host.cmd_plot",
+    "hexapod_host.cmd_pico",
 )
 
 
