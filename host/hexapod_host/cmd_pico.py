@@ -41,8 +41,8 @@ def bench_tick(args, fs, tmp):
     """The VM's tick bench (vm/bench_tick.py) on the board: every gait, then the wall follower."""
     script = os.path.join(VM_DIR, "bench_tick.py")
     ticks = args.ticks or 250
-    gaits, _ = _board([_script(script, ("", ticks, 1, "gaits"), tmp)], fs)
-    wall, _ = _board([_script(script, ("", ticks, 1, "wall"), tmp)], fs)
+    gaits, _ = _board([_script(script, ("", ticks, 1, "gaits", 20000), tmp)], fs)
+    wall, _ = _board([_script(script, ("", ticks, 1, "wall", 20000), tmp)], fs)
     return {
         "bench": "tick",
         "gaits": gaits,

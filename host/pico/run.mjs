@@ -31,6 +31,10 @@ const { RP2040, USBCDC, ConsoleLogger, LogLevel } = await import(path.join(pkg, 
 const { SimulationClock } = await import(path.join(pkg, 'clock', 'simulation-clock.js'));
 const { bootromB1 } = await import(path.join(here, 'bootrom.js'));
 
+// Synchronous writes: process.exit() would drop what an asynchronous pipe write still holds.
+const writeOut = (s) => fs.writeSync(1, s);
+const writeErr = (s) => fs.writeSync(2, s);
+
 const MHZ = 125;
 const CYCLE_NS = 1000 / MHZ;
 const FS_OFFSET = 0xa0000;      // RPI_PICO: littlefs2, 352 x 4096 B blocks at 0x100A0000
@@ -53,7 +57,7 @@ for (let i = 0; i < argv.length; i++) {
   else if (a.startsWith('--')) fail(`unknown option ${a}`);
   else scripts.push(a);
 }
-function fail(msg) { process.stderr.write(`run.mjs: ${msg}\n`); process.exit(2); }
+function fail(msg) { writeErr(`run.mjs: ${msg}\n`); process.exit(2); }
 if (!opt.firmware) fail('--firmware FILE (.uf2 or .bin) is required');
 if (!(opt.main >= 0)) fail('--main takes emulated seconds >= 0');
 
@@ -122,7 +126,7 @@ cdc.onDeviceConnected = () => { connected = true; };
 let echoOut = false;                                  // --main: stream board output as it comes
 cdc.onSerialData = (buf) => {
   const s = Buffer.from(buf).toString('latin1');
-  if (echoOut) { process.stdout.write(s.replace(/\r\n/g, '\n')); mainOut += s; } else rx += s;
+  if (echoOut) { writeOut(s.replace(/\r\n/g, '\n')); mainOut += s; } else rx += s;
 };
 let mainOut = '';
 const send = (s) => { for (const c of Buffer.from(s, 'latin1')) outgoing.push(c); pump(); };
@@ -290,7 +294,7 @@ const stats = { scripts: [] };
 if (!runUntil(() => connected, 20)) fail('the board never enumerated on USB (is this an RP2040 MicroPython image?)');
 stats.boot_emu_s = clock.nanos / 1e9;
 if (opt.main > 0) {
-  process.stdout.write(rx.replace(/\r\n/g, '\n'));
+  writeOut(rx.replace(/\r\n/g, '\n'));
   echoOut = true;
   mainOut = rx; rx = '';
   runUntil(() => false, opt.main);
@@ -298,7 +302,7 @@ if (opt.main > 0) {
 } else {
   // Stop main.py if the image has one, as mpremote does: Ctrl-C until the friendly REPL answers.
   for (let k = 0; k < 50 && !rx.includes('>>> '); k++) { send('\x03'); runUntil(() => rx.includes('>>> '), 0.1); }
-  if (process.env.PICO_DEBUG) process.stderr.write(JSON.stringify(rx) + '\n');
+  if (process.env.PICO_DEBUG) writeErr(JSON.stringify(rx) + '\n');
   rx = '';
   send('\r\x01');
   expect('raw REPL; CTRL-B to exit\r\n>', 10);
@@ -307,8 +311,8 @@ if (opt.main > 0) {
   for (const file of scripts) {
     const e0 = clock.nanos, i0 = instructions, h0 = Date.now();
     const [out, err] = runScript(fs.readFileSync(file, 'latin1'));
-    process.stdout.write(out);
-    if (err) { process.stderr.write(err); status = 1; }
+    writeOut(out);
+    if (err) { writeErr(err); status = 1; }
     stats.scripts.push({ file, emu_s: (clock.nanos - e0) / 1e9, host_s: (Date.now() - h0) / 1000, instructions: instructions - i0 });
     if (err) break;
   }
