@@ -193,3 +193,20 @@ def run_source(source, fs=None, **kw):
         with open(path, "w") as f:
             f.write(source)
         return run([path], fs=fs, **kw)
+
+
+def devices(board_name="pico", distances=None, unplugged=()):
+    """The emulated chips run.mjs attaches for a board file: its PCA9685s on its I2C pins (those
+    in `unplugged` NACK) and its five HC-SR04s at distances (0.1 mm, drivers.hcsr04 order)."""
+    from hexapod import board as boards
+
+    board = boards.load(board_name)
+    bus = board["i2c"]
+    pins = boards.sensor_pins(board)
+    distances = distances or [3000 + 1000 * k for k in range(len(pins))]
+    chips = board["pca9685"]["chips"]
+    return {
+        "i2c": {"id": bus["id"], "sda": bus["sda"], "scl": bus["scl"]},
+        "pca9685": [{"address": c["address"], "plugged": c["address"] not in unplugged} for c in chips],
+        "sonars": [{"trigger": t, "echo": e, "distance": d} for (t, e), d in zip(pins, distances, strict=True)],
+    }

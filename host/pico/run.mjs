@@ -165,7 +165,7 @@ function attachPCA9685(bus, chips) {
     else {
       const p = cur.ptr, asleep = cur.reg[0] & 0x10;
       if (p === 0xfe) { if (asleep) cur.reg[p] = Math.max(v, 3); }
-      else if (p === 0x00) cur.reg[p] = (cur.reg[p] & 0x80 && v & 0x80) ? v & 0x7f : v;
+      else if (p === 0x00) cur.reg[p] = v & 0x7f;      // RESTART: a 1 written clears it; only PWM stopped by SLEEP sets it
       else cur.reg[p] = v;
       if (p >= 0x06 && p <= 0x45) cur.ledWrites++;
       cur.ptr = cur.reg[0] & 0x20 ? (p === 0x45 ? 0 : p === 0xfe ? 0 : (p + 1) & 0xff) : p;
