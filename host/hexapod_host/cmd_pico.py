@@ -40,7 +40,7 @@ def bench_ik(args, fs, tmp):
 def bench_tick(args, fs, tmp):
     """The VM's tick bench (vm/bench_tick.py) on the board: every gait, then the wall follower."""
     script = os.path.join(VM_DIR, "bench_tick.py")
-    ticks = args.ticks or 250
+    ticks = args.ticks or 200
     gaits, _ = _board([_script(script, ("", ticks, 1, "gaits", 20000), tmp)], fs)
     wall, _ = _board([_script(script, ("", ticks, 1, "wall", 20000), tmp)], fs)
     return {
@@ -53,7 +53,79 @@ def bench_tick(args, fs, tmp):
     }
 
 
-BENCHES = {"ik": bench_ik, "tick": bench_tick}
+# The frame's parts on the board, timed apart over walking frames: the ping (round robin, blocking
+# echo wait), the tick with its two bursts, and the two bursts alone (the same pulses again).
+PARTS = """
+import time, gc, main
+from array import array
+r = main.build()
+r.robot.stand_up()
+t = time.ticks_ms()
+while r.robot.mode != 3:
+    t += 20
+    r.robot.tick(t)
+r.robot.walk(1200, 0, 0)
+N = 50
+ping = array("i", [0] * N)
+tick = array("i", [0] * N)
+burst = array("i", [0] * N)
+pulses = r.robot.pulses
+gc.collect()
+gc.disable()
+for n in range(N):
+    t += 20
+    t0 = time.ticks_us()
+    r.sonar.tick(r.distances, r.sonar_status)
+    t1 = time.ticks_us()
+    r.robot.tick(t)
+    t2 = time.ticks_us()
+    r.bank.write_frame(pulses)
+    t3 = time.ticks_us()
+    ping[n] = time.ticks_diff(t1, t0)
+    tick[n] = time.ticks_diff(t2, t1)
+    burst[n] = time.ticks_diff(t3, t2)
+gc.enable()
+def med(a):
+    b = sorted(a)
+    return {"median_us": b[len(b) // 2], "max_us": b[-1]}
+import json
+b = med(burst)
+tk = med(tick)
+print(json.dumps({"ping": med(ping), "tick_with_bursts": tk, "two_bursts": b, "i2c_hz": r.board["i2c"]["freq"]}))
+"""
+
+
+def bench_frame(args, fs, tmp):
+    """The whole frame (ping, tick, both bursts) of main.build's loop on the board with emulated
+    chips: the loop script's figures over `frames`, its bursts checked against the stub machine's,
+    and the parts timed apart."""
+    from hexapod_host import pico_loop
+
+    frames = args.frames or 500
+    status, lines, bursts, stats = pico_loop.board(frames, fs)
+    if status != 0:
+        raise UsageError("the emulated Pico failed:\n" + "\n".join(lines))
+    _, host_bursts = pico_loop.host(frames)
+    result = pico_loop.summary(lines)
+    result["bench"] = "frame"
+    result["status_line"] = [line for line in lines if line.startswith("frames ")][-1]
+    result["bursts_equal_host"] = bursts == host_bursts
+    result["bursts"] = len(bursts)
+    result["emulated_s"] = round(stats.get("emu_s", 0), 3)
+    result["host_s"] = stats.get("host_s")
+    parts, _ = _board([_write(tmp, "parts.py", PARTS)], fs, devices=pico.devices(distances=list(pico_loop.DISTANCES)))
+    result["parts"] = parts[-1]
+    return result
+
+
+def _write(tmp, name, text):
+    path = os.path.join(tmp, name)
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+BENCHES = {"ik": bench_ik, "tick": bench_tick, "frame": bench_frame}
 
 
 def register(sub):
@@ -73,7 +145,8 @@ def register(sub):
     b.add_argument("--json", action="store_true", help="print one JSON object (the default form)")
     b.add_argument("--firmware", metavar="FILE", help="MicroPython RPI_PICO .uf2/.bin")
     b.add_argument("--rounds", type=int, help="ik: six-leg solves per case (default 20)")
-    b.add_argument("--ticks", type=int, help="tick: ticks per gait (default 250)")
+    b.add_argument("--ticks", type=int, help="tick: ticks per gait (default 200)")
+    b.add_argument("--frames", type=int, help="frame: 20 ms frames of the whole loop (default 500: 10 s)")
     b.set_defaults(func=run_bench)
 
 
