@@ -41,7 +41,10 @@ def node():
     exe = os.environ.get("NODE") or shutil.which("node") or shutil.which("nodejs")
     if exe is None:
         raise PicoError("the Pico emulator needs Node.js >= %d: install it (e.g. apt-get install nodejs)" % NODE_MIN)
-    out = subprocess.run([exe, "--version"], capture_output=True, text=True).stdout.strip()
+    try:
+        out = subprocess.run([exe, "--version"], capture_output=True, text=True, timeout=60).stdout.strip()
+    except OSError as err:
+        raise PicoError("the Pico emulator needs Node.js >= %d; %s does not run: %s" % (NODE_MIN, exe, err)) from None
     m = re.match(r"v(\d+)\.", out)
     if not m or int(m.group(1)) < NODE_MIN:
         raise PicoError("the Pico emulator needs Node.js >= %d; %s is %s" % (NODE_MIN, exe, out or "unknown"))
