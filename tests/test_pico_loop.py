@@ -42,3 +42,15 @@ def test_stand_up_and_walk_bursts_equal_the_stub_machines(fs):
     assert s["heap_bytes_per_frame"] == 0
     # The period is a benchmark figure (`hexapod pico bench frame`), reported here, not asserted.
     print("emulated Pico frame:", s, "status:", status_line)
+
+
+def test_main_py_unmodified_boots_and_stands_the_robot_up(fs):
+    # Power-up with the image's own main.py (no REPL, no script): 3 emulated seconds.
+    status, out, bursts = pico_loop.boot_main(3, fs)
+    assert status == 0 and "Traceback" not in out, out
+    frames = len(bursts) // 2
+    assert frames > 50, frames  # ~1.5 s of imports and build, then 20 ms frames
+    print("main.py on the emulated Pico: %d frames in 3 emulated s" % frames)
+    _, host_bursts = pico_loop.host_main(frames)
+    assert bursts[: 2 * frames] == host_bursts[: 2 * frames]  # bit-identical stand-up
+    assert bursts[0][1][:9] != bursts[-1][1][:9]  # the legs moved

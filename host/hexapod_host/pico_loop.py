@@ -106,3 +106,23 @@ def board(frames, fs):
 def summary(lines):
     """The loop script's JSON line."""
     return json.loads([line for line in lines if line.startswith("{")][-1])
+
+
+def boot_main(seconds, fs):
+    """(status, output, bursts) of the image's own main.py, unmodified, for `seconds` emulated
+    seconds from power-up (it stands the robot up and holds it, printing its status line)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        trace = os.path.join(tmp, "trace.jsonl")
+        status, out, err, _ = pico.run(
+            fs=fs, devices=pico.devices(distances=list(DISTANCES)), trace=trace, main_seconds=seconds
+        )
+        with open(trace) as f:
+            records = [json.loads(line) for line in f]
+    return status, out + err, [(r["chip"], r["counts"]) for r in records if "chip" in r]
+
+
+def host_main(frames):
+    """(output, bursts) of main.main(frames) on the stub machine (CPython)."""
+    run_main = "import main\nmain.main(%d, clock=clock)\nprint('BURSTS', BURSTS)\n" % frames
+    lines = CPythonRuntime().run(HOST_SETUP % (DISTANCES, frames) + run_main).splitlines()
+    return lines[:-1], [(a, list(c)) for a, c in eval(lines[-1][len("BURSTS ") :])]  # noqa: S307
