@@ -14,6 +14,10 @@
 // the TIMER (ticks_us) reads that clock, WFI skips to the next alarm. Deterministic, and a lower
 // bound on silicon: flash is zero-wait here (no XIP cache misses), cycle costs are approximate.
 //
+// Environment: RP2040_PROFILE=FILE writes executed instructions per PC (prof2sym.py sums them by
+// function), RP2040_DEBUG=1 turns on rp2040js's log, PICO_DEBUG=1 shows what main.py printed
+// before it was stopped.
+//
 // Devices (--devices JSON, all optional): {"i2c": {"id": 0, "sda": 4, "scl": 5},
 //   "pca9685": [{"address": 64, "plugged": true}], "sonars": [{"trigger": 6, "echo": 7,
 //   "distance": 10000}], "temp_centi_c": 2000, "schedule": [[t_us, sonar, distance]]}
