@@ -158,7 +158,7 @@ for name in %r:
     assert free0 > 200000 and left > 100000, (free0, left)
 
 
-# Stand up, then walk: forward, crab, turn in place, arc, back (0.1 mm/s, cdeg/s), 40 ticks each.
+# Stand up, then walk: forward, crab, ... (0.1 mm/s, cdeg/s), a new command every 40 ticks from tick 60.
 WALK_SOURCE = """
 import robots.default as robot_file
 from hexapod import geometry, tick
@@ -180,13 +180,13 @@ print("frames", frames.frames, "held", codes, "mode", robot.mode)
 
 
 def test_stand_up_and_walk_frames_equal_the_hosts(fs):
-    source = WALK_SOURCE % 200
+    source = WALK_SOURCE % 130
     board, _ = on_board(source, fs)
     host = CPythonRuntime().run(source)
     assert board == host
     lines = board.splitlines()
     frames = [[int(v) for v in line.split()] for line in lines[:-1]]
-    assert len(frames) == 200 and lines[-1].startswith("frames ")
+    assert len(frames) == 130 and lines[-1] == "frames 130 held 0 mode 4"  # walking (tick.WALKING)
     # Every pulse inside the servos' 600..2400 us (seed 001), and the legs really moved.
     assert all(600 <= p <= 2400 for f in frames for p in f)
-    assert len({tuple(f) for f in frames[100:]}) > 50
+    assert len({tuple(f) for f in frames[60:]}) > 40
