@@ -11,6 +11,7 @@ MODE2.OCH is set (outputs change on ACK): a channel's output only changes once a
 its registers arrived, so a burst cut short by a NACK never outputs half a pulse width.
 """
 
+import micropython
 from micropython import const
 
 from hexapod.servo import PULSE_MAX_US, PULSE_MIN_US
@@ -148,6 +149,7 @@ class PCA9685:
         self._den1000 = 1000 * self._den
         self._den2000 = 2000 * self._den
 
+    @micropython.native
     def count(self, pulse_us):
         """Register counts (ticks of (prescale+1)/osc_hz) for pulse_us (0..2500 us), rounded half up."""
         a = pulse_us * self._khz  # <= 2500 * 50000
@@ -182,6 +184,7 @@ class PCA9685:
         return ok
 
     # -- staging (no I2C) -----------------------------------------------------------------
+    @micropython.native
     def stage(self, channel, pulse_us):
         """Put pulse_us (us, PULSE_MIN_US..PULSE_MAX_US) on channel for the next flush()."""
         if not 0 <= channel < self.channels:
@@ -197,6 +200,7 @@ class PCA9685:
         f[i + 2] = off & 0xFF
         f[i + 3] = off >> 8
 
+    @micropython.native
     def stage_off(self, channel):
         """Put channel full OFF (no pulse, servo limp) for the next flush()."""
         if not 0 <= channel < self.channels:
@@ -209,6 +213,7 @@ class PCA9685:
         f[i + 3] = _FULL
 
     # -- I2C ------------------------------------------------------------------------------
+    @micropython.native
     def flush(self):
         """Send the staged frame as one auto-increment burst; status bits."""
         status = OK
@@ -262,6 +267,7 @@ class PCA9685:
         return OFFLINE if self.offline else self._write_reg(_ALL_LED_OFF_H, _FULL)
 
     # -- the only I2C calls (a backend for another runtime overrides these two) -----------
+    @micropython.native
     def _send(self, buf, n):
         """Write buf (n bytes) in one transaction with bounded retries; OK, RETRIED or FAILED."""
         status = OK
@@ -328,6 +334,7 @@ class ServoBank:
         self.failed_frames = 0  # write_frame calls on which some chip kept its previous frame
         self.reinits = 0  # write_frame calls that found a chip reset (brownout) and set it up again
 
+    @micropython.native
     def write_frame(self, pulses_us):
         """The control tick's sink (hexapod.tick.Robot): write(), keeping the status and counts."""
         st = self.write(pulses_us)
@@ -338,6 +345,7 @@ class ServoBank:
             self.reinits += 1
         return st
 
+    @micropython.native
     def write(self, pulses_us):
         """pulses_us[k] (us) to servo k, each forced into its calibrated min..max; status bits.
 

@@ -20,6 +20,7 @@ COMMAND_MODULES = (
     "hexapod_host.cmd_flash",
     "hexapod_host.cmd_jog",
     "hexapod_host.cmd_console",
+    "hexapod_host.cmd_pico",
 )
 
 

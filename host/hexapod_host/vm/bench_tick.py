@@ -3,7 +3,7 @@
 # (Follower.update + Robot.tick). Prints one JSON line per row.
 # Arguments: [module dir to put first on sys.path (the .mpy build)] [ticks per gait] [repeats]
 # [rows: "gaits" (default) or "wall": the follower's modules do not fit the 128 KB heap beside
-# the gaits' run, so the wall-follow row is a run of its own].
+# the gaits' run, so the wall-follow row is a run of its own] [histogram size, us (default 4000)].
 #
 # Each gait replays the same command sequence `repeats` times on a fresh robot. "raw" figures
 # are the worst of every pass (host scheduler noise included); the per-tick figures keep,
@@ -17,7 +17,8 @@ from array import array
 TICKS = int(sys.argv[2]) if len(sys.argv) > 2 else 10000
 REPEATS = int(sys.argv[3]) if len(sys.argv) > 3 else 5
 ROWS = sys.argv[4] if len(sys.argv) > 4 else "gaits"
-HIST_US = 4000  # longer ticks share the last bucket (the max is kept exactly)
+# Longer ticks share the last bucket (the max is kept exactly); the emulated Pico passes 20000.
+HIST_US = int(sys.argv[5]) if len(sys.argv) > 5 else 4000
 # The two big buffers come first, while the heap is still in one piece.
 BEST = bytearray(2 * TICKS)  # fastest pass of each tick, us, 16-bit little-endian
 HIST = array("H", bytes(2 * HIST_US))  # tick durations, one bucket per microsecond

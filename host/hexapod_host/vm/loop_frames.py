@@ -1,0 +1,79 @@
+# The whole loop as main.py builds it (main.build: board file, PCA9685 driver, HC-SR04 driver,
+# Runner), on the emulated Pico with its emulated chips, or on the host's stub machine (the caller
+# sets the stubs up first and has `_stub_clock` on the path). Stands up, walks a tripod through
+# forward, turn, crab and back, and stops; one Runner.step + Runner.wait per 20 ms frame, as
+# Runner.run. Prints main.py's status line at the end, then one JSON line: the frame's time
+# (ping, follower, tick, both bursts) in us, the period, the slack, the heap.
+# Arguments: [frames (default 500)].
+import gc
+import json
+import sys
+from array import array
+
+try:
+    import _stub_clock as clock  # the host's stub machine
+except ImportError:
+    import time as clock
+
+import main
+import runner
+
+FRAMES = int(sys.argv[1]) if len(sys.argv) > 1 else 500
+# (frame, vx 0.1 mm/s, vy, yaw cdeg/s); None: stop. Frame 0 stands up.
+COMMANDS = ((60, 1200, 0, 0), (160, 0, 0, 3000), (230, 600, 600, 0), (300, -800, 0, 0), (400, None, 0, 0))
+BUSY = array("i", [0] * FRAMES)  # us from a frame's start to the end of its step
+START = array("i", [0] * FRAMES)  # us from the first frame's start
+
+
+def loop(r, frames):
+    k = 0
+    t_first = clock.ticks_us()
+    for n in range(frames):
+        if k < len(COMMANDS) and COMMANDS[k][0] == n:
+            c = COMMANDS[k]
+            if c[1] is None:
+                r.robot.stop()
+            else:
+                r.robot.walk(c[1], c[2], c[3])
+            k += 1
+        t0 = clock.ticks_us()
+        r.step()
+        BUSY[n] = clock.ticks_diff(clock.ticks_us(), t0)
+        START[n] = clock.ticks_diff(t0, t_first)
+        r.wait()
+
+
+def summary(free_after_boot, heap):
+    busy = sorted(BUSY)
+    gaps = sorted(START[n + 1] - START[n] for n in range(FRAMES - 1))
+    return {
+        "frames": FRAMES,
+        "frame_median_us": busy[FRAMES // 2],
+        "frame_max_us": busy[-1],
+        "frame_p99_us": busy[(FRAMES * 99) // 100],
+        "period_min_us": gaps[0],
+        "period_max_us": gaps[-1],
+        "period_median_us": gaps[len(gaps) // 2],
+        "slack_min_us": 20000 - busy[-1],
+        "slack_median_us": 20000 - busy[FRAMES // 2],
+        "heap_free_after_boot": free_after_boot,
+        "heap_bytes_per_frame": heap,
+    }
+
+
+r = main.build(clock=clock)
+r.robot.set_gait(0)
+r.robot.stand_up()
+gc.collect()
+free = gc.mem_free() if hasattr(gc, "mem_free") else 0
+# The collector stays off: a collection inside a frame would count as the frame's time, and any
+# byte a frame allocates shows. gc.mem_alloc() walks the whole heap (16 ms on the Pico), so it
+# runs only before and after the loop; the status line is printed after it for the same reason.
+weigh = hasattr(gc, "mem_alloc")
+gc.disable()
+before = gc.mem_alloc() if weigh else 0
+loop(r, FRAMES)
+heap = (gc.mem_alloc() - before) / FRAMES if weigh else -1
+gc.enable()
+print(runner.status_line(r))
+print(json.dumps(summary(free, heap)))

@@ -1,0 +1,192 @@
+"""The firmware on an emulated Raspberry Pi Pico (real MicroPython rp2 firmware in rp2040js):
+Thumb viper code equals the plain solver and CPython bit for bit, every module imports as .mpy,
+the robot's frames equal the host's. Skipped only where Node.js or the firmware is missing.
+"""
+
+import math
+import os
+import random
+import struct
+
+import pytest
+
+from hexapod import leg as L
+from hexapod_host import pico
+from hexapod_host.testing import CPythonRuntime
+
+REASON = pico.missing()
+pytestmark = pytest.mark.skipif(REASON is not None, reason=REASON or "")
+
+
+@pytest.fixture(scope="module")
+def fs():
+    """The staged firmware's littlefs image (what a flash puts on the board)."""
+    with pico.flashed() as path:
+        yield path
+
+
+def on_board(source, fs):
+    status, out, err, stats = pico.run_source(source, fs=fs, timeout=300)
+    assert status == 0, out + err
+    print(stats)
+    return out, stats
+
+
+# Seed 004's leg with the servos' full travel, and one whose limits bind inside the reach.
+LEGS = (
+    dict(coxa=300, femur=850, tibia=1250, femur_offset=320, limits=L.DEFAULT_LIMITS),
+    dict(coxa=300, femur=850, tibia=1250, femur_offset=320, limits=(-4000, 3500, -3000, 6000, -15000, -3000)),
+)
+
+
+def shell_feet(leg, n, rng):
+    """n feet around the leg: a third within a unit of the outer shell, a third of the inner,
+    the rest anywhere in a box around the reach (0.1 mm)."""
+    feet = []
+    for k in range(n):
+        yaw = rng.uniform(-1.8, 1.8)  # the coxa limits are +-40 and +-90 deg: both sides of each
+        pitch = rng.uniform(-2.2, 2.2)
+        kind = k % 3
+        if kind == 0:
+            c = leg["femur"] + leg["tibia"] + rng.uniform(-1.5, 1.5)
+        elif kind == 1:
+            c = abs(leg["femur"] - leg["tibia"]) + rng.uniform(-1.5, 1.5)
+        else:
+            c = rng.uniform(0, leg["femur"] + leg["tibia"] + 200)
+        h = leg["coxa"] + c * math.cos(pitch)
+        x, y = h * math.cos(yaw), h * math.sin(yaw)
+        z = leg["femur_offset"] + c * math.sin(pitch)
+        feet.append((round(x), round(y), round(z)))
+    return feet
+
+
+def solve_source(legs, feet):
+    """Firmware-side source: each foot through Leg.ik with the plain solver and with the viper
+    one (where the port has it); one line per foot: code, excess (on refusal), three angles, twice."""
+    return """
+import sys
+from array import array
+from hexapod import leg as L
+fast = L.solve
+if sys.implementation.name == "micropython":
+    from hexapod import _ikfast as F
+    fast = F.solve
+LEGS = %r
+# x, y, z per foot as 16-bit words: a bytes literal compiles fast on the board, a tuple does not.
+FEET = [array("h", b) for b in %r]
+for spec, feet in zip(LEGS, FEET):
+    plain = L.Leg(**spec)
+    plain._solver = L.solve
+    quick = L.Leg(**spec)
+    quick._solver = fast
+    o1 = array("i", [0, 0, 0])
+    o2 = array("i", [0, 0, 0])
+    for k in range(0, len(feet), 3):
+        x, y, z = feet[k], feet[k + 1], feet[k + 2]
+        c1 = plain.ik(x, y, z, o1)
+        c2 = quick.ik(x, y, z, o2)
+        e1 = plain.excess if c1 else 0
+        e2 = quick.excess if c2 else 0
+        print(c1, e1, o1[0], o1[1], o1[2], c2, e2, o2[0], o2[1], o2[2])
+print("viper", fast is not L.solve)
+""" % (legs, [struct.pack("<%dh" % (3 * len(f)), *[v for p in f for v in p]) for f in feet])
+
+
+# Past the 3 m coordinate bound, at it, and the leg's own origin.
+EDGE_FEET = [(30001, 0, 0), (0, -30001, 0), (0, 0, 30001), (30000, 0, 0), (0, 0, 0), (300, 0, 320)]
+
+
+def test_viper_on_thumb_equals_plain_solver_and_cpython(fs):
+    rng = random.Random(9)
+    legs = [dict(s, limits=tuple(s["limits"])) for s in LEGS]
+    feet = [EDGE_FEET + shell_feet(s, 1000, rng) for s in legs]
+    source = solve_source(legs, feet)
+    board, stats = on_board(source, fs)
+    host = CPythonRuntime().run(source)
+    assert board.splitlines()[-1] == "viper True"  # the Thumb viper solver ran, not the fallback
+    assert host.splitlines()[-1] == "viper False"  # CPython has only the plain solver
+    rows = [tuple(int(v) for v in line.split()) for line in board.splitlines()[:-1]]
+    assert len(rows) == 2 * (1000 + len(EDGE_FEET))
+    differ = [r for r in rows if r[:5] != r[5:]]
+    assert not differ, differ[:5]  # viper == plain on Thumb: code, excess, angles
+    assert board.splitlines()[:-1] == host.splitlines()[:-1]  # and both == CPython, line for line
+    # The feet reach both shells from both sides and draw every answer a leg can give.
+    codes = {r[0] for r in rows}
+    assert codes == set(range(L.OUT_OF_RANGE + 1)), codes
+    inside = [r for r in rows if r[0] == L.OK]
+    assert len(inside) > 250  # and hundreds of angle triples compared, not only refusals
+
+
+def staged_modules():
+    """Every module a flash puts on the board as .mpy (dotted names), from the staged tree."""
+    with pico.tempfile.TemporaryDirectory() as tmp:
+        pico.stage(tmp)
+        names = []
+        for root, _, files in os.walk(tmp):
+            for f in files:
+                if f.endswith(".mpy"):
+                    rel = os.path.relpath(os.path.join(root, f), tmp)[:-4]
+                    names.append(rel.replace(os.sep, ".").removesuffix(".__init__"))
+    return sorted(names)
+
+
+def test_every_module_imports_as_mpy_with_the_heap_left(fs):
+    names = staged_modules()
+    expected = {"runner", "boards.pico", "robots.default", "drivers.pca9685", "drivers.hcsr04"}
+    core = {"hexapod." + f[:-3] for f in os.listdir(os.path.join(pico.FIRMWARE, "hexapod")) if f.endswith(".py")}
+    core = {n.removesuffix(".__init__") for n in core}
+    assert expected | core <= set(names) and not [n for n in names if ".cp_" in n]
+    source = """
+import gc
+gc.collect()
+print("free", gc.mem_free())
+for name in %r:
+    m = __import__(name, None, None, ("x",))
+    gc.collect()
+    print(name, getattr(m, "__file__", "?"), gc.mem_free())
+""" % (names,)
+    out, _ = on_board(source, fs)
+    lines = out.splitlines()
+    free0 = int(lines[0].split()[1])
+    rows = [line.split() for line in lines[1:]]
+    assert [r[0] for r in rows] == names
+    for name, path, _ in rows:
+        assert path.endswith(".mpy") and path.replace("/", ".")[:-4].removesuffix(".__init__") == name, (name, path)
+    left = int(rows[-1][2])
+    print("heap: %d bytes free at start, %d after importing all %d modules" % (free0, left, len(names)))
+    # A Pico has ~240 KB of heap: the whole firmware must leave most of it for the loop.
+    assert free0 > 200000 and left > 100000, (free0, left)
+
+
+# Stand up, then walk: forward, crab, ... (0.1 mm/s, cdeg/s), a new command every 40 ticks from tick 60.
+WALK_SOURCE = """
+import robots.default as robot_file
+from hexapod import geometry, tick
+g = geometry.load(robot_file)
+frames = tick.FrameBuffer()
+robot = tick.Robot(g, tick.default_servos(g), frames)
+robot.stand_up()
+t = 0
+codes = 0
+for k in range(%d):
+    if k >= 60 and k %% 40 == 20:
+        c = ((1200, 0, 0), (600, 600, 0), (0, 0, 3000), (900, -300, -1500), (-800, 200, 1000))[(k // 40) %% 5]
+        robot.walk(c[0], c[1], c[2])
+    codes += robot.tick(t) != 0
+    print(" ".join([str(p) for p in frames.pulses]))
+    t += 20
+print("frames", frames.frames, "held", codes, "mode", robot.mode)
+"""
+
+
+def test_stand_up_and_walk_frames_equal_the_hosts(fs):
+    source = WALK_SOURCE % 130
+    board, _ = on_board(source, fs)
+    host = CPythonRuntime().run(source)
+    assert board == host
+    lines = board.splitlines()
+    frames = [[int(v) for v in line.split()] for line in lines[:-1]]
+    assert len(frames) == 130 and lines[-1] == "frames 130 held 0 mode 4"  # walking (tick.WALKING)
+    # Every pulse inside the servos' 600..2400 us (seed 001), and the legs really moved.
+    assert all(600 <= p <= 2400 for f in frames for p in f)
+    assert len({tuple(f) for f in frames[60:]}) > 40

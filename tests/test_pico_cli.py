@@ -1,0 +1,70 @@
+"""`hexapod pico`: bad input is a usage error naming what was wrong (exit 2) and nothing runs;
+a script's exception is the board's exit status. No emulation needed except in the last test."""
+
+import os
+import subprocess
+import sys
+
+import pytest
+
+from hexapod_host import pico
+
+HEXAPOD = os.path.join(os.path.dirname(sys.executable), "hexapod")
+
+
+def hexapod(*args, env=None):
+    return subprocess.run([HEXAPOD, "pico", *args], capture_output=True, text=True, timeout=300, env=env)
+
+
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (("run", "no/such/file.py"), "no such file: no/such/file.py"),
+        (("run", "x.py", "--firmware", "/nonexistent/fw.uf2"), "no Pico firmware at /nonexistent/fw.uf2"),
+        (("bench", "nope"), "no Pico benchmark 'nope'; there are: frame, ik, tick"),
+        (("bench", "ik", "--firmware", "/nonexistent.uf2"), "no Pico firmware at /nonexistent.uf2"),
+    ],
+)
+def test_bad_input_is_a_usage_error(args, message):
+    proc = hexapod(*args)
+    assert proc.returncode == 2 and message in proc.stderr, proc.stderr
+    assert proc.stdout == ""
+
+
+def test_bad_subcommand_and_missing_files_are_argparse_errors():
+    for args in (("walk",), ("run",), ()):
+        proc = hexapod(*args)
+        assert proc.returncode == 2 and "usage:" in proc.stderr, (args, proc.stderr)
+
+
+def test_missing_or_old_node_is_named(tmp_path):
+    old = tmp_path / "node"
+    old.write_text("#!/bin/sh\necho v16.20.0\n")
+    old.chmod(0o755)
+    for node, words in ((str(old), "needs Node.js >= 18; %s is v16.20.0" % old), ("/nonexistent/node", "")):
+        env = dict(os.environ, NODE=node)
+        proc = hexapod("run", __file__, env=env)
+        assert proc.returncode == 2 and "Node.js >= 18" in proc.stderr and words in proc.stderr, proc.stderr
+
+
+def test_image_dir_must_be_new_or_empty(tmp_path):
+    (tmp_path / "keep.txt").write_text("mine")
+    proc = hexapod("run", __file__, "--image", str(tmp_path))
+    assert proc.returncode == 2 and "not empty" in proc.stderr
+    assert os.listdir(tmp_path) == ["keep.txt"]  # nothing written
+
+
+@pytest.mark.skipif(pico.missing() is not None, reason=pico.missing() or "")
+def test_run_streams_output_and_returns_the_boards_status(tmp_path):
+    good = tmp_path / "good.py"
+    good.write_text("import sys\nprint(sys.platform, 6 * 7)\n")
+    bad = tmp_path / "bad.py"
+    bad.write_text("print('before')\nraise ValueError('from the board')\n")
+    image = tmp_path / "img"
+    proc = hexapod("run", str(good), str(bad), "--image", str(image))
+    assert proc.returncode == 1
+    assert proc.stdout.splitlines() == ["rp2 42", "before"]
+    assert "ValueError: from the board" in proc.stderr
+    staged = sorted(os.listdir(image))
+    assert staged == ["boards", "drivers", "hexapod", "main.py", "robots", "runner.mpy"]
+    assert os.path.getsize(str(image) + ".img") == pico.FS_BLOCKS * pico.FS_BLOCK_SIZE
