@@ -8,9 +8,10 @@ through a 1k/2k divider (docs/wiring.md). Calibration rows are the seed 001 defa
 BOARD = {
     "name": "pico",
     "runtime": "micropython",
-    # 1 MHz: the PCA9685 is a Fast-mode Plus part and the RP2040's I2C block runs Fm+; keep the
-    # bus short (both boards within ~30 cm) with 2.2 kOhm pull-ups, else set 400000 (docs/pico.md).
-    "i2c": {"id": 0, "sda": 4, "scl": 5, "freq": 1000000},
+    # 400 kHz works with the breakouts' own 10 kOhm pull-ups. The PCA9685 and the RP2040 both run
+    # Fast-mode Plus: 1000000 halves the bursts' time, but only on a short bus (both boards within
+    # ~30 cm) with 2.2 kOhm pull-ups added, so it is not the default (docs/pico.md).
+    "i2c": {"id": 0, "sda": 4, "scl": 5, "freq": 400000},
     "pca9685": {
         "pwm_hz": 50,
         "chips": (  # osc_hz: each chip's measured oscillator (nominal 25 MHz, often a few % off)
