@@ -4,8 +4,8 @@
 import importlib
 
 # Modules that add `hexapod sim KIND`; each defines register(subparsers).
-SIM_MODULES = ("hexapod_host.sim_kinematics",)
-DEFAULT = "kinematics"
+SIM_MODULES = ("hexapod_host.sim_kinematics", "hexapod_host.sim_wall")
+DEFAULT = "wall"
 
 
 def register(sub):
