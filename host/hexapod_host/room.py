@@ -26,7 +26,7 @@ from hexapod_host.reference import fk
 BEAM_HALF = math.radians(15)  # HC-SR04: about 15 degrees either side of its axis
 MIN_MM = 20.0  # nothing closer is heard (the module holds its echo for 38 ms)
 MAX_MM = 4000.0
-GROUND_MM = 1.0  # a foot this close to the lowest one is on the ground
+GROUND_MM = 0.3  # a foot this close to the lowest one is on the ground (pulses are 0.1 degree: z within 0.2 mm)
 CONTACT_MM = 5.0  # half a link's thickness: closer than this to a wall is a touch
 BODY_HALF = (87.5, 77.5)  # robots/default.py: a 175 x 155 mm body, mounts at its corners
 

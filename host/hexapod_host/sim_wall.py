@@ -112,6 +112,14 @@ def trial_seed(seed, world, setpoint_cm, index):
     return "%d/%s/%g/%d" % (seed, world, setpoint_cm, index)
 
 
+def echo(r, noise=0.0, drop=False):
+    """What an HC-SR04 model answers for the nearest wall in its beam at r mm (None: none):
+    0.1 mm, or 0 for nothing heard (a dropout, under 2 cm or beyond 4 m)."""
+    if r is None or drop or not MIN_MM <= r + noise <= MAX_MM:
+        return 0
+    return int(round((r + noise) * 10))
+
+
 def wall_distance(walls, x, y):
     return min(point_segment(x, y, *w) for w in walls)
 
@@ -184,10 +192,7 @@ def run_trial(
             r = beam_distance(walls, sx, sy, h)
             noise = rng.gauss(0.0, NOISE_MM) if disturb else 0.0
             drop = rng.random() < DROPOUT if disturb else False
-            if r is None or drop or not MIN_MM <= r + noise <= MAX_MM:
-                d.append(0)
-            else:
-                d.append(int(round((r + noise) * 10)))
+            d.append(echo(r, noise, drop))
         return d
 
     fw = FirmwareMicroPython(bus) if runtime == "micropython" else FirmwareCPython(bus)
@@ -364,20 +369,22 @@ def plot(path, world, traces, title):
     fx1, fy1, fx2, fy2 = world.finish
     ax.plot([fx1 / 10, fx2 / 10], [fy1 / 10, fy2 / 10], color="grey", ls=":", lw=1.5)
     ax.text(fx1 / 10, fy1 / 10, " finish", color="grey", va="bottom", fontsize=8)
-    (_, _), (_, _), (nx, ny) = world.start_frame()
     for k, (sp, trace) in enumerate(traces):
         col = colours[k % len(colours)]
         for x1, y1, x2, y2 in world.walls:
             n = math.hypot(x2 - x1, y2 - y1)
             wnx, wny = (y2 - y1) / n, (x1 - x2) / n  # the wall's right-hand normal
-            if wnx * nx + wny * ny < 0.5:
+            # A band on the side of a wall the robot followed: trace points beside it at the set point.
+            sides = [
+                (t[2] - x1) * wnx + (t[3] - y1) * wny
+                for t in trace
+                if 0 < (t[2] - x1) * (x2 - x1) + (t[3] - y1) * (y2 - y1) < n * n
+                and abs(point_segment(t[2], t[3], x1, y1, x2, y2) - sp * 10) < 30
+            ]
+            if len(sides) < 3:
+                continue
+            if sum(sides) < 0:
                 wnx, wny = -wnx, -wny
-                if not any(
-                    abs(point_segment(t[2], t[3], x1, y1, x2, y2) - sp * 10) < 100
-                    and (t[2] - x1) * wnx + (t[3] - y1) * wny > 0
-                    for t in trace
-                ):
-                    continue
             lo, hi = sp * 10 - 10, sp * 10 + 10
             xs = [x1 + wnx * lo, x2 + wnx * lo, x2 + wnx * hi, x1 + wnx * hi]
             ys = [y1 + wny * lo, y2 + wny * lo, y2 + wny * hi, y1 + wny * hi]
@@ -491,8 +498,7 @@ def run(args):
             plot_path,
             world,
             traces,
-            "hexapod sim wall: world %s, Kp %g Ki %g Kd %g, first trial of each set point (bands: set point +-1 cm)"
-            % (world.name, *used),
+            "world %s, Kp %g Ki %g Kd %g: first trial of each set point, bands set point +-1 cm" % (world.name, *used),
         )
     if args.json:
         out = dict(total)
