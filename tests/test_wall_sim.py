@@ -270,7 +270,9 @@ def test_trials_do_not_depend_on_the_worker_count():
 
 def test_cli_json(capsys):
     assert cli.main(["sim", "wall", "--world", "gap", "--trials", "1", "--json", "--jobs", "1"]) == 0
-    out = json.loads(capsys.readouterr().out)
+    captured = capsys.readouterr()
+    assert captured.err == ""  # no progress bar under --json
+    out = json.loads(captured.out)
     for key in ("success_rate", "rms_mm", "steady_state_mm", "overshoot_mm", "time_s", "contacts", "faults", "rows"):
         assert key in out
     assert 0 <= out["success_rate"] <= 1 and out["trials"] == 1 and out["world"] == "gap"
