@@ -392,10 +392,17 @@ def plot(path, world, traces, title):
         ax.plot([t[2] / 10 for t in trace], [t[3] / 10 for t in trace], color=col, lw=1.4, label="%g cm" % sp)
     if len(world.walls) > 1:
         ax.set_aspect("equal")
+    else:  # one straight wall: seed 000 Fig. 9's stretched view of the distance to it
+        lowest = min(min(t[3] for t in trace) for _, trace in traces) / 10
+        top = max(max(t[3] for t in trace) for _, trace in traces) / 10
+        wall_y = world.walls[0][1] / 10
+        ax.set_ylim(min(lowest, wall_y) - 4, max(top, wall_y) + 3)
     ax.set_xlabel("x (cm)")
     ax.set_ylabel("y (cm)")
     ax.set_title(title, fontsize=9)
-    ax.legend(fontsize=7, loc="best", title="set point", title_fontsize=7)
+    ax.legend(
+        fontsize=7, loc="lower right", title="set point", title_fontsize=7, ncol=5 if len(world.walls) == 1 else 1
+    )
     ax.grid(alpha=0.3)
     fig.tight_layout()
     tmp = path + ".part"
@@ -498,7 +505,8 @@ def run(args):
             plot_path,
             world,
             traces,
-            "world %s, Kp %g Ki %g Kd %g: first trial of each set point, bands set point +-1 cm" % (world.name, *used),
+            "world %s, Kp %g Ki %g Kd %g: the side sonars' midpoint, first trial per set point; bands: set point +-1 cm"
+            % (world.name, *used),
         )
     if args.json:
         out = dict(total)
