@@ -93,7 +93,7 @@ def test_shipped_worlds_load():
     assert world.shipped() == ["corridor", "corrugated", "gap", "wall"]
     w = world.load("wall")
     # Seed 000's 1.5 m: the body centre starts 20 cm along the wall, the finish is at 170 cm.
-    assert w.walls == [(0.0, 0.0, 2000.0, 0.0)] and w.finish[0] - w.start_along == 1500.0
+    assert w.walls == [(0.0, 0.0, 2000.0, 0.0)] and w.finish[0] - w.start_along == 1500.0 == w.finish[2] - w.start_along
     (px, py), u, n = w.start_frame()
     assert (px, py, u, n) == (200.0, 0.0, (1.0, 0.0), (0.0, -1.0))  # wall on the left: robot at y < 0
     assert w.start_frame("right")[2] == (-0.0, 1.0)
@@ -308,3 +308,12 @@ def test_cli_bad_arguments_exit_2(args, message, capsys, tmp_path, monkeypatch):
     assert exc.value.code == 2
     assert message in capsys.readouterr().err
     assert list(tmp_path.glob("*.png")) == []
+
+
+def test_the_right_wall():
+    # --follow right on the straight wall: the robot starts on the other side (y > 0), the wall
+    # on its right, and its right-hand sonars hold the set point.
+    w = world.load("wall")
+    r = sim_wall.run_trial(w, 10, "right", side="right", disturb=False, record=True, bus="sink")
+    assert r["success"] and r["rms_mm"] < 3
+    assert all(t[3] > 0 for t in r["trace"]) and r["trace"][-1][4] == pytest.approx(100, abs=3)
