@@ -317,3 +317,31 @@ def test_the_right_wall():
     r = sim_wall.run_trial(w, 10, "right", side="right", disturb=False, record=True, bus="sink")
     assert r["success"] and r["rms_mm"] < 3
     assert all(t[3] > 0 for t in r["trace"]) and r["trace"][-1][4] == pytest.approx(100, abs=3)
+
+
+def test_cli_table_and_plot(capsys, tmp_path):
+    png = tmp_path / "gap.png"
+    assert cli.main(["sim", "wall", "--world", "gap", "--trials", "1", "--jobs", "1", "--plot", str(png)]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    table = lines[1:3]
+    assert table[0].split() == [
+        "set",
+        "point",
+        "trials",
+        "success",
+        "RMS",
+        "error",
+        "steady",
+        "overshoot",
+        "mean",
+        "time",
+        "contacts",
+        "seed",
+        "000",
+    ]
+    assert len(table[0]) == len(table[1]) and table[1].split()[:2] == ["12", "cm"]
+    for head in ("success", "RMS error", "mean time", "seed 000"):  # right-aligned columns end together
+        end = table[0].index(head) + len(head)
+        assert table[1][end - 1] != " " and (end == len(table[1]) or table[1][end] == " ")
+    assert table[1].endswith("92-96 %") and lines[-1] == "plot: %s" % png
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
