@@ -40,7 +40,7 @@ STRIDE_FRAMES = 50  # the tripod's 1000 ms cycle
 SETTLE_MM = 300.0  # the first 30 cm of the walk are not judged
 TOO_FAR_MM = 150.0  # set point + 15 cm
 STEADY_MM = 300.0  # steady-state error: the mean over the last 30 cm
-TRIALS = 20  # per set point for `make sim`: under 2 minutes on 2 cores (docs/wall.md)
+TRIALS = 10  # per set point for `make sim`: under 2 minutes on 2 shared cores (docs/wall.md)
 PLOT = "wall_sim.png"
 
 
