@@ -362,7 +362,12 @@ def plot(path, world, traces, title):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(8, 3.6) if len(world.walls) < 4 else (7, 6), dpi=100)
+    xs = [v for w in world.walls for v in (w[0], w[2])]
+    ys = [v for w in world.walls for v in (w[1], w[3])]
+    tall = (max(ys) - min(ys) + 600) / max(1.0, max(xs) - min(xs))  # the room's shape, 30 cm margins
+    fig, ax = plt.subplots(
+        figsize=(8, 3.6) if len(world.walls) == 1 else (8, max(3.0, min(8.0, 8 * tall + 1))), dpi=100
+    )
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     for x1, y1, x2, y2 in world.walls:
         ax.plot([x1 / 10, x2 / 10], [y1 / 10, y2 / 10], color="black", lw=3, solid_capstyle="butt")
