@@ -346,3 +346,11 @@ def test_cli_table_and_plot(capsys, tmp_path):
         assert table[1][end - 1] != " " and (end == len(table[1]) or table[1][end] == " ")
     assert table[1].endswith("92-96 %") and lines[-1] == "plot: %s" % png
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.mark.parametrize("name", ["corridor", "corrugated", "gap"])
+def test_each_shipped_world_is_done_undisturbed(name):
+    # The inside and outside corners, the zig-zag and the gap, without noise or slip: the finish,
+    # no contact, the side sonars never 15 cm too far.
+    r = sim_wall.run_trial(world.load(name), 12, name, disturb=False, bus="sink")
+    assert (r["success"], r["why"], r["contact"]) == (True, "", False)
