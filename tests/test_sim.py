@@ -1,4 +1,5 @@
-"""`hexapod sim` (for now the kinematics demo) runs, round-trips, and agrees across runtimes."""
+"""`hexapod sim kinematics` (the leg demo) runs, round-trips, and agrees across runtimes; `hexapod sim` alone
+runs the default kind (the wall experiment, tests/test_wall_sim.py)."""
 
 import os
 import subprocess
@@ -8,7 +9,7 @@ HEXAPOD = os.path.join(os.path.dirname(sys.executable), "hexapod")
 
 
 def test_sim_demo(mp):
-    proc = subprocess.run([HEXAPOD, "sim"], capture_output=True, text=True, timeout=120)
+    proc = subprocess.run([HEXAPOD, "sim", "kinematics"], capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, proc.stderr
     lines = proc.stdout.splitlines()
     assert "worst FK round-trip error: 0.0 mm" in lines

@@ -4,8 +4,8 @@
 import importlib
 
 # Modules that add `hexapod sim KIND`; each defines register(subparsers).
-SIM_MODULES = ("hexapod_host.sim_kinematics", "hexapod_host.sim_physics")
-DEFAULT = "kinematics"
+SIM_MODULES = ("hexapod_host.sim_kinematics", "hexapod_host.sim_wall", "hexapod_host.sim_physics")
+DEFAULT = "wall"
 
 
 def register(sub):

@@ -1,4 +1,4 @@
-"""`hexapod sim kinematics`: a leg kinematics demo (the main job until the wall-following room exists).
+"""`hexapod sim kinematics`: a leg kinematics demo (the main job before the wall-following room).
 
 It walks seed 004's leg through seed 003's swing track (eq. 12-14) and prints, per step,
 the foot target, the integer joint angles, the servo pulses through the Pico board file's
