@@ -140,8 +140,12 @@ def test_jog_cli_refuses_a_missing_port(capsys):
     assert stop.value.code == 2 and "no such port '/dev/ttyNOPE3'" in capsys.readouterr().err
 
 
+# One tmux server per test worker: tests on parallel workers must not kill each other's sessions.
+TMUX_SOCKET = "hexapod-jog-test-%d" % os.getpid()
+
+
 def tmux(*args):
-    return subprocess.run(["tmux", "-L", "hexapod-jog-test", *args], capture_output=True, text=True)
+    return subprocess.run(["tmux", "-L", TMUX_SOCKET, *args], capture_output=True, text=True)
 
 
 def screen_until(text, timeout=5.0):

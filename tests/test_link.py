@@ -1,6 +1,7 @@
 """hexapod_host.link and `hexapod ports` on fake serial ports: board-looking ports first, other
 lines skipped, a REPL prompt and a disconnect named."""
 
+import termios
 import types
 
 import pytest
@@ -76,3 +77,41 @@ def test_ports_lists_boards_first(monkeypatch, capsys):
     monkeypatch.setattr(link.list_ports, "comports", lambda: [])
     assert cli.main(["ports"]) == 0
     assert capsys.readouterr().out == "no serial ports found (is the board plugged in with a data cable?)\n"
+
+
+# pyserial's tcdrain raises termios.error, not an OSError, when the device went away between
+# write and flush: found by the jog test under load.
+class VanishingPort:
+    """A port whose device went away at `stage` (write, flush or readline)."""
+
+    def __init__(self, stage, error):
+        self.stage, self.error = stage, error
+
+    def _maybe(self, stage):
+        if stage == self.stage:
+            raise self.error
+
+    def write(self, data):
+        self._maybe("write")
+
+    def flush(self):
+        self._maybe("flush")
+
+    def readline(self):
+        self._maybe("readline")
+        return b""
+
+    def close(self):
+        raise self.error
+
+
+ERRORS = (termios.error(5, "Input/output error"), OSError(5, "EIO"), serial.SerialException("device reports readiness"))
+
+
+@pytest.mark.parametrize("stage", ["write", "flush", "readline"])
+@pytest.mark.parametrize("error", ERRORS, ids=lambda e: type(e).__name__)
+def test_unplugged_mid_request_is_one_link_error(stage, error):
+    link = Link(VanishingPort(stage, error), timeout=0.2, name="/dev/ttyACM7")
+    with pytest.raises(LinkError, match="lost the board on /dev/ttyACM7"):
+        link.request("get 2")
+    link.close()  # closing a vanished port raises nothing either

@@ -22,6 +22,13 @@ TIMEOUT_S = 2.0
 BOARD_VIDS = {0x2E8A: "Raspberry Pi", 0x239A: "Adafruit", 0x303A: "Espressif", 0x10C4: "CP210x", 0x1A86: "CH340"}
 BOARD_VIDS[0x0403] = "FTDI"
 
+try:  # POSIX: tcdrain on a port whose device went away raises termios.error, not an OSError
+    from termios import error as _TermiosError
+except ImportError:
+    _TermiosError = OSError
+# What a port raises when the board is unplugged or reset mid-session.
+PORT_ERRORS = (OSError, serial.SerialException, _TermiosError)
+
 
 class LinkError(Exception):
     """The board cannot be reached or stopped answering; the message says what to check."""
@@ -65,7 +72,7 @@ class Link:
         self.close()
 
     def close(self):
-        with contextlib.suppress(OSError, serial.SerialException):
+        with contextlib.suppress(*PORT_ERRORS):
             self.port.close()
 
     def request(self, line):
@@ -75,7 +82,7 @@ class Link:
         try:
             self.port.write((line + "\n").encode("ascii", "replace"))
             self.port.flush()
-        except (OSError, serial.SerialException) as e:
+        except PORT_ERRORS as e:
             raise LinkError("lost the board on %s while sending (%s): unplugged?" % (self.name, e)) from None
         return self.read_reply(line)
 
@@ -85,7 +92,7 @@ class Link:
         while True:
             try:
                 chunk = self.port.readline()
-            except (OSError, serial.SerialException) as e:
+            except PORT_ERRORS as e:
                 raise LinkError("lost the board on %s (%s): unplugged or reset?" % (self.name, e)) from None
             buf += chunk
             if buf.endswith(b"\n"):
