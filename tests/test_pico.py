@@ -11,7 +11,7 @@ import struct
 import pytest
 
 from hexapod import leg as L
-from hexapod_host import pico
+from hexapod_host import FIRMWARE, pico
 from hexapod_host.testing import CPythonRuntime
 
 REASON = pico.missing()
@@ -133,7 +133,7 @@ def staged_modules():
 def test_every_module_imports_as_mpy_with_the_heap_left(fs):
     names = staged_modules()
     expected = {"runner", "boards.pico", "robots.default", "drivers.pca9685", "drivers.hcsr04"}
-    core = {"hexapod." + f[:-3] for f in os.listdir(os.path.join(pico.FIRMWARE, "hexapod")) if f.endswith(".py")}
+    core = {"hexapod." + f[:-3] for f in os.listdir(os.path.join(FIRMWARE, "hexapod")) if f.endswith(".py")}
     core = {n.removesuffix(".__init__") for n in core}
     assert expected | core <= set(names) and not [n for n in names if ".cp_" in n]
     source = """

