@@ -149,6 +149,24 @@ def test_the_angle_guard_holds_the_angle_inside_the_beam(side):
 
 
 @pytest.mark.parametrize("side", SIDES)
+def test_on_one_sonar_past_the_guard_the_turn_toward_the_wall_goes_on(side):
+    # An outside corner: 14 deg toward and far on the pair (guarded: no turn), then the front
+    # sonar loses the wall. On the rear one alone the angle is odometry (fading by 1/16 an update,
+    # still past the guard) and the wall's end draws away: the robot must keep turning toward it
+    # (the corridor world's outside corner: the guard stopped it there, 6.6 % of 500 trials ended
+    # too far).
+    rig = Rig(side)
+    f = rig.cycle(near=850, far=1350)
+    assert (f.angle, f.output) == (-1404, 0)
+    f = rig.cycle(near=NOECHO, far=1350, n=3)
+    assert f.distance_only and f.used == side + "_rear" and f.angle <= -follow.ANGLE_GUARD
+    # 135 mm on the rear sonar (100 mm behind the pair's middle), nose a degrees toward the wall,
+    # 12 <= a <= 14: the look-ahead point (100 mm ahead) is 135 - 200 sin a = 86.6..93.4 mm out,
+    # 6.6..13.4 mm too far: turn toward it.
+    assert -134 <= f.error <= -66 and f.output < 0 and rig.away(f.yaw) < 0
+
+
+@pytest.mark.parametrize("side", SIDES)
 def test_inside_corner_turns_away_in_time_then_follows(side):
     rig = Rig(side)
     f = rig.cycle(front=CORNER_AT + 1, n=2)

@@ -498,8 +498,11 @@ class Follower:
             m = self.distance + mul_q15(self.lookahead, s)
         u = self.pid.update(self.setpoint, m, now)
         self.error = self.pid.error
-        if (u > 0 and self.angle >= ANGLE_GUARD) or (u < 0 and self.angle <= -ANGLE_GUARD):
-            u = 0  # past the guard angle: no further turn that way (the beam would lose the wall)
+        # Past the guard angle no further turn that way: the pair's beams would lose the wall. On one
+        # sonar the angle is odometry, and at an outside corner the rear sonar sees the wall's end
+        # drawing away at the guard angle: the turn toward it must go on (corridor world).
+        if used == 3 and ((u > 0 and self.angle >= ANGLE_GUARD) or (u < 0 and self.angle <= -ANGLE_GUARD)):
+            u = 0
         self.output = u
         if self.updates < _COUNT_MAX:
             self.updates += 1
