@@ -172,6 +172,84 @@ def flashed(board="pico", robot="default", image_dir=None):
         yield image(tree, os.path.join(tmp, "fs.img"))
 
 
+@contextlib.contextmanager
+def serial(fs=None, *, save_fs=None, firmware_path=None, devices=None, trace=None, stats=None):
+    """The emulated Pico on a pseudo-terminal, as a USB serial port: boots the runner in --serial
+    mode with filesystem image fs (None: erased flash, MicroPython formats it), bridges the pty
+    master to its stdin/stdout, and yields the slave's path (/dev/pts/N) for mpremote & co. On
+    exit the runner stops; with save_fs the board's littlefs region is written there."""
+    import select
+    import threading
+    import tty
+
+    exe = node()
+    fw = firmware(firmware_path)
+    rp2040js()
+    with tempfile.TemporaryDirectory() as tmp:
+        cmd = [exe, RUNNER, "--firmware", fw, "--serial"]
+        if fs:
+            cmd += ["--fs", fs]
+        if save_fs:
+            cmd += ["--save-fs", save_fs]
+        if devices is not None:
+            path = os.path.join(tmp, "devices.json")
+            with open(path, "w") as f:
+                json.dump(devices, f)
+            cmd += ["--devices", path]
+        if trace:
+            cmd += ["--trace", trace]
+        if stats:
+            cmd += ["--stats", stats]
+        master, slave = os.openpty()
+        tty.setraw(slave)  # no echo, no line editing before a client opens it; kept open: no EIO
+        os.set_blocking(master, False)
+        proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, bufsize=0)
+        stop = threading.Event()
+
+        def to_board():
+            while not stop.is_set():
+                if select.select([master], [], [], 0.05)[0]:
+                    try:
+                        data = os.read(master, 4096)
+                    except OSError:
+                        continue
+                    try:
+                        proc.stdin.write(data)
+                    except (BrokenPipeError, ValueError):
+                        return
+
+        def from_board():
+            out = proc.stdout.fileno()
+            while True:
+                data = os.read(out, 4096)
+                if not data:
+                    return
+                # Nobody reading the port: the pty buffer fills and the rest is dropped, as a
+                # USB CDC device drops output with no host reading it.
+                with contextlib.suppress(BlockingIOError):
+                    os.write(master, data)
+
+        threads = [threading.Thread(target=t, daemon=True) for t in (to_board, from_board)]
+        for t in threads:
+            t.start()
+        try:
+            yield os.ttyname(slave)
+        finally:
+            stop.set()
+            threads[0].join(5)
+            with contextlib.suppress(OSError):
+                proc.stdin.close()
+            try:
+                proc.wait(30)
+            except subprocess.TimeoutExpired:
+                proc.kill()
+                proc.wait()
+            threads[1].join(5)
+            proc.stdout.close()
+            os.close(master)
+            os.close(slave)
+
+
 def run_source(source, fs=None, **kw):
     """Run Python source text on the emulated Pico; (status, stdout, stderr, stats)."""
     with tempfile.TemporaryDirectory() as tmp:

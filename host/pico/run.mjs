@@ -4,11 +4,17 @@
 //
 //   node run.mjs --firmware F.uf2|F.bin [--fs IMG] [--devices JSON] [--trace OUT]
 //                [--main SECONDS] [--stats OUT] [--max-emu-s N] FILE.py ...
+//   node run.mjs --firmware F --serial [--fs IMG] [--save-fs OUT] [--devices JSON] [--trace OUT]
 //
 // FILE.py are sent one after another through the raw REPL in raw-paste mode (as mpremote run);
 // whatever main.py the image holds is interrupted first (Ctrl-C), as mpremote does. With
 // --main SECONDS the board's own main.py runs instead for that many emulated seconds.
 // Board output goes to stdout, tracebacks to stderr; exit status 1 when a script raised.
+//
+// --serial: the board's USB CDC bridged raw to stdin/stdout (bytes both ways, nothing translated),
+// emulated time paced to wall time (never ahead of it), until stdin closes or SIGTERM/SIGINT;
+// a watchdog reset (machine.reset(), mpremote reset) powers the chip up again with the flash it
+// has. --save-fs OUT writes the littlefs region (what the board wrote to its flash) at exit.
 //
 // Time: each emulated instruction advances the clock by its Cortex-M0+ cycle count at 125 MHz;
 // the TIMER (ticks_us) reads that clock, WFI skips to the next alarm. Deterministic, and a lower
@@ -45,7 +51,7 @@ const FS_OFFSET = 0xa0000;      // RPI_PICO: littlefs2, 352 x 4096 B blocks at 0
 const FS_SIZE = 352 * 4096;
 
 // ---------- arguments ----------
-const opt = { firmware: null, fs: null, devices: null, trace: null, main: 0, stats: null, maxEmuS: 600 };
+const opt = { firmware: null, fs: null, devices: null, trace: null, main: 0, stats: null, maxEmuS: 600, serial: false, saveFs: null };
 const scripts = [];
 const argv = process.argv.slice(2);
 for (let i = 0; i < argv.length; i++) {
@@ -58,6 +64,8 @@ for (let i = 0; i < argv.length; i++) {
   else if (a === '--main') opt.main = Number(val());
   else if (a === '--stats') opt.stats = val();
   else if (a === '--max-emu-s') opt.maxEmuS = Number(val());
+  else if (a === '--serial') opt.serial = true;
+  else if (a === '--save-fs') opt.saveFs = val();
   else if (a.startsWith('--')) fail(`unknown option ${a}`);
   else scripts.push(a);
 }
@@ -66,15 +74,13 @@ if (!opt.firmware) fail('--firmware FILE (.uf2 or .bin) is required');
 if (!(opt.main >= 0)) fail('--main takes emulated seconds >= 0');
 
 // ---------- the chip and its flash ----------
-const clock = new SimulationClock(MHZ * 1e6);
-const mcu = new RP2040(clock);
-mcu.loadBootrom(bootromB1);
-mcu.logger = new ConsoleLogger(process.env.RP2040_DEBUG ? LogLevel.Debug : LogLevel.Error);
+let clock, mcu, cdc, ROM_ERASE, ROM_PROGRAM, resets = 0, resetRequested = false;
 // A soft reset stops core 1 through the inter-core FIFO, which rp2040js does not model (it warns
 // on the console): keep those two warnings off the board's stderr.
 const consoleWarn = console.warn;
 console.warn = (msg, ...rest) => { if (!/^Read from invalid SIO address: 5[08]$/.test(msg)) consoleWarn(msg, ...rest); };
 const image = fs.readFileSync(opt.firmware);
+function loadFirmware() {
 if (opt.firmware.endsWith('.uf2')) {
   let blocks = 0;
   for (let off = 0; off + 512 <= image.length; off += 512) {   // UF2: magic, flags, addr @12, size @16, data @32
@@ -89,9 +95,7 @@ if (opt.firmware.endsWith('.uf2')) {
 } else {
   mcu.flash.set(image, 0);
 }
-mcu.flash.fill(0xff, FS_OFFSET, FS_OFFSET + FS_SIZE);          // erased NOR; MicroPython formats it
-if (opt.fs) mcu.flash.set(fs.readFileSync(opt.fs), FS_OFFSET);
-mcu.core.PC = 0x10000000;
+}
 
 // rp2040js has no QSPI flash model: littlefs writes go through the bootrom's flash_range_erase
 // ('RE') and flash_range_program ('RP'), which we perform on the flash array and return from.
@@ -102,7 +106,6 @@ function romFunction(tag) {
   }
   throw new Error(`bootrom has no ${tag} function`);
 }
-const ROM_ERASE = romFunction('RE'), ROM_PROGRAM = romFunction('RP');
 function flashCall(pc) {
   const r = mcu.core.registers;
   if (pc === ROM_ERASE) mcu.flash.fill(0xff, r[0], r[0] + r[1]);          // (offset, count, ...)
@@ -114,24 +117,49 @@ function flashCall(pc) {
 // rp2040js answers an armed OUT endpoint at once (0 bytes when we have nothing), and the
 // firmware re-arms it: an interrupt every few us stealing cycles from code being timed. A real
 // host NAKs until it has data; so do we: the read stays pending until bytes are queued.
-const cdc = new USBCDC(mcu.usbCtrl);
 const outgoing = [];
-let armed = -1, connected = false, rx = '';
-const deviceRead = mcu.usbCtrl.onEndpointRead;
+let armed = -1, connected = false, rx = '', deviceRead;
 function pump() {
   while (outgoing.length && !cdc.txFIFO.full) cdc.txFIFO.push(outgoing.shift());
   if (armed >= 0 && !cdc.txFIFO.empty) { const n = armed; armed = -1; deviceRead(cdc.outEndpoint, n); }
 }
-mcu.usbCtrl.onEndpointRead = (ep, size) => {
-  if (ep === cdc.outEndpoint && cdc.txFIFO.empty && !outgoing.length) { armed = size; return; }
-  deviceRead(ep, size); pump();
-};
-cdc.onDeviceConnected = () => { connected = true; };
 let echoOut = false;                                  // --main: stream board output as it comes
-cdc.onSerialData = (buf) => {
+function onSerialData(buf) {
+  if (opt.serial) { writeRaw(Buffer.from(buf)); return; }
   const s = Buffer.from(buf).toString('latin1');
   if (echoOut) { writeOut(s.replace(/\r\n/g, '\n')); mainOut += s; } else rx += s;
-};
+}
+function writeRaw(b) {                                // stdout may be a non-blocking pipe
+  for (let off = 0; off < b.length;) {
+    try { off += fs.writeSync(1, b, off); } catch (e) { if (e.code !== 'EAGAIN') throw e; }
+  }
+}
+
+// Power-up: a fresh chip with the firmware and fsBytes (null: erased) in its flash, USB host side
+// reattached. Run again on a watchdog reset, with the flash the board has written.
+function powerOn(fsBytes) {
+  clock = new SimulationClock(MHZ * 1e6);
+  mcu = new RP2040(clock);
+  mcu.loadBootrom(bootromB1);
+  mcu.logger = new ConsoleLogger(process.env.RP2040_DEBUG ? LogLevel.Debug : LogLevel.Error);
+  loadFirmware();
+  mcu.flash.fill(0xff, FS_OFFSET, FS_OFFSET + FS_SIZE);          // erased NOR; MicroPython formats it
+  if (fsBytes) mcu.flash.set(fsBytes, FS_OFFSET);
+  mcu.core.PC = 0x10000000;
+  ROM_ERASE = romFunction('RE'); ROM_PROGRAM = romFunction('RP');
+  mcu.peripherals[0x40058].onWatchdogTrigger = () => { resetRequested = true; };
+  cdc = new USBCDC(mcu.usbCtrl);
+  outgoing.length = 0; armed = -1; connected = false;
+  deviceRead = mcu.usbCtrl.onEndpointRead;
+  mcu.usbCtrl.onEndpointRead = (ep, size) => {
+    if (ep === cdc.outEndpoint && cdc.txFIFO.empty && !outgoing.length) { armed = size; return; }
+    deviceRead(ep, size); pump();
+  };
+  cdc.onDeviceConnected = () => { connected = true; };
+  cdc.onSerialData = onSerialData;
+  attachDevices();
+}
+const fsRegion = () => Buffer.from(mcu.flash.subarray(FS_OFFSET, FS_OFFSET + FS_SIZE));
 let mainOut = '';
 const send = (s) => { for (const c of Buffer.from(s, 'latin1')) outgoing.push(c); pump(); };
 
@@ -221,9 +249,11 @@ function attachHCSR04(s, tempCentiC) {
   });
 }
 
-if (dev.pca9685) attachPCA9685(dev.i2c || { id: 0, sda: 4, scl: 5 }, dev.pca9685);
 const sonars = dev.sonars || [];
-for (const s of sonars) attachHCSR04(s, dev.temp_centi_c ?? 2000);
+function attachDevices() {
+  if (dev.pca9685) attachPCA9685(dev.i2c || { id: 0, sda: 4, scl: 5 }, dev.pca9685);
+  for (const s of sonars) attachHCSR04(s, dev.temp_centi_c ?? 2000);
+}
 const schedule = (dev.schedule || []).slice().sort((a, b) => a[0] - b[0]);
 
 // ---------- stepping ----------
@@ -291,7 +321,45 @@ function runScript(code) {
   return [out.replace(/\r\n/g, '\n'), err.replace(/\r\n/g, '\n')];
 }
 
+// ---------- serial mode ----------
+async function serial() {
+  let done = false, wall0 = Date.now(), emu0 = 0;
+  const finish = () => {
+    if (done) return;
+    done = true;
+    if (opt.saveFs) fs.writeFileSync(opt.saveFs, fsRegion());
+    if (opt.stats) fs.writeFileSync(opt.stats, JSON.stringify({ emu_s: clock.nanos / 1e9, resets, instructions }));
+    if (trace) fs.closeSync(trace);
+    process.exit(0);
+  };
+  process.stdin.on('data', (b) => { for (const c of b) outgoing.push(c); pump(); });
+  process.stdin.on('end', finish);
+  process.on('SIGTERM', finish);
+  process.on('SIGINT', finish);
+  const slice = () => {
+    if (done) return;
+    const t0 = Date.now();
+    while (Date.now() - t0 < 10) {
+      // Paced: emulated time never runs ahead of wall time (an idle board would race through hours).
+      const ahead = (clock.nanos - emu0) / 1e6 - (Date.now() - wall0);
+      if (ahead > 2) { setTimeout(slice, Math.min(ahead, 10)); return; }
+      if (ahead < -100) { wall0 = Date.now(); emu0 = clock.nanos; }   // fell behind: no catching up
+      step(20000);
+      if (resetRequested) {                  // watchdog reset: power up again with the flash as written
+        resetRequested = false; resets++;
+        powerOn(fsRegion());
+        wall0 = Date.now(); emu0 = 0;
+      }
+    }
+    setImmediate(slice);
+  };
+  slice();
+}
+
 // ---------- main ----------
+powerOn(opt.fs ? fs.readFileSync(opt.fs) : null);
+if (opt.serial) await serial();
+else {
 const host0 = Date.now();
 let status = 0;
 const stats = { scripts: [] };
@@ -329,3 +397,4 @@ if (opt.stats) fs.writeFileSync(opt.stats, JSON.stringify(stats));
 if (profile) fs.writeFileSync(process.env.RP2040_PROFILE, [...profile].map(([pc, n]) => pc.toString(16) + ' ' + n).join('\n'));
 if (trace) fs.closeSync(trace);
 process.exit(status);
+}

@@ -1,0 +1,58 @@
+"""`hexapod flash --board pico` onto the emulated Pico over a pseudo-terminal, through the real
+mpremote exactly as a user runs it, then power-up from the filesystem the board wrote: the
+strongest test of the flashing path without hardware (docs/flashing.md, docs/pico.md)."""
+
+import json
+import os
+import re
+import time
+
+import pytest
+
+from hexapod_host import cli, pico, pico_loop
+
+REASON = pico.missing()
+pytestmark = pytest.mark.skipif(REASON is not None, reason=REASON or "")
+
+
+def flash(port, stage, capsys):
+    t0 = time.monotonic()
+    status = cli.main(["flash", "--board", "pico", "--port", port, "--stage-dir", stage])
+    out = capsys.readouterr().out
+    assert status == 0, out
+    m = re.search(r"flashed pico on \S+: (\d+) of (\d+) files copied", out)
+    assert m, out
+    return int(m.group(1)), int(m.group(2)), time.monotonic() - t0, out
+
+
+def test_flash_the_emulated_pico_over_a_pty_then_boot_it(tmp_path, capsys):
+    saved = str(tmp_path / "fs.img")
+    stage = str(tmp_path / "stage")
+    stats = str(tmp_path / "stats.json")
+    with pico.serial(save_fs=saved, stats=stats) as port:  # erased flash: MicroPython formats it
+        assert port.startswith("/dev/")
+        copied, total, t1, out = flash(port, stage, capsys)
+        assert "board manifest: 0 files" in out
+        assert copied == total > 10, out  # a fresh board gets everything
+        # mpremote's reset at the end rebooted the emulated chip (watchdog): the board answers again,
+        # and its manifest says nothing changed.
+        again, total2, t2, out2 = flash(port, stage, capsys)
+        assert "board manifest: %d files" % total in out2, out2
+        assert (again, total2) == (0, total), out2
+    assert os.path.getsize(saved) == pico.FS_BLOCKS * pico.FS_BLOCK_SIZE
+    with open(stats) as f:
+        resets = json.load(f)["resets"]
+    # mpremote sends machine.reset() and leaves without waiting: the first flash's reset rebooted
+    # the chip before the second flash; the second one may land after the runner was stopped.
+    assert resets >= 1
+    print("emulated Pico over a pty: %d files in %.1f s, second flash 0 files in %.1f s" % (total, t1, t2))
+
+    # Power-up from what the board wrote: the image's own main.py stands the robot up, burst for
+    # burst as on the host's stub machine (as tests/test_pico_loop.py does from a packed image).
+    status, out, bursts = pico_loop.boot_main(3, saved)
+    assert status == 0 and "Traceback" not in out, out
+    frames = len(bursts) // 2
+    assert frames > 50, (frames, out)
+    _, host_bursts = pico_loop.host_main(frames)
+    assert bursts[: 2 * frames] == host_bursts[: 2 * frames]
+    assert bursts[0][1][:9] != bursts[-1][1][:9]
