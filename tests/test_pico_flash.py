@@ -56,3 +56,34 @@ def test_flash_the_emulated_pico_over_a_pty_then_boot_it(tmp_path, capsys):
     _, host_bursts = pico_loop.host_main(frames)
     assert bursts[: 2 * frames] == host_bursts[: 2 * frames]
     assert bursts[0][1][:9] != bursts[-1][1][:9]
+
+
+def test_hexapod_pico_serial_prints_the_port_and_saves_the_filesystem(tmp_path):
+    import signal
+    import subprocess
+    import sys
+
+    from hexapod_host import ROOT, flash
+
+    saved = tmp_path / "fs.img"
+    env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "host"))
+    cmd = [sys.executable, "-m", "hexapod_host.cli", "pico", "serial", "--save-fs", str(saved)]
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    try:
+        port = proc.stdout.readline().strip()
+        assert port.startswith("/dev/"), (port, proc.stderr.read() if proc.poll() is not None else "")
+        status, out = flash.run(
+            [flash.tool("mpremote"), "connect", port, "exec", "with open('x.txt','w') as f: f.write('hi')"], 60
+        )
+        assert status == 0, out
+    finally:
+        proc.send_signal(signal.SIGTERM)
+        proc.wait(30)
+    assert proc.returncode == 0, proc.stderr.read()
+    from littlefs import LittleFS
+
+    lfs = LittleFS(block_size=pico.FS_BLOCK_SIZE, block_count=pico.FS_BLOCKS, mount=False)
+    lfs.context.buffer = bytearray(saved.read_bytes())
+    lfs.mount()
+    with lfs.open("/x.txt", "r") as f:
+        assert f.read() == "hi"

@@ -1,11 +1,13 @@
-"""`hexapod pico run FILE...` and `hexapod pico bench ik|tick|frame --json`: the firmware on an
+"""`hexapod pico serial`, `hexapod pico run FILE...` and `hexapod pico bench ik|tick|frame --json`: the firmware on an
 emulated Raspberry Pi Pico (hexapod_host.pico). Times are emulated us at 125 MHz, a lower bound
 on silicon (zero-wait flash, approximate cycle costs)."""
 
 import json
 import os
+import signal
 import sys
 import tempfile
+import time
 
 from hexapod_host import pico
 from hexapod_host.cli import UsageError
@@ -148,6 +150,11 @@ def register(sub):
     b.add_argument("--ticks", type=int, help="tick: ticks per gait (default 200)")
     b.add_argument("--frames", type=int, help="frame: 20 ms frames of the whole loop (default 500: 10 s)")
     b.set_defaults(func=run_bench)
+    s = what.add_parser("serial", help="the emulated Pico as a serial port (a pty; prints its path first)")
+    s.add_argument("--fs", metavar="IMG", help="littlefs image to boot with (default: erased flash)")
+    s.add_argument("--save-fs", metavar="OUT", help="write the board's filesystem here when stopped")
+    s.add_argument("--firmware", metavar="FILE", help="MicroPython RPI_PICO .uf2/.bin")
+    s.set_defaults(func=run_serial)
 
 
 def _check(args):
@@ -188,4 +195,33 @@ def run_bench(args):
     result["firmware"] = os.path.basename(pico.firmware())
     print(json.dumps(result, sort_keys=True) if args.json else json.dumps(result, sort_keys=True, indent=2))
     sys.stdout.flush()
+    return 0
+
+
+def run_serial(args):
+    """The emulated Pico on a pty until Ctrl-C or SIGTERM: `hexapod flash --board pico --port PTY`."""
+    _check(args)
+    if args.fs and not os.path.isfile(args.fs):
+        raise UsageError("--fs %r: no such file" % args.fs)
+
+    def stop(signum, frame):
+        raise KeyboardInterrupt
+
+    old = signal.signal(signal.SIGTERM, stop)
+    try:
+        with pico.serial(args.fs, save_fs=args.save_fs) as path:
+            print(path, flush=True)
+            print(
+                "emulated Pico on %s; try: hexapod flash --board pico --port %s; Ctrl-C stops" % (path, path),
+                file=sys.stderr,
+                flush=True,
+            )
+            while True:
+                time.sleep(3600)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        signal.signal(signal.SIGTERM, old)
+    if args.save_fs:
+        print("filesystem saved to %s" % args.save_fs, file=sys.stderr)
     return 0
