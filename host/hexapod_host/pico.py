@@ -128,6 +128,21 @@ def image(src_dir, out):
     return out
 
 
+def _runner_cmd(tmp, exe, fw, fs, devices, trace):
+    """run.mjs's command line for the options run() and serial() share (devices as JSON in tmp)."""
+    cmd = [exe, RUNNER, "--firmware", fw]
+    if fs:
+        cmd += ["--fs", fs]
+    if devices is not None:
+        path = os.path.join(tmp, "devices.json")
+        with open(path, "w") as f:
+            json.dump(devices, f)
+        cmd += ["--devices", path]
+    if trace:
+        cmd += ["--trace", trace]
+    return cmd
+
+
 def run(files=(), *, fs=None, firmware_path=None, devices=None, trace=None, main_seconds=0, stream=False, timeout=900):
     """Boot the emulated Pico with filesystem image fs and run files (or its main.py for
     main_seconds emulated s). Returns (exit status, stdout, stderr, stats dict)."""
@@ -136,16 +151,7 @@ def run(files=(), *, fs=None, firmware_path=None, devices=None, trace=None, main
     rp2040js()
     with tempfile.TemporaryDirectory() as tmp:
         stats_path = os.path.join(tmp, "stats.json")
-        cmd = [exe, RUNNER, "--firmware", fw, "--stats", stats_path]
-        if fs:
-            cmd += ["--fs", fs]
-        if devices is not None:
-            path = os.path.join(tmp, "devices.json")
-            with open(path, "w") as f:
-                json.dump(devices, f)
-            cmd += ["--devices", path]
-        if trace:
-            cmd += ["--trace", trace]
+        cmd = _runner_cmd(tmp, exe, fw, fs, devices, trace) + ["--stats", stats_path]
         if main_seconds:
             cmd += ["--main", str(main_seconds)]
         cmd += list(files)
@@ -186,18 +192,9 @@ def serial(fs=None, *, save_fs=None, firmware_path=None, devices=None, trace=Non
     fw = firmware(firmware_path)
     rp2040js()
     with tempfile.TemporaryDirectory() as tmp:
-        cmd = [exe, RUNNER, "--firmware", fw, "--serial"]
-        if fs:
-            cmd += ["--fs", fs]
+        cmd = _runner_cmd(tmp, exe, fw, fs, devices, trace) + ["--serial"]
         if save_fs:
             cmd += ["--save-fs", save_fs]
-        if devices is not None:
-            path = os.path.join(tmp, "devices.json")
-            with open(path, "w") as f:
-                json.dump(devices, f)
-            cmd += ["--devices", path]
-        if trace:
-            cmd += ["--trace", trace]
         if stats:
             cmd += ["--stats", stats]
         master, slave = os.openpty()
