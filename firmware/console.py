@@ -12,6 +12,7 @@ SerialReader (CircuitPython: supervisor.runtime.serial_bytes_available), BufferR
 
 from calstore import TRIM_MAX, Store
 from micropython import const
+from runner import counters
 
 from drivers import hcsr04
 from hexapod import follow, gait, tick
@@ -323,15 +324,10 @@ class Console:
             left = left if left > 0 else 0
         on = f.mode != follow.OFF
         return (
-            "ok frames %d held %d overruns %d bus_failed %d reinit %d sonar_faults %d faults %d mode %s gait %s "
+            "ok %s faults %d mode %s gait %s "
             "walk_ms %d wall %s wall_mode %s wall_d %s wall_angle %s wall_error %s wall_out %s wall_faults %d cal %s"
             % (
-                r.frames,
-                r.held,
-                r.robot.overruns,
-                r.bank.failed_frames,
-                r.bank.reinits,
-                r.sonar_faults,
+                counters(r),
                 r.robot.faults,
                 tick.MODE_NAMES[r.robot.mode],
                 gait.NAMES[r.robot.gait],

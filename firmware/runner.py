@@ -120,16 +120,19 @@ class Runner:
             self.robot.go_limp()
 
 
-def status_line(r):
-    """One line for the serial console: frames, held frames, overruns, bus and sonar faults,
-    distances (0.1 mm) and the wall follower (mode, d, angle, error, output, sensors, faults)."""
-    return "frames %d held %d overruns %d bus_failed %d reinit %d sonar_faults %d dist %s %s" % (
+def counters(r):
+    """The loop's counters as text: frames, held frames, overruns, bus failures, reinits, sonar faults."""
+    return "frames %d held %d overruns %d bus_failed %d reinit %d sonar_faults %d" % (
         r.frames,
         r.held,
         r.robot.overruns,
         r.bank.failed_frames,
         r.bank.reinits,
         r.sonar_faults,
-        r.distances,
-        follow.status_text(r.follower),
     )
+
+
+def status_line(r):
+    """One line for the serial console: the counters, distances (0.1 mm) and the wall follower
+    (mode, d, angle, error, output, sensors, faults)."""
+    return "%s dist %s %s" % (counters(r), r.distances, follow.status_text(r.follower))
