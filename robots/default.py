@@ -45,11 +45,15 @@ SERVO = {
     "armature_g_cm2": 20000,
     # Optional: the walk turns no joint faster than this share of the no-load speed, scaling
     # commands and refusing gait/cycle/lift settings that would need more (docs/physics.md).
-    # 400 (282 cdeg a tick) keeps the tripod under 80 % of stall in physics at 1 s; its stance
-    # femurs already spend ~75 % holding the body up. Off here: at 400 the tripod needs a
-    # cycle of 0.92 s or more, tetrapod 1.38 s, ripple 1.44 s, wave 2.76 s, and other tests walk them at 1 s.
-    # "planner_share_permille": 400,
+    # 400 (282 cdeg a tick) keeps the tripod at or under 80 % of stall in physics; its stance
+    # femurs already spend ~75 % holding the body up. Leave it out to walk unguarded.
+    "planner_share_permille": 400,
 }
+
+# Each gait's cycle time (ms) until set_params sets another: tripod, tetrapod, ripple, wave.
+# The fastest walk the servo guard above allows at a 30 mm step and lift (docs/physics.md);
+# optional, 1000 each when absent. Slower-swinging gaits need longer cycles.
+GAIT_CYCLE_MS = (1000, 2220, 2280, 4320)
 
 # For physics only (host/hexapod_host/mjcf.py): masses without the servos (g), the body's
 # thickness (0.1 mm), the foot's friction with the floor (per mille) and its sphere (0.1 mm).

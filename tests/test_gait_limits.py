@@ -4,10 +4,14 @@ static stability margin at nominal speed."""
 
 import ast
 
-SWEEP = """
-import robots.default as d
-from hexapod import geometry, tick
-g = geometry.load(d)
+from hexapod_host.testing import UNGUARDED_GEOMETRY
+
+# The planner's reach at the extremes (every gait at 1 s too), without the servo guard, which
+# refuses most of these settings (test_servo_guard.py).
+SWEEP = (
+    UNGUARDED_GEOMETRY
+    + """
+from hexapod import tick
 lim = g.limits
 seed = [12345]
 def rnd(n):
@@ -54,6 +58,7 @@ for case in CASES:
         n += 1
     print([case, code, ticks, outside, robot.faults, refused, robot.mode, robot.walker.held])
 """
+)
 
 CASES = [
     (0, 300, 300, 1000, (0, 0, 0, 0, 0, 0, 0, 0, 0)),
@@ -85,11 +90,11 @@ def test_no_joint_ever_leaves_its_limits(both_runtimes):
     assert walked >= len(CASES) - 2  # the poses that leave a leg no room refuse walking instead
 
 
-MARGIN = """
-import robots.default as d
-from hexapod import geometry, tick
+MARGIN = (
+    UNGUARDED_GEOMETRY
+    + """
+from hexapod import tick
 from hexapod.stability import support_margin
-g = geometry.load(d)
 robot = tick.Robot(g, tick.default_servos(g), tick.FrameBuffer())
 w = robot.walker
 t = 0
@@ -118,10 +123,11 @@ for _ in range(w.clock.cycle_ticks):
     worst = m if worst is None or m < worst else worst
 print([w.scale_permille, list(w.cmd), worst])
 """
+)
 
 
 def test_tripod_static_stability_margin(rt):
-    scale, cmd, worst = rt.value(MARGIN.replace("GAIT", "0"))
+    scale, cmd, worst = rt.value(MARGIN.replace("set_gait(GAIT)", "set_gait(0)"))
     assert scale == 1000 and cmd == [1200, 0, 0]  # 120 mm/s: 30 mm steps, 1 s cycle
     # Minimum distance of the body centre inside the stance feet's polygon over a cycle:
     # 64.2 mm for the default robot (docs/motion.md). A positive margin with room to spare.

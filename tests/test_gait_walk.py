@@ -9,11 +9,14 @@ import math
 
 import pytest
 
-SETUP = """
-import robots.default as d
-from hexapod import geometry, tick
+from hexapod_host.testing import UNGUARDED_GEOMETRY
+
+# The walk's kinematics at 1 s cycles, faster than the servo guard allows (test_servo_guard.py).
+SETUP = (
+    UNGUARDED_GEOMETRY
+    + """
+from hexapod import tick
 from hexapod.gait import NAMES
-g = geometry.load(d)
 robot = tick.Robot(g, tick.default_servos(g), tick.FrameBuffer())
 w = robot.walker
 T = [0]
@@ -27,6 +30,7 @@ robot.stand_up()
 while robot.mode != tick.STANDING:
     run(1)
 """
+)
 
 
 def scenario(both_runtimes, body):

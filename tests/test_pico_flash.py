@@ -49,7 +49,9 @@ def test_flash_the_emulated_pico_over_a_pty_then_boot_it(tmp_path, capsys):
 
     # Power-up from what the board wrote: the image's own main.py stands the robot up, burst for
     # burst as on the host's stub machine (as tests/test_pico_loop.py does from a packed image).
-    status, out, bursts = pico_loop.boot_main(3, saved)
+    # 5 emulated seconds: ~3.2 s of imports and build (the servo guard's ~2,400 IK solves
+    # among them, docs/physics.md), then 20 ms frames.
+    status, out, bursts = pico_loop.boot_main(5, saved)
     assert status == 0 and "Traceback" not in out, out
     frames = len(bursts) // 2
     assert frames > 50, (frames, out)

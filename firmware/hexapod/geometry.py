@@ -6,6 +6,7 @@ and what is allowed when something is wrong, before anything moves.
 """
 
 from hexapod.fixmath import cos, sin
+from hexapod.gait import CYCLE_MS_MAX, CYCLE_MS_MIN, NAMES
 from hexapod.leg import OK, Leg, describe
 
 LEG_NAMES = ("RF", "RM", "RR", "LR", "LM", "LF")
@@ -72,6 +73,8 @@ class Geometry:
         if servo is not None and "planner_share_permille" in servo:
             self.servo_step = 6000 * 20 * servo["planner_share_permille"] // (servo["speed_ms_per_60deg"] * 1000)
         self.servo = servo
+        # Each gait's cycle time until one is set (ms; tripod, tetrapod, ripple, wave).
+        self.gait_cycle_ms = tuple(data.get("GAIT_CYCLE_MS") or (1000, 1000, 1000, 1000))
 
     def neutral_xy(self, i, out, j=0):
         """Body-frame (x, y) of leg i's neutral foot (0-based i), 0.1 mm, into out[j:j+2]."""
@@ -91,6 +94,8 @@ def load(module):
         data[field] = getattr(module, field)
     if hasattr(module, "SERVO"):
         data["SERVO"] = module.SERVO
+    if hasattr(module, "GAIT_CYCLE_MS"):
+        data["GAIT_CYCLE_MS"] = module.GAIT_CYCLE_MS
     return from_data(name, data)
 
 
@@ -117,6 +122,12 @@ def from_data(name, data):
     _int(pre, "FOOT_CLEARANCE", data["FOOT_CLEARANCE"], 0, data["SIT_HEIGHT"])
     if data.get("SERVO") is not None:
         check_servo(pre, data["SERVO"])
+    cycles = data.get("GAIT_CYCLE_MS")
+    if cycles is not None:
+        if not isinstance(cycles, (tuple, list)) or len(cycles) != len(NAMES):
+            raise ValueError(pre + "GAIT_CYCLE_MS: need %d cycle times (ms): %s" % (len(NAMES), ", ".join(NAMES)))
+        for k in range(len(NAMES)):
+            _int(pre, "GAIT_CYCLE_MS %s (ms)" % NAMES[k], cycles[k], CYCLE_MS_MIN, CYCLE_MS_MAX)
     g = Geometry(name, data)
     # Every height the robot may stand or rest at must be a reachable neutral stance.
     leg = g.legs[0]

@@ -131,10 +131,12 @@ class Robot:
         self.jog_code = OK
         self.jog_excess = 0
         self.gait = TRIPOD
-        self.cycle_ms = 1000
+        # Each gait keeps its own cycle time (ms): the robot file's until set_params sets one.
+        self.cycles = list(geometry.gait_cycle_ms)
+        self.cycle_ms = self.cycles[TRIPOD]
         disc_radii(self.walker, self._probe, self.walker.lift, self._rho)
         self.walker.pose_body = self._probe  # the servo-speed check sees the pose asked for
-        self.walker.configure(TRIPOD, 1000, self.walker.lift, self.walker.step, self._rho)
+        self.walker.configure(TRIPOD, self.cycle_ms, self.walker.lift, self.walker.step, self._rho)
         # Until told otherwise (assume_angles), the robot rests on its body, feet at neutral.
         for i in range(6):
             self.walker.fz[i] = self.rest_z
@@ -285,7 +287,7 @@ class Robot:
             w.ground = old
             return UNREACHABLE
         disc_radii(w, self.body, w.lift, self._rho)
-        code = w.configure(self.gait, self.cycle_ms, w.lift, w.step, self._rho)
+        code = w.configure(self.gait, self.cycle_ms, w.lift, w.step, self._rho, False)
         if code != OK:
             w.ground = old
             return code
@@ -317,23 +319,29 @@ class Robot:
             return UNREACHABLE
         w = self.walker
         disc_radii(w, probe, w.lift, self._rho)
-        code = w.configure(self.gait, self.cycle_ms, w.lift, w.step, self._rho)
+        code = w.configure(self.gait, self.cycle_ms, w.lift, w.step, self._rho, False)
         if code != OK:
             return code
         self.body.set_target(pose)
         return OK
 
-    def set_gait(self, gait):
-        """Switch gait (gait.TRIPOD ...): now when stopped, else when no foot is in the air."""
+    def set_gait(self, gait, cycle_ms=None):
+        """Switch gait (gait.TRIPOD ...) at cycle_ms (ms), else at the gait's own cycle time: now
+        when stopped, else when no foot is in the air."""
         check_gait(gait)
+        if cycle_ms is not None:
+            check_cycle_ms(cycle_ms)
         w = self.walker
-        code = w.configure(gait, self.cycle_ms, w.next_lift, w.step, w.next_rho)
+        cycle = self.cycles[gait] if cycle_ms is None else cycle_ms
+        code = w.configure(gait, cycle, w.next_lift, w.step, w.next_rho)
         if code == OK:
             self.gait = gait
+            self.cycle_ms = cycle
+            self.cycles[gait] = cycle
         return code
 
     def set_params(self, step_length=None, lift_height=None, cycle_ms=None):
-        """Step length and lift height (0.1 mm), cycle time (ms); each bounded (ValueError)."""
+        """Step length and lift height (0.1 mm), the present gait's cycle time (ms); each bounded (ValueError)."""
         w = self.walker
         step = w.step if step_length is None else step_length
         lift = w.next_lift if lift_height is None else lift_height
@@ -349,6 +357,7 @@ class Robot:
         code = w.configure(self.gait, cycle, lift, step, self._rho)
         if code == OK:
             self.cycle_ms = cycle
+            self.cycles[self.gait] = cycle
         return code
 
     def walk(self, vx, vy, yaw_rate):
@@ -360,6 +369,8 @@ class Robot:
             return BUSY
         if (vx or vy or yaw_rate) and not self._roomy(self.walker.rho):
             return UNREACHABLE  # this pose or lift leaves a leg no room to step
+        if (vx or vy or yaw_rate) and not self._roomy(self.walker.srho):
+            return SERVO_SPEED  # this pose or height makes the swing too fast for the servos
         self.walker.command(vx, vy, yaw_rate)
         if self.walker.state != STOPPED:
             self.mode = WALKING

@@ -38,6 +38,7 @@ STOPPING = const(3)
 STATE_NAMES = ("stopped", "starting", "walking", "stopping")
 OK = const(0)
 SERVO_SPEED = const(28)  # configure: even a step of nothing would turn a joint too fast
+LIFT_SHARE_PERMILLE = const(900)  # most of the servo budget a swing without a step may use
 
 SPEED_MAX = const(3000)  # largest |vx|, |vy| accepted, 0.1 mm/s
 YAW_RATE_MAX = const(9000)  # largest |yaw rate| accepted, cdeg/s
@@ -133,12 +134,14 @@ class Walker:
         if not isinstance(lift, int) or isinstance(lift, bool) or lift < LIFT_MIN or lift > LIFT_MAX:
             raise ValueError("lift_height: %r is outside %d..%d (0.1 mm)" % (lift, LIFT_MIN, LIFT_MAX))
 
-    def configure(self, gait, cycle_ms, lift, step, rho):
+    def configure(self, gait, cycle_ms, lift, step, rho, strict=True):
         """Gait, cycle time (ms), lift and step (0.1 mm) with their reach discs; checked, then
         taken now when stopped, else at the next moment with every foot on the ground.
 
         Returns OK, or SERVO_SPEED (and changes nothing) when the robot file's servos could
-        not even lift and lower a foot in this gait's swing at this cycle time and lift."""
+        not lift and lower a foot in this gait's swing at this cycle time and lift within 90 %
+        of their budget (geometry.servo_step). Not strict (a new pose or height): taken all
+        the same with no room to step (srho 0), so that walking is refused until it changes."""
         check_gait(gait)
         check_cycle_ms(cycle_ms)
         self.check_lift(lift)
@@ -148,12 +151,17 @@ class Walker:
             body = self.pose_body if self.pose_body is not None else Body(self.geometry)
             ticks = swing_stance_ticks(gait, cycle_ms, [0, 0])
             srho = [0] * 6
-            peak = servo_radii(self, body, ticks[0], ticks[1], lift, limit, rho, srho)
+            # No need to look past what the reach and the step allow already.
+            caps = [rho[i] if rho[i] < step else step for i in range(6)]
+            peak = servo_radii(self, body, ticks[0], ticks[1], lift, limit, caps, srho)
             self.servo_peak = peak
-            if peak > limit:
+            # The lift alone may use 90 % of the budget: shorter swings accelerate the joints
+            # harder than the servos follow within 80 % of stall (docs/physics.md).
+            over = peak > limit * LIFT_SHARE_PERMILLE // 1000
+            if over and strict:
                 return SERVO_SPEED
             for i in range(6):
-                self.next_srho[i] = srho[i]
+                self.next_srho[i] = 0 if over else srho[i]
         self.step = step
         self.next_gait = gait
         self.next_cycle_ms = cycle_ms

@@ -7,6 +7,7 @@ from hexapod.units import shown
 from hexapod_host import mpvm
 from hexapod_host.bench_i2c import bench_i2c
 from hexapod_host.cli import UsageError
+from hexapod_host.guard_bench import bench_guard
 from hexapod_host.tick_bench import bench_tick
 
 VM_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm")
@@ -19,7 +20,7 @@ def bench_ik(args):
 
 
 # name -> function(args) returning a dict; other modules add theirs here.
-BENCHES = {"ik": bench_ik, "i2c": bench_i2c, "tick": bench_tick}
+BENCHES = {"ik": bench_ik, "i2c": bench_i2c, "tick": bench_tick, "guard": bench_guard}
 
 
 def register(sub):

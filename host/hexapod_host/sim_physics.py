@@ -109,15 +109,11 @@ class Run:
         import numpy as np
 
         r = self.robot
-        # The cycle first (in the gait in force), then the gait: a gait the servos cannot
-        # swing at the old cycle may well be fine at the new one.
-        if cycle_ms is not None:
-            code = r.set_params(cycle_ms=cycle_ms)
-            if code != tick.OK:
-                raise ValueError("cycle %d ms: %s" % (cycle_ms, tick.describe(code)))
-        code = r.set_gait(gait)
+        # The gait and its cycle in one: a gait the servos cannot swing at one cycle may well be fine at another.
+        code = r.set_gait(gait, cycle_ms)
         if code != tick.OK:
-            raise ValueError("gait %s: %s" % (NAMES[gait], tick.describe(code)))
+            where = " at %d ms" % cycle_ms if cycle_ms is not None else ""
+            raise ValueError("gait %s%s: %s" % (NAMES[gait], where, tick.describe(code)))
         code = r.walk(int(round(vx * 10)), int(round(vy * 10)), int(round(yaw * 100)))
         if code != tick.OK:
             raise ValueError("walk: %s" % tick.describe(code))
