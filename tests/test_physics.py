@@ -248,7 +248,7 @@ def test_bad_servo_spec_is_refused_naming_it(servo, word):
 
 def test_servo_limits_at_the_edges_load():
     data = {k: getattr(d, k) for k in dir(d) if k.isupper()}
-    for lo_hi in ((50, 20, 1, 100, 0, 50), (100000, 2000, 1000, 10000000, 10000000, 1000)):
+    for lo_hi in ((50, 20, 1, 100, 0, 50, 10), (100000, 2000, 1000, 10000000, 10000000, 1000, 2000)):
         data["SERVO"] = dict(zip([f[0] for f in geometry.SERVO_FIELDS], lo_hi, strict=True))
         assert geometry.from_data("default", data).servo == data["SERVO"]
 

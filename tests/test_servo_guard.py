@@ -296,3 +296,53 @@ def test_bad_gait_cycles_in_the_robot_file_are_named(cycles, why):
         geometry.from_data("default", data)
     data["GAIT_CYCLE_MS"] = (500, 5000, 500, 5000)  # the limits themselves are allowed
     assert geometry.from_data("default", data).gait_cycle_ms == (500, 5000, 500, 5000)
+
+
+def _outward_max(g, vx, vy, cycle, ticks=400):
+    """The farthest any stance foot got beyond its neutral distance from the coxa axis (0.1 mm),
+    after the first 200 ticks (the first stances from standing are longer, not checked)."""
+    import math
+
+    robot, t = standing(g)
+    assert robot.set_params(cycle_ms=cycle) == tick.OK and robot.walk(vx, vy, 0) == tick.OK
+    w = robot.walker
+    worst = 0
+    for n in range(ticks):
+        robot.tick(t[0])
+        t[0] += 20
+        for i in range(6):
+            if w.su[i] < 0 and n >= 200:
+                r = math.hypot((w.fx[i] >> 4) - g.mount_x[i], (w.fy[i] >> 4) - g.mount_y[i])
+                worst = max(worst, r - g.neutral_reach)
+    return worst
+
+
+def test_tripod_stance_feet_stay_within_the_outward_limit():
+    # Sideways at 1.68 s the tripod's stance is limited by the 30 mm step, not the servo speed:
+    # without the limit the stance feet go 30 mm out; with it, 18 mm (robot file stance_out_max).
+    g = geometry.load(d)
+    assert g.stance_out_max == 180
+    assert 170 < _outward_max(g, 0, 3000, 1680) <= 180 + 1  # +1: the feet's 1/16 mm rounding
+    data = {k: getattr(d, k) for k in dir(d) if k.isupper()}
+    data["SERVO"] = {k: v for k, v in d.SERVO.items() if k != "stance_out_max"}
+    assert _outward_max(geometry.from_data("default", data), 0, 3000, 1680) > 290
+    # Ripple (four feet down) is not limited: its stance load is shared.
+    robot, _ = standing(g)
+    assert robot.set_gait(RIPPLE) == tick.OK and robot.walk(0, 3000, 0) == tick.OK
+    assert robot.walker.cmd[1] == 393  # its servo-speed limit alone: 39.3 mm/s
+
+
+def test_tripod_sideways_at_its_step_limited_cycle_stays_under_80_percent_in_physics():
+    # The worst case of a sweep over every accepted tripod cycle (docs/physics.md): 84.0 % of
+    # stall before the outward limit (1.68 s, sideways, 71.4 mm/s); at 21 mm out 80.6 %.
+    res = sp.simulate(gait="tripod", cycle_ms=1680, seconds=5.0, speed=300.0, direction=90.0)
+    assert res["torque_peak_nm"] <= 0.8 * res["stall_nm"] and res["saturated_pct"] == 0.0
+    assert res["speed_ratio"] >= 0.97
+
+
+@pytest.mark.parametrize("value", [9, 2001, 210.0, "210", True, None])
+def test_bad_stance_out_max_is_named(value):
+    data = {k: getattr(d, k) for k in dir(d) if k.isupper()}
+    data["SERVO"] = dict(d.SERVO, stance_out_max=value)
+    with pytest.raises(ValueError, match="stance_out_max"):
+        geometry.from_data("default", data)

@@ -20,8 +20,10 @@ SERVO_FIELDS = (
     ("kp_mnm_per_rad", 100, 10000000, "mN m per rad"),
     ("armature_g_cm2", 0, 10000000, "g cm^2"),
     ("planner_share_permille", 50, 1000, "per mille of the no-load speed the walk may ask"),
+    ("stance_out_max", 10, 2000, "0.1 mm a stance foot may be farther from its coxa than neutral"),
 )
-SERVO_OPTIONAL = ("planner_share_permille",)  # absent: the walk does not limit joint speeds
+# Absent: the walk does not limit joint speeds, nor how far out a stance foot goes.
+SERVO_OPTIONAL = ("planner_share_permille", "stance_out_max")
 _FIELDS = (
     "COXA",
     "FEMUR",
@@ -72,6 +74,9 @@ class Geometry:
         self.servo_step = 0
         if servo is not None and "planner_share_permille" in servo:
             self.servo_step = 6000 * 20 * servo["planner_share_permille"] // (servo["speed_ms_per_60deg"] * 1000)
+        # How much farther from its coxa axis than neutral a stance foot on three feet (the
+        # tripod) may be, 0.1 mm (0: no limit): the femur holds the body on that lever.
+        self.stance_out_max = servo.get("stance_out_max", 0) if servo is not None else 0
         self.servo = servo
         # Each gait's cycle time until one is set (ms; tripod, tetrapod, ripple, wave).
         self.gait_cycle_ms = tuple(data.get("GAIT_CYCLE_MS") or (1000, 1000, 1000, 1000))

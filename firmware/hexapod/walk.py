@@ -247,6 +247,8 @@ class Walker:
         k = 1000
         if turn > _HALF_TURN or turn < -_HALF_TURN:
             k = _HALF_TURN * 1000 // (turn if turn > 0 else -turn)
+        g = self.geometry
+        three = self.clock.stance_ticks * 2 <= self.clock.cycle_ticks  # a tripod: three feet hold the body
         while k > 0:
             worst = -1
             for i in range(6):
@@ -257,6 +259,12 @@ class Walker:
                 if e > lim:
                     # The shortfall sets the next try; rounding can leave it a hair short.
                     kk = k * lim // e
+                    if worst < 0 or kk < worst:
+                        worst = kk
+                out = self._outward(i) if three else 0
+                if out > g.stance_out_max > 0:
+                    # On three feet, a foot far out loads its femur (a longer lever): scale the excess back.
+                    kk = k * g.stance_out_max // out
                     if worst < 0 or kk < worst:
                         worst = kk
             if worst < 0:
@@ -276,6 +284,20 @@ class Walker:
         dx = (self._xy[0] - self.nx[i]) >> FINE_SHIFT
         dy = (self._xy[1] - self.ny[i]) >> FINE_SHIFT
         return isqrt(dx * dx + dy * dy)
+
+    def _outward(self, i):
+        """How much farther (0.1 mm) than neutral from leg i's coxa axis its stance reaches, at
+        touch-down (_xy, just aimed by half_stance) or at lift-off (its mirror through neutral)."""
+        g = self.geometry
+        mx = g.mount_x[i]
+        my = g.mount_y[i]
+        tx = self._xy[0] >> FINE_SHIFT
+        ty = self._xy[1] >> FINE_SHIFT
+        sx = (self.nx[i] >> FINE_SHIFT << 1) - tx
+        sy = (self.ny[i] >> FINE_SHIFT << 1) - ty
+        a = isqrt((tx - mx) * (tx - mx) + (ty - my) * (ty - my))
+        b = isqrt((sx - mx) * (sx - mx) + (sy - my) * (sy - my))
+        return (a if a > b else b) - g.neutral_reach
 
     def aim_for(self, vx, vy, w):
         """Half a stance of body motion at (vx, vy, w): the turn and the shift, into _aim."""

@@ -402,7 +402,7 @@ def register(sub):
     p.add_argument("--direction", type=float, default=0.0, help="deg from forward, counter-clockwise (90 = left)")
     p.add_argument("--turn", type=float, default=0.0, help="yaw rate, deg/s, positive = left")
     p.add_argument("--seconds", type=float, default=6.0, help="simulated time (0.6 s + a cycle settle first)")
-    p.add_argument("--cycle", type=int, default=None, help="gait cycle, ms (default: the robot's 1000)")
+    p.add_argument("--cycle", type=int, default=None, help="gait cycle, ms (default: the gait's own)")
     p.add_argument("--servo", default="", help="SERVO overrides, KEY=INT,...: e.g. stall_torque_mnm=1500")
     p.add_argument("--render", metavar="DIR", default=None, help="write PNG frames and walk.gif here")
     p.add_argument("--json", action="store_true", help="print the results as JSON")

@@ -17,13 +17,13 @@ import pytest
 from hexapod_host import mpvm
 
 # Script lines (both runtimes) making `g`, robots/default.py's Geometry without its servo speed
-# guard and its per-gait cycles (every gait at 1 s): for tests of the walk's kinematics that
+# guard, its stance reach limit and its per-gait cycles (every gait at 1 s): for tests of the walk's kinematics that
 # ask for more than the guard allows; the guard has tests of its own (test_servo_guard.py).
 UNGUARDED_GEOMETRY = """
 import robots.default as d
 from hexapod import geometry
 _data = {k: getattr(d, k) for k in dir(d) if k.isupper()}
-_data["SERVO"] = {k: v for k, v in d.SERVO.items() if k != "planner_share_permille"}
+_data["SERVO"] = {k: v for k, v in d.SERVO.items() if k != "planner_share_permille" and k != "stance_out_max"}
 _data.pop("GAIT_CYCLE_MS")
 g = geometry.from_data("default", _data)
 """
