@@ -50,8 +50,8 @@ SERVO = {
     "planner_share_permille": 400,
     # Optional: on three feet (the tripod) a stance foot goes at most this much (0.1 mm) farther
     # from its coxa axis than neutral. Stepping sideways 30 mm out, the middle femur holding
-    # the body peaked at 84 % of stall in physics; 18 mm out, at most 78 % (docs/physics.md).
-    "stance_out_max": 180,
+    # the body peaked at 84 % of stall in physics; 15 mm out, at most 79.4 % (docs/physics.md).
+    "stance_out_max": 150,
 }
 
 # Each gait's cycle time (ms) until set_params sets another: tripod, tetrapod, ripple, wave.
