@@ -119,28 +119,11 @@ def _fits(walker, body, leg, i, e, swing, stance, lift, limit, buf, first):
 def swing_peak(walker, body, leg, i, e, angle, swing, stance, lift, stop, buf):
     """Largest per-tick joint change (cdeg) of leg i's swing stepping e (0.1 mm) along angle
     (cdeg), every tick; returns as soon as a change passes stop (cdeg)."""
-    ux = (e * cos(angle) + 16384) >> 15  # 0.1 mm
-    uy = (e * sin(angle) + 16384) >> 15
-    # From S = n - u to T = n + u, carried by C = -2u swing/stance (the stance's ground speed).
-    cx = -(2 * ux * swing // stance)
-    cy = -(2 * uy * swing // stance)
+    u = step_vector(e, angle, swing, stance, [0, 0, 0, 0])
     worst = 0
-    sh = [0, 0]
-    st = [0, 0]
+    tmp = [0, 0]
     for v in range(swing + 1):
-        swing_stroke(v, swing, st)
-        swing_shape(v, swing, sh)
-        x = -ux + mul_q15(cx, st[1]) + mul_q15(2 * ux - cx, st[0])
-        y = -uy + mul_q15(cy, st[1]) + mul_q15(2 * uy - cy, st[0])
-        z = mul_q15(lift, sh[1])
-        body.to_leg(
-            i,
-            walker.nx[i] + (x << FINE_SHIFT),
-            walker.ny[i] + (y << FINE_SHIFT),
-            walker.ground + (z << FINE_SHIFT),
-            buf,
-            0,
-        )
+        swing_point(walker, body, i, u, v, swing, lift, tmp, buf)
         # Angles at tick v go to buf[3:6] and [6:9] in turn: the pair (v - 1, v) is both.
         at = 3 if v & 1 else 6
         if leg.ik(buf[0], buf[1], buf[2], buf, at) != OK:
@@ -155,3 +138,36 @@ def swing_peak(walker, body, leg, i, e, angle, swing, stance, lift, stop, buf):
                     if d > stop:
                         return d
     return worst
+
+
+def step_vector(e, angle, swing, stance, out):
+    """Half a stance e (0.1 mm) along angle (cdeg), and the stance's carry over one swing, into out (0.1 mm)."""
+    ux = (e * cos(angle) + 16384) >> 15
+    uy = (e * sin(angle) + 16384) >> 15
+    out[0] = ux
+    out[1] = uy
+    # From S = n - u to T = n + u, carried by C = -2u swing/stance (the stance's ground speed).
+    out[2] = -(2 * ux * swing // stance)
+    out[3] = -(2 * uy * swing // stance)
+    return out
+
+
+def swing_point(walker, body, i, u, v, swing, lift, tmp, buf):
+    """Leg i's foot at tick v of the walker's swing for step_vector u, in the leg's frame, into buf[0:3]."""
+    ux = u[0]
+    uy = u[1]
+    cx = u[2]
+    cy = u[3]
+    swing_stroke(v, swing, tmp)
+    x = -ux + mul_q15(cx, tmp[1]) + mul_q15(2 * ux - cx, tmp[0])
+    y = -uy + mul_q15(cy, tmp[1]) + mul_q15(2 * uy - cy, tmp[0])
+    swing_shape(v, swing, tmp)
+    z = mul_q15(lift, tmp[1])
+    body.to_leg(
+        i,
+        walker.nx[i] + (x << FINE_SHIFT),
+        walker.ny[i] + (y << FINE_SHIFT),
+        walker.ground + (z << FINE_SHIFT),
+        buf,
+        0,
+    )

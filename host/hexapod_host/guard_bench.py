@@ -14,10 +14,7 @@ import tempfile
 import time
 
 from hexapod import reach
-from hexapod.body import FINE_SHIFT
-from hexapod.fixmath import cos, mul_q15, sin
 from hexapod.leg import OK
-from hexapod.trajectory import swing_shape, swing_stroke
 from hexapod_host import mpvm
 
 VM_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm", "bench_guard.py")
@@ -26,29 +23,13 @@ HEAP = "160k"
 
 def exhaustive_peak(walker, body, leg, i, e, angle, swing, stance, lift):
     """Largest per-tick joint change (cdeg) of leg i's swing stepping e along angle: every tick pair solved twice."""
-    ux = (e * cos(angle) + 16384) >> 15
-    uy = (e * sin(angle) + 16384) >> 15
-    cx = -(2 * ux * swing // stance)
-    cy = -(2 * uy * swing // stance)
+    u = reach.step_vector(e, angle, swing, stance, [0, 0, 0, 0])
     worst = 0
-    sh = [0, 0]
-    st = [0, 0]
+    tmp = [0, 0]
     buf = [0] * 9
-    for u in range(swing):
-        for v, at in ((u, 6), (u + 1, 3)):
-            swing_stroke(v, swing, st)
-            swing_shape(v, swing, sh)
-            x = -ux + mul_q15(cx, st[1]) + mul_q15(2 * ux - cx, st[0])
-            y = -uy + mul_q15(cy, st[1]) + mul_q15(2 * uy - cy, st[0])
-            z = mul_q15(lift, sh[1])
-            body.to_leg(
-                i,
-                walker.nx[i] + (x << FINE_SHIFT),
-                walker.ny[i] + (y << FINE_SHIFT),
-                walker.ground + (z << FINE_SHIFT),
-                buf,
-                0,
-            )
+    for t in range(swing):
+        for v, at in ((t, 6), (t + 1, 3)):
+            reach.swing_point(walker, body, i, u, v, swing, lift, tmp, buf)
             if leg.ik(buf[0], buf[1], buf[2], buf, at) != OK:
                 return reach._UNREACHABLE
         worst = max(worst, *(abs(buf[3 + j] - buf[6 + j]) for j in range(3)))
