@@ -348,3 +348,19 @@ def test_bad_stance_out_max_is_named(value):
     data["SERVO"] = dict(d.SERVO, stance_out_max=value)
     with pytest.raises(ValueError, match="stance_out_max"):
         geometry.from_data("default", data)
+
+
+def test_bench_guard_counts_and_runs_in_the_vm():
+    # `hexapod bench guard`: the guard's IK solves against the exhaustive form's on the host (the
+    # same radii), and the same radii from the .mpy build in the MicroPython VM.
+    from hexapod_host import guard_bench
+
+    out = guard_bench.bench_guard()
+    assert out["servo_step_cdeg"] == 282 and len(out["rows"]) == 5
+    for row in out["rows"]:
+        assert row["guard"]["radii"] == row["exhaustive"]["radii"], row
+        assert row["guard"]["vm_radii_match"], row
+        assert 0 < row["guard"]["ik_solves"] < row["exhaustive"]["ik_solves"]
+    tripod = out["rows"][0]
+    assert (tripod["gait"], tripod["cycle_ms"]) == ("tripod", 1000)
+    assert tripod["guard"]["ik_solves"] * 5 < tripod["exhaustive"]["ik_solves"]  # 2,365 vs 14,700
