@@ -185,9 +185,21 @@ out = [g.servo_step, list(w.srho), w.servo_peak]
 out += [robot.set_gait(3, 1000), robot.set_gait(3), list(w.srho), w.servo_peak]
 out += [robot.set_gait(2, 1560), list(w.srho), w.servo_peak]
 print(out)
+robot.stand_up()
+t = 0
+while robot.mode != tick.STANDING:
+    robot.tick(t)
+    t += 20
+print([robot.set_gait(0, 1680), robot.walk(0, 3000, 0), list(w.cmd), w.scale_permille])
 """
     )
-    assert cp == mp
+    assert cp == mp  # the stance reach limit's square roots too
+    code, walk, cmd, scale = ast.literal_eval(cp.strip().splitlines()[-1])
+    # Hand-worked: at 1.68 s the tripod's stance is 42 ticks, half of it 0.42 s; sideways the
+    # middle legs' stance runs straight out from the coxa, so 15 mm out is 15 mm in 0.42 s:
+    # 35.7 mm/s (the servo guard alone allows the full 30 mm step: 71.4).
+    assert code == walk == tick.OK and cmd[0] == cmd[2] == 0 and abs(cmd[1] - 357) <= 3, (cmd, scale)
+    cp = cp.strip().splitlines()[0]
     step, srho, peak, wave_fast, wave, srho_wave, peak_wave, ripple, srho_ripple, peak_ripple = ast.literal_eval(
         cp.strip()
     )
