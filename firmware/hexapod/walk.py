@@ -23,6 +23,8 @@ Gait, cycle time and lift height changes asked for while walking wait for a mome
 no foot is in the air (new swings are held back until then).
 """
 
+import sys
+
 from micropython import const
 
 from hexapod.body import FINE, FINE_SHIFT, Body
@@ -378,6 +380,22 @@ class Walker:
         self.sy[i] = self.fy[i]
 
     def _swing(self, i, w, still):
+        u = self._swing_step(i, w) if _swing_fast is None else _swing_fast(self, i, w)
+        if u >= w:
+            t = self._xy
+            self.su[i] = -1
+            self.fx[i] = t[0]
+            self.fy[i] = t[1]
+            self.fz[i] = self.ground
+            self._to_ground(i)
+            if self.state == STOPPING and still:
+                self.done[i] = 1
+        else:
+            self.su[i] = u
+
+    def _swing_step(self, i, w):
+        """Leg i's swing foot at its next tick u of w into fx, fy, fz[i], its touch-down point
+        into _xy; returns u (hexapod/_tickfast.py's swing is the same in viper)."""
         u = self.su[i] + 1
         t = self._xy
         self.target(i, t)
@@ -415,16 +433,7 @@ class Walker:
         self.fx[i] = x
         self.fy[i] = y
         self.fz[i] = self.ground + mul_q15(self.lift << FINE_SHIFT, sh[1])
-        if u >= w:
-            self.su[i] = -1
-            self.fx[i] = t[0]
-            self.fy[i] = t[1]
-            self.fz[i] = self.ground
-            self._to_ground(i)
-            if self.state == STOPPING and still:
-                self.done[i] = 1
-        else:
-            self.su[i] = u
+        return u
 
     def _to_ground(self, i):
         """Pin leg i's foot where it is now, in the ground frame."""
@@ -499,6 +508,16 @@ class Walker:
                 self.py[i] -= by
             self.bx = 0
             self.by = 0
+
+
+# The swing compiled by the viper emitter where MicroPython has one (hexapod/_tickfast.py, proven
+# equal to _swing_step by tests/test_tickfast.py); CPython and CircuitPython run the plain code.
+_swing_fast = None
+if sys.implementation.name == "micropython":
+    try:
+        from hexapod._tickfast import swing as _swing_fast
+    except Exception:  # no viper emitter on this build
+        _swing_fast = None
 
 
 def is_whole(v):
