@@ -145,6 +145,52 @@ print((count, clamped, landed, differ))
 )
 
 
+STANCES = (
+    LCG
+    + """
+import robots.default as robot_file
+from hexapod import geometry, walk
+from hexapod._tickfast import stance
+
+w = walk.Walker(geometry.load(robot_file))
+count = differ = held = 0
+for n in range(CASES):
+    for i in range(6):
+        w.su[i] = -1 if draw(2) else draw(4)
+        w.px[i] = w.nx[i] + draw(15) % 8001 - 4000
+        w.py[i] = w.ny[i] + draw(15) % 8001 - 4000
+        w.fx[i] = w.nx[i] + draw(14) % 16001 - 8000
+        w.fy[i] = w.ny[i] + draw(14) % 16001 - 8000
+        w.rho[i] = 200 + draw(10) % 800
+        w.ax[i] = w.ay[i] = 0
+    bx = draw(16) % 200001 - 100000  # the ground frame's origin may lie far away (< _REANCHOR)
+    by = draw(16) % 200001 - 100000
+    for i in range(6):
+        w.px[i] += bx
+        w.py[i] += by
+    cd = draw(16) % 72001 - 36000 if n % 4 == 0 else draw(10) % 1001 - 500  # turned a little, or anywhere
+    h1 = w._stance(bx, by, cd)
+    plain = (h1, list(w.ax), list(w.ay))
+    for i in range(6):
+        w.ax[i] = w.ay[i] = 0
+    fast = (stance(w, bx, by, cd), list(w.ax), list(w.ay))
+    held += h1
+    if plain != fast:
+        differ += 1
+        if differ < 4:
+            print("differ", n, plain, fast)
+    count += 1
+print((count, held, differ))
+"""
+)
+
+
+def check_stances(result, cases):
+    count, held, differ = result
+    assert count == cases and cases // 10 < held < cases - cases // 10, result
+    assert differ == 0, result
+
+
 def check_swings(result, cases):
     count, clamped, landed, differ = result
     assert count == cases and clamped > cases // 10 and landed > cases // 50, result
@@ -171,9 +217,14 @@ def test_viper_swing_equals_plain_swing_on_the_vm(mp):
     check_swings(mp.value("CASES = %d\n" % cases + SWINGS, heapsize="1m"), cases)
 
 
-def test_robot_on_the_vm_uses_the_viper_frame_and_swing(mp):
-    src = "from hexapod import tick, walk\nprint((tick._output_fast is not None, walk._swing_fast is not None))"
-    assert mp.value(src) == (True, True)
+def test_viper_stance_equals_plain_stance_on_the_vm(mp):
+    cases = 10000
+    check_stances(mp.value("CASES = %d\n" % cases + STANCES, heapsize="1m"), cases)
+
+
+def test_robot_on_the_vm_uses_the_viper_frame_swing_and_stance(mp):
+    src = "from hexapod import tick, walk\nprint((tick._output_fast, walk._swing_fast, walk._stance_fast))"
+    assert "None" not in mp.run(src)
 
 
 @pytest.mark.skipif(pico.missing() is not None, reason=pico.missing() or "")
@@ -186,3 +237,6 @@ def test_viper_frame_equals_plain_frame_on_the_emulated_pico():
         status, out, err, _ = pico.run_source("CASES = %d\n" % (cases * 2) + SWINGS, fs=fs, timeout=600)
         assert status == 0, out + err
         check_swings(ast.literal_eval(out.strip().splitlines()[-1]), cases * 2)
+        status, out, err, _ = pico.run_source("CASES = %d\n" % cases + STANCES, fs=fs, timeout=600)
+        assert status == 0, out + err
+        check_stances(ast.literal_eval(out.strip().splitlines()[-1]), cases)

@@ -135,6 +135,57 @@ def swing(walker, i: int, w: int) -> int:
 
 
 @micropython.viper
+def stance(walker, bx: int, by: int, cd: int) -> int:
+    """hexapod.walk.Walker._stance: the stance feet at body (bx, by) (fine) turned cd (cdeg) into
+    ax, ay; 1 when a foot would leave its reach disc (and move away from neutral), else 0."""
+    c = int(_sin(cd + 9000))  # fixmath.cos
+    s = int(_sin(cd))
+    su = walker.su
+    px = walker.px
+    py = walker.py
+    nx = walker.nx
+    ny = walker.ny
+    fx = walker.fx
+    fy = walker.fy
+    rho = walker.rho
+    out_x = walker.ax
+    out_y = walker.ay
+    for i in range(6):
+        if int(su[i]) >= 0:
+            continue
+        x = int(px[i]) - bx
+        y = int(py[i]) - by
+        # _mq(x, c) + _mq(y, s) and _mq(y, c) - _mq(x, s), written out (a call costs ~5 us).
+        m = x if x >= 0 else 0 - x
+        xc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
+        xs = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
+        if x < 0:
+            xc = 0 - xc
+            xs = 0 - xs
+        m = y if y >= 0 else 0 - y
+        yc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
+        ys = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
+        if y < 0:
+            yc = 0 - yc
+            ys = 0 - ys
+        ax = xc + ys
+        ay = yc - xs
+        n0 = int(nx[i])
+        n1 = int(ny[i])
+        dx = (ax - n0) >> 4
+        dy = (ay - n1) >> 4
+        r = int(rho[i])
+        if dx * dx + dy * dy > r * r:
+            ox = (int(fx[i]) - n0) >> 4
+            oy = (int(fy[i]) - n1) >> 4
+            if dx * dx + dy * dy > ox * ox + oy * oy:
+                return 1
+        out_x[i] = ax
+        out_y[i] = ay
+    return 0
+
+
+@micropython.viper
 def _posed(body, xyz) -> int:
     """Body.to_leg's pose part: the foot xyz[0:3] (fine) moved back through the body's pose, in place."""
     p = body.pose
@@ -167,24 +218,8 @@ def _posed(body, xyz) -> int:
 
 
 @micropython.viper
-def _leg(robot, i: int) -> int:
-    """Leg i's IK into robot._angles[3i:3i+3]; 0, or 1 when refused (out untouched, as Leg.ik)."""
-    w = robot.walker
-    body = robot.body
-    xyz = robot._leg
-    xyz[0] = w.fx[i]
-    xyz[1] = w.fy[i]
-    xyz[2] = w.fz[i]
-    if not body.level:
-        _posed(body, xyz)
-    dx = int(xyz[0]) - int(body.mx[i])
-    dy = int(xyz[1]) - int(body.my[i])
-    c = int(body.mc[i])
-    s = int(body.ms[i])
-    lx = (int(_mq(dx, c)) + int(_mq(dy, s)) + 8) >> 4
-    ly = (int(_mq(dy, c)) - int(_mq(dx, s)) + 8) >> 4
-    lz = (int(xyz[2]) + 8) >> 4
-    leg = robot.geometry.legs[i]
+def _solved(leg, lx: int, ly: int, lz: int) -> int:
+    """Leg.ik's solve and limit check: 0 with the angles in leg._g's result slots, 1 when refused."""
     gbuf = leg._g
     if int(solve(lx, ly, lz, gbuf)):
         return 1
@@ -197,11 +232,6 @@ def _leg(robot, i: int) -> int:
         return 1
     if t3 < int(lim[4]) or t3 > int(lim[5]):
         return 1
-    a = robot._angles
-    k = 3 * i
-    a[k] = t1
-    a[k + 1] = t2
-    a[k + 2] = t3
     return 0
 
 
@@ -209,18 +239,62 @@ def _leg(robot, i: int) -> int:
 def output(robot) -> int:
     """The frame's angles and pulses, as Robot._output makes them: 0 when sent to robot.angles and
     robot.pulses, 1 when something was refused (nothing copied: the caller runs the plain code)."""
-    for i in range(6):
-        if int(_leg(robot, i)):
-            return 1
+    w = robot.walker
+    fx = w.fx
+    fy = w.fy
+    fz = w.fz
+    body = robot.body
+    level = bool(body.level)
+    mx = body.mx
+    my = body.my
+    mc = body.mc
+    ms = body.ms
+    legs = robot.geometry.legs
+    xyz = robot._leg
     a = robot._angles
+    for i in range(6):
+        # Body.to_leg: the foot (fine, body frame) into leg i's frame (0.1 mm, rounded).
+        xyz[0] = fx[i]
+        xyz[1] = fy[i]
+        xyz[2] = fz[i]
+        if not level:
+            _posed(body, xyz)
+        dx = int(xyz[0]) - int(mx[i])
+        dy = int(xyz[1]) - int(my[i])
+        c = int(mc[i])
+        s = int(ms[i])
+        # _mq(dx, c) + _mq(dy, s) and _mq(dy, c) - _mq(dx, s), written out (a call costs ~5 us).
+        m = dx if dx >= 0 else 0 - dx
+        xc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
+        xs = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
+        if dx < 0:
+            xc = 0 - xc
+            xs = 0 - xs
+        m = dy if dy >= 0 else 0 - dy
+        yc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
+        ys = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
+        if dy < 0:
+            yc = 0 - yc
+            ys = 0 - ys
+        lx = (xc + ys + 8) >> 4
+        ly = (yc - xs + 8) >> 4
+        lz = (int(xyz[2]) + 8) >> 4
+        leg = legs[i]
+        if int(_solved(leg, lx, ly, lz)):
+            return 1
+        g = leg._g
+        k = 3 * i
+        a[k] = g[_G_T1]
+        a[k + 1] = g[_G_T2]
+        a[k + 2] = g[_G_T3]
     p = robot._pulses
     servos = robot.servos
     for k in range(18):
         # hexapod.servo.ServoMap.pulse, read from the maps every frame (they may be swapped or
         # recalibrated between ticks); floor division as in the plain code (viper's // floors too).
-        s = servos[k]
-        us = int(s.centre_us) + int(s.direction) * ((int(a[k]) * int(s.us_per_degree) + 5000) // 10000)
-        if us < int(s.min_us) or us > int(s.max_us):
+        sm = servos[k]
+        us = int(sm.centre_us) + int(sm.direction) * ((int(a[k]) * int(sm.us_per_degree) + 5000) // 10000)
+        if us < int(sm.min_us) or us > int(sm.max_us):
             return 1
         p[k] = us
     angles = robot.angles

@@ -106,6 +106,7 @@ class Walker:
         self._carry = [0, 0, 0]
         self._cv = [0, 0, 0, 0]  # this swing's carries at lift-off (x, y) and touch-down (x, y), fine
         self._aim = [0, 0, 0, 0, 0, 0]  # cos, sin of half the stance turn, half-stance shift x, y
+        self._aim_key = [0, 0, 0, -1]  # the (vx, vy, w, half stance ms) _aim was made for
         self._xy = [0, 0]
         for i in range(6):
             geometry.neutral_xy(i, self._xy)
@@ -274,6 +275,13 @@ class Walker:
     def aim_for(self, vx, vy, w):
         """Half a stance of body motion at (vx, vy, w): the turn and the shift, into _aim."""
         half_ms = self.clock.stance_ticks * TICK_MS >> 1
+        key = self._aim_key
+        if key[0] == vx and key[1] == vy and key[2] == w and key[3] == half_ms:
+            return  # _aim holds this motion already: the tick asks for the same command each frame
+        key[0] = vx
+        key[1] = vy
+        key[2] = w
+        key[3] = half_ms
         turn = w * half_ms // 1000  # cdeg
         a = self._aim
         a[0] = cos(turn)
@@ -326,8 +334,12 @@ class Walker:
         still = not (v[0] or v[1] or v[2])
         # Lift first: a foot leaving the ground this tick is not carried by the body's move,
         # so every stance lasts exactly stance_ticks moves (what the touch-down aim assumes).
+        # clock.swing_tick(i, phase) == 0, written out: phase and every start lie in 0..cycle-1.
+        su = self.su
+        start = clock.start
+        phase = self.phase
         for i in range(6):
-            if self.su[i] < 0 and clock.swing_tick(i, self.phase) == 0:
+            if su[i] < 0 and phase == start[i]:
                 self._maybe_lift(i, still)
         self._move_body()
         # Swings aim for the commanded velocity, not the ramp's: the feet land ready for it.
@@ -445,6 +457,31 @@ class Walker:
         self.px[i] = self.bx + mul_q15(x, c) - mul_q15(y, s)
         self.py[i] = self.by + mul_q15(x, s) + mul_q15(y, c)
 
+    def _stance(self, bx, by, cd):
+        """The stance feet read back into the body frame with the body at (bx, by) (fine) turned
+        cd (cdeg), into ax, ay; 1 when that would carry a foot out of its reach disc (and further
+        from neutral than it is), else 0 (hexapod/_tickfast.py's stance is the same in viper)."""
+        c = cos(cd)
+        s = sin(cd)
+        for i in range(6):
+            if self.su[i] >= 0:
+                continue
+            x = self.px[i] - bx
+            y = self.py[i] - by
+            ax = mul_q15(x, c) + mul_q15(y, s)
+            ay = mul_q15(y, c) - mul_q15(x, s)
+            dx = (ax - self.nx[i]) >> FINE_SHIFT
+            dy = (ay - self.ny[i]) >> FINE_SHIFT
+            r = self.rho[i]
+            if dx * dx + dy * dy > r * r:
+                ox = (self.fx[i] - self.nx[i]) >> FINE_SHIFT
+                oy = (self.fy[i] - self.ny[i]) >> FINE_SHIFT
+                if dx * dx + dy * dy > ox * ox + oy * oy:
+                    return 1
+            self.ax[i] = ax
+            self.ay[i] = ay
+        return 0
+
     def _move_body(self):
         v = self.vel
         dpsi = v[2] << 1  # cdeg/s over 20 ms, in ANGLE_UNIT (1e-4 degree)
@@ -473,26 +510,9 @@ class Walker:
         bx = self.bx + mx
         by = self.by + my
         cd = (psi + 50) // 100
-        c = cos(cd)
-        s = sin(cd)
-        for i in range(6):
-            if self.su[i] >= 0:
-                continue
-            x = self.px[i] - bx
-            y = self.py[i] - by
-            ax = mul_q15(x, c) + mul_q15(y, s)
-            ay = mul_q15(y, c) - mul_q15(x, s)
-            dx = (ax - self.nx[i]) >> FINE_SHIFT
-            dy = (ay - self.ny[i]) >> FINE_SHIFT
-            r = self.rho[i]
-            if dx * dx + dy * dy > r * r and (mx or my or dpsi):
-                ox = (self.fx[i] - self.nx[i]) >> FINE_SHIFT
-                oy = (self.fy[i] - self.ny[i]) >> FINE_SHIFT
-                if dx * dx + dy * dy > ox * ox + oy * oy:
-                    self.held += 1  # this move would carry a stance foot out of reach: hold
-                    return
-            self.ax[i] = ax
-            self.ay[i] = ay
+        if self._stance(bx, by, cd) if _stance_fast is None else _stance_fast(self, bx, by, cd):
+            self.held += 1  # this move would carry a stance foot out of reach: hold
+            return
         self.bx = bx
         self.by = by
         self.cx = cx
@@ -510,14 +530,16 @@ class Walker:
             self.by = 0
 
 
-# The swing compiled by the viper emitter where MicroPython has one (hexapod/_tickfast.py, proven
-# equal to _swing_step by tests/test_tickfast.py); CPython and CircuitPython run the plain code.
+# The swing and the stance compiled by the viper emitter where MicroPython has one (hexapod/_tickfast.py,
+# proven equal to _swing_step and _stance by tests/test_tickfast.py); CPython and CircuitPython run the plain code.
 _swing_fast = None
+_stance_fast = None
 if sys.implementation.name == "micropython":
     try:
+        from hexapod._tickfast import stance as _stance_fast
         from hexapod._tickfast import swing as _swing_fast
     except Exception:  # no viper emitter on this build
-        _swing_fast = None
+        _swing_fast = _stance_fast = None
 
 
 def is_whole(v):
