@@ -229,7 +229,7 @@ def test_robot_on_the_vm_uses_the_viper_frame_swing_and_stance(mp):
 
 @pytest.mark.skipif(pico.missing() is not None, reason=pico.missing() or "")
 def test_viper_frame_equals_plain_frame_on_the_emulated_pico():
-    cases = 2000
+    cases = 1000  # 1,000 frames (6,000 leg solves, 18,000 pulses), 2,000 swings, 1,000 stances: ~1 min
     with pico.flashed() as fs:
         status, out, err, _ = pico.run_source("CASES = %d\n" % cases + CASES, fs=fs, timeout=600)
         assert status == 0, out + err

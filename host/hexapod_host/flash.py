@@ -29,11 +29,12 @@ ARCH = {"pico": "armv6m", "esp32_devkit": "xtensawin"}
 PROVIDED = {"machine", "time", "sys", "os", "array", "micropython", "gc", "select", "board", "busio", "digitalio"}
 PROVIDED |= {"microcontroller", "pulseio", "supervisor", "struct", "math", "hashlib", "errno", "io", "storage"}
 PROVIDED |= {"watchdog"}
-# The walk tick's modules, compiled whole by the native emitter on MicroPython boards: machine code
-# with the same Python semantics (no VM dispatch, frames on the C stack instead of the heap). On
-# the emulated Pico: Robot.tick 8.2 -> 6.2 ms for ~30 KB more heap (docs/pico.md). CircuitPython
-# has no native emitter and gets the same files as source.
-NATIVE = ("hexapod/fixmath.py", "hexapod/gait.py", "hexapod/trajectory.py", "hexapod/walk.py")
+# The walk's module, compiled whole by the native emitter on MicroPython boards: machine code with
+# the same Python semantics (no VM dispatch, frames on the C stack instead of the heap). On the
+# emulated Pico: Robot.tick -0.27 ms (3.85 -> 3.58 ms walking) for 15 KB of heap; body, fixmath,
+# gait and trajectory as well would take 0.12 ms more for 11 KB more (docs/pico.md). CircuitPython
+# has no native emitter and gets the same file as source.
+NATIVE = ("hexapod/walk.py",)
 # Viper modules: MicroPython only (the core imports them only there); CircuitPython boards never get them.
 VIPER = ("hexapod/_ikfast.py", "hexapod/_tickfast.py")
 
