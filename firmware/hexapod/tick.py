@@ -178,7 +178,8 @@ class Robot:
             if not self.posture.step(self.walker):
                 self.mode = self.after
         elif m == STANDING or m == WALKING:  # noqa: SIM109 (a tuple test may allocate)
-            self.body.slew()
+            if not self.body.settled():  # a settled pose makes slew() a no-op (its frame is a heap one)
+                self.body.slew()
             if m == WALKING and self.walker.update() == STOPPED:
                 self.mode = STANDING
         return self._output()

@@ -106,7 +106,7 @@ class Walker:
         self._carry = [0, 0, 0]
         self._cv = [0, 0, 0, 0]  # this swing's carries at lift-off (x, y) and touch-down (x, y), fine
         self._aim = [0, 0, 0, 0, 0, 0]  # cos, sin of half the stance turn, half-stance shift x, y
-        self._aim_key = [0, 0, 0, -1]  # the (vx, vy, w, half stance ms) _aim was made for
+        self._aim_key = [0, 0, 0, -1]  # the (vx, vy, w, stance ticks) _aim was made for
         self._xy = [0, 0]
         for i in range(6):
             geometry.neutral_xy(i, self._xy)
@@ -274,14 +274,20 @@ class Walker:
 
     def aim_for(self, vx, vy, w):
         """Half a stance of body motion at (vx, vy, w): the turn and the shift, into _aim."""
-        half_ms = self.clock.stance_ticks * TICK_MS >> 1
+        # The tick asks for the same command each frame: _aim is made again only when it changes.
+        # (Small on purpose: a MicroPython bytecode function of more than 11 locals + stack slots
+        # takes its frame from the heap on every call; the same holds for the helpers below.)
         key = self._aim_key
-        if key[0] == vx and key[1] == vy and key[2] == w and key[3] == half_ms:
-            return  # _aim holds this motion already: the tick asks for the same command each frame
-        key[0] = vx
-        key[1] = vy
-        key[2] = w
-        key[3] = half_ms
+        st = self.clock.stance_ticks
+        if key[0] != vx or key[1] != vy or key[2] != w or key[3] != st:
+            key[0] = vx
+            key[1] = vy
+            key[2] = w
+            key[3] = st
+            self._aim_at(vx, vy, w)
+
+    def _aim_at(self, vx, vy, w):
+        half_ms = self.clock.stance_ticks * TICK_MS >> 1
         turn = w * half_ms // 1000  # cdeg
         a = self._aim
         a[0] = cos(turn)
@@ -330,30 +336,15 @@ class Walker:
         v = self.vel
         if self.state == STARTING and v[0] == self.cmd[0] and v[1] == self.cmd[1] and v[2] == self.cmd[2]:
             self.state = WALKING
-        clock = self.clock
         still = not (v[0] or v[1] or v[2])
         # Lift first: a foot leaving the ground this tick is not carried by the body's move,
         # so every stance lasts exactly stance_ticks moves (what the touch-down aim assumes).
-        # clock.swing_tick(i, phase) == 0, written out: phase and every start lie in 0..cycle-1.
-        su = self.su
-        start = clock.start
-        phase = self.phase
-        for i in range(6):
-            if su[i] < 0 and phase == start[i]:
-                self._maybe_lift(i, still)
+        self._lift_all(still)
         self._move_body()
-        # Swings aim for the commanded velocity, not the ramp's: the feet land ready for it.
-        c = self.cmd
-        self.aim_for(c[0], c[1], c[2])
-        self._carry_for(c[0], c[1], c[2], clock.swing_ticks)
-        airborne = 0
-        for i in range(6):
-            if self.su[i] >= 0:
-                self._swing(i, clock.swing_ticks, still)
-                if self.su[i] >= 0:
-                    airborne += 1
+        self._aim_swings()
+        airborne = self._swing_all(still)
         self.phase += 1
-        if self.phase >= clock.cycle_ticks:
+        if self.phase >= self.clock.cycle_ticks:
             self.phase = 0
         if self.pending and not airborne:
             self._apply()
@@ -364,6 +355,33 @@ class Walker:
             self.state = STOPPED
             self.phase = 0
         return self.state
+
+    def _lift_all(self, still):
+        # clock.swing_tick(i, phase) == 0, written out: phase and every start lie in 0..cycle-1.
+        su = self.su
+        start = self.clock.start
+        phase = self.phase
+        for i in range(6):
+            if su[i] < 0 and phase == start[i]:
+                self._maybe_lift(i, still)
+
+    def _aim_swings(self):
+        # Swings aim for the commanded velocity, not the ramp's: the feet land ready for it.
+        c = self.cmd
+        self.aim_for(c[0], c[1], c[2])
+        self._carry_for(c[0], c[1], c[2], self.clock.swing_ticks)
+
+    def _swing_all(self, still):
+        """Move every swing foot one tick; returns how many are still in the air."""
+        su = self.su
+        w = self.clock.swing_ticks
+        airborne = 0
+        for i in range(6):
+            if su[i] >= 0:
+                self._swing(i, w, still)
+                if su[i] >= 0:
+                    airborne += 1
+        return airborne
 
     def _ramp(self):
         c = self.cmd

