@@ -16,6 +16,8 @@ changes nothing. A frame whose IK or pulse check fails is not sent: the servos k
 frame, `faults` counts it and `reason` says why (the planner is built never to get there).
 """
 
+import sys
+
 from micropython import const
 
 from hexapod.body import FINE_SHIFT, Body
@@ -48,6 +50,16 @@ MODE_NAMES = ("relaxed", "sitting", "moving", "standing", "walking", "jog")
 
 _WRAP = const(0x3FFFFFFF)  # time.ticks_ms() wraps at 2**30
 RHO_MIN = const(50)  # a leg needs a reach disc this wide (0.1 mm) to walk
+
+
+# The frame compiled by the viper emitter where MicroPython has one (hexapod/_tickfast.py, proven
+# equal to the plain _output by tests/test_tickfast.py); CPython and CircuitPython run the plain code.
+_output_fast = None
+if sys.implementation.name == "micropython":
+    try:
+        from hexapod._tickfast import output as _output_fast
+    except Exception:  # no viper emitter on this build
+        _output_fast = None
 
 
 def describe(code):
@@ -168,12 +180,20 @@ class Robot:
             if not self.posture.step(self.walker):
                 self.mode = self.after
         elif m == STANDING or m == WALKING:  # noqa: SIM109 (a tuple test may allocate)
-            self.body.slew()
+            if not self.body.settled():  # a settled pose makes slew() a no-op (its frame is a heap one)
+                self.body.slew()
             if m == WALKING and self.walker.update() == STOPPED:
                 self.mode = STANDING
         return self._output()
 
     def _output(self):
+        if _output_fast is not None and not _output_fast(self):
+            self.frame.write_frame(self.pulses)
+            self.reason = OK
+            return OK
+        return self._output_plain()
+
+    def _output_plain(self):
         w = self.walker
         legs = self.geometry.legs
         a = self._angles

@@ -23,6 +23,8 @@ Gait, cycle time and lift height changes asked for while walking wait for a mome
 no foot is in the air (new swings are held back until then).
 """
 
+import sys
+
 from micropython import const
 
 from hexapod.body import FINE, FINE_SHIFT, Body
@@ -105,6 +107,7 @@ class Walker:
         self._carry = [0, 0, 0]
         self._cv = [0, 0, 0, 0]  # this swing's carries at lift-off (x, y) and touch-down (x, y), fine
         self._aim = [0, 0, 0, 0, 0, 0]  # cos, sin of half the stance turn, half-stance shift x, y
+        self._aim_key = [0, 0, 0, -1]  # the (vx, vy, w, stance ticks) _aim was made for
         self._xy = [0, 0]
         for i in range(6):
             geometry.neutral_xy(i, self._xy)
@@ -301,6 +304,19 @@ class Walker:
 
     def aim_for(self, vx, vy, w):
         """Half a stance of body motion at (vx, vy, w): the turn and the shift, into _aim."""
+        # The tick asks for the same command each frame: _aim is made again only when it changes.
+        # (Small on purpose: a MicroPython bytecode function of more than 11 locals + stack slots
+        # takes its frame from the heap on every call; the same holds for the helpers below.)
+        key = self._aim_key
+        st = self.clock.stance_ticks
+        if key[0] != vx or key[1] != vy or key[2] != w or key[3] != st:
+            key[0] = vx
+            key[1] = vy
+            key[2] = w
+            key[3] = st
+            self._aim_at(vx, vy, w)
+
+    def _aim_at(self, vx, vy, w):
         half_ms = self.clock.stance_ticks * TICK_MS >> 1
         turn = w * half_ms // 1000  # cdeg
         a = self._aim
@@ -350,26 +366,15 @@ class Walker:
         v = self.vel
         if self.state == STARTING and v[0] == self.cmd[0] and v[1] == self.cmd[1] and v[2] == self.cmd[2]:
             self.state = WALKING
-        clock = self.clock
         still = not (v[0] or v[1] or v[2])
         # Lift first: a foot leaving the ground this tick is not carried by the body's move,
         # so every stance lasts exactly stance_ticks moves (what the touch-down aim assumes).
-        for i in range(6):
-            if self.su[i] < 0 and clock.swing_tick(i, self.phase) == 0:
-                self._maybe_lift(i, still)
+        self._lift_all(still)
         self._move_body()
-        # Swings aim for the commanded velocity, not the ramp's: the feet land ready for it.
-        c = self.cmd
-        self.aim_for(c[0], c[1], c[2])
-        self._carry_for(c[0], c[1], c[2], clock.swing_ticks)
-        airborne = 0
-        for i in range(6):
-            if self.su[i] >= 0:
-                self._swing(i, clock.swing_ticks, still)
-                if self.su[i] >= 0:
-                    airborne += 1
+        self._aim_swings()
+        airborne = self._swing_all(still)
         self.phase += 1
-        if self.phase >= clock.cycle_ticks:
+        if self.phase >= self.clock.cycle_ticks:
             self.phase = 0
         if self.pending and not airborne:
             self._apply()
@@ -380,6 +385,33 @@ class Walker:
             self.state = STOPPED
             self.phase = 0
         return self.state
+
+    def _lift_all(self, still):
+        # clock.swing_tick(i, phase) == 0, written out: phase and every start lie in 0..cycle-1.
+        su = self.su
+        start = self.clock.start
+        phase = self.phase
+        for i in range(6):
+            if su[i] < 0 and phase == start[i]:
+                self._maybe_lift(i, still)
+
+    def _aim_swings(self):
+        # Swings aim for the commanded velocity, not the ramp's: the feet land ready for it.
+        c = self.cmd
+        self.aim_for(c[0], c[1], c[2])
+        self._carry_for(c[0], c[1], c[2], self.clock.swing_ticks)
+
+    def _swing_all(self, still):
+        """Move every swing foot one tick; returns how many are still in the air."""
+        su = self.su
+        w = self.clock.swing_ticks
+        airborne = 0
+        for i in range(6):
+            if su[i] >= 0:
+                self._swing(i, w, still)
+                if su[i] >= 0:
+                    airborne += 1
+        return airborne
 
     def _ramp(self):
         c = self.cmd
@@ -408,6 +440,22 @@ class Walker:
         self.sy[i] = self.fy[i]
 
     def _swing(self, i, w, still):
+        u = self._swing_step(i, w) if _swing_fast is None else _swing_fast(self, i, w)
+        if u >= w:
+            t = self._xy
+            self.su[i] = -1
+            self.fx[i] = t[0]
+            self.fy[i] = t[1]
+            self.fz[i] = self.ground
+            self._to_ground(i)
+            if self.state == STOPPING and still:
+                self.done[i] = 1
+        else:
+            self.su[i] = u
+
+    def _swing_step(self, i, w):
+        """Leg i's swing foot at its next tick u of w into fx, fy, fz[i], its touch-down point
+        into _xy; returns u (hexapod/_tickfast.py's swing is the same in viper)."""
         u = self.su[i] + 1
         t = self._xy
         self.target(i, t)
@@ -445,16 +493,7 @@ class Walker:
         self.fx[i] = x
         self.fy[i] = y
         self.fz[i] = self.ground + mul_q15(self.lift << FINE_SHIFT, sh[1])
-        if u >= w:
-            self.su[i] = -1
-            self.fx[i] = t[0]
-            self.fy[i] = t[1]
-            self.fz[i] = self.ground
-            self._to_ground(i)
-            if self.state == STOPPING and still:
-                self.done[i] = 1
-        else:
-            self.su[i] = u
+        return u
 
     def _to_ground(self, i):
         """Pin leg i's foot where it is now, in the ground frame."""
@@ -465,6 +504,31 @@ class Walker:
         y = self.fy[i]
         self.px[i] = self.bx + mul_q15(x, c) - mul_q15(y, s)
         self.py[i] = self.by + mul_q15(x, s) + mul_q15(y, c)
+
+    def _stance(self, bx, by, cd):
+        """The stance feet read back into the body frame with the body at (bx, by) (fine) turned
+        cd (cdeg), into ax, ay; 1 when that would carry a foot out of its reach disc (and further
+        from neutral than it is), else 0 (hexapod/_tickfast.py's stance is the same in viper)."""
+        c = cos(cd)
+        s = sin(cd)
+        for i in range(6):
+            if self.su[i] >= 0:
+                continue
+            x = self.px[i] - bx
+            y = self.py[i] - by
+            ax = mul_q15(x, c) + mul_q15(y, s)
+            ay = mul_q15(y, c) - mul_q15(x, s)
+            dx = (ax - self.nx[i]) >> FINE_SHIFT
+            dy = (ay - self.ny[i]) >> FINE_SHIFT
+            r = self.rho[i]
+            if dx * dx + dy * dy > r * r:
+                ox = (self.fx[i] - self.nx[i]) >> FINE_SHIFT
+                oy = (self.fy[i] - self.ny[i]) >> FINE_SHIFT
+                if dx * dx + dy * dy > ox * ox + oy * oy:
+                    return 1
+            self.ax[i] = ax
+            self.ay[i] = ay
+        return 0
 
     def _move_body(self):
         v = self.vel
@@ -494,26 +558,9 @@ class Walker:
         bx = self.bx + mx
         by = self.by + my
         cd = (psi + 50) // 100
-        c = cos(cd)
-        s = sin(cd)
-        for i in range(6):
-            if self.su[i] >= 0:
-                continue
-            x = self.px[i] - bx
-            y = self.py[i] - by
-            ax = mul_q15(x, c) + mul_q15(y, s)
-            ay = mul_q15(y, c) - mul_q15(x, s)
-            dx = (ax - self.nx[i]) >> FINE_SHIFT
-            dy = (ay - self.ny[i]) >> FINE_SHIFT
-            r = self.rho[i]
-            if dx * dx + dy * dy > r * r and (mx or my or dpsi):
-                ox = (self.fx[i] - self.nx[i]) >> FINE_SHIFT
-                oy = (self.fy[i] - self.ny[i]) >> FINE_SHIFT
-                if dx * dx + dy * dy > ox * ox + oy * oy:
-                    self.held += 1  # this move would carry a stance foot out of reach: hold
-                    return
-            self.ax[i] = ax
-            self.ay[i] = ay
+        if self._stance(bx, by, cd) if _stance_fast is None else _stance_fast(self, bx, by, cd):
+            self.held += 1  # this move would carry a stance foot out of reach: hold
+            return
         self.bx = bx
         self.by = by
         self.cx = cx
@@ -529,6 +576,18 @@ class Walker:
                 self.py[i] -= by
             self.bx = 0
             self.by = 0
+
+
+# The swing and the stance compiled by the viper emitter where MicroPython has one (hexapod/_tickfast.py,
+# proven equal to _swing_step and _stance by tests/test_tickfast.py); CPython and CircuitPython run the plain code.
+_swing_fast = None
+_stance_fast = None
+if sys.implementation.name == "micropython":
+    try:
+        from hexapod._tickfast import stance as _stance_fast
+        from hexapod._tickfast import swing as _swing_fast
+    except Exception:  # no viper emitter on this build
+        _swing_fast = _stance_fast = None
 
 
 def is_whole(v):

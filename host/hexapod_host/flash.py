@@ -29,6 +29,8 @@ ARCH = {"pico": "armv6m", "esp32_devkit": "xtensawin"}
 PROVIDED = {"machine", "time", "sys", "os", "array", "micropython", "gc", "select", "board", "busio", "digitalio"}
 PROVIDED |= {"microcontroller", "pulseio", "supervisor", "struct", "math", "hashlib", "errno", "io", "storage"}
 PROVIDED |= {"watchdog"}
+# Viper modules: MicroPython only (the core imports them only there); CircuitPython boards never get them.
+VIPER = ("hexapod/_ikfast.py", "hexapod/_tickfast.py")
 
 
 class FlashError(Exception):
@@ -120,6 +122,8 @@ def select_files(board, robot):
     if cp and os.path.isfile(os.path.join(FIRMWARE, "boot.py")):
         chosen.append(os.path.join(FIRMWARE, "boot.py"))  # makes the flash writable for `save`
     files, outside = closure(entry, core + chosen)
+    if cp:  # leg.py and tick.py import them only on MicroPython
+        files = [f for f in files if board_path(f) not in VIPER]
     libs = sorted(n for n in outside if n.startswith("adafruit_"))
     return os.path.basename(entry), files, libs
 

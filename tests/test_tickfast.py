@@ -1,0 +1,242 @@
+"""The viper frame (hexapod/_tickfast.py) equals the plain Robot._output exactly, on the host
+MicroPython VM and on the emulated Pico (Thumb code): thousands of random feet in and out of reach,
+level and posed bodies, joint limits that bind, and servo ranges whose min or max sits exactly on
+the pulse a frame needs (taken) or one microsecond inside it (refused).
+"""
+
+import ast
+
+import pytest
+
+from hexapod_host import pico
+from tests.test_fixmath import LCG
+
+CASES = (
+    LCG
+    + """
+import robots.default as robot_file
+from hexapod import geometry, tick
+from hexapod._tickfast import output
+
+G = geometry.load(robot_file)
+# Leg 1 gets limits that bind inside the reach (all three joints), the others keep the file's.
+G.legs[0].limits = (-1500, 1500, -1500, 2500, -12000, -6000)
+r = tick.Robot(G, tick.default_servos(G), tick.FrameBuffer())
+w = r.walker
+count = taken = differ = limit_held = range_held = edge_taken = edge_held = 0
+
+
+def pick(n):
+    # Feet near neutral (most solve); one leg in four cases anywhere in a box past the reach.
+    wild = draw(8) % 24
+    for i in range(6):
+        spread = 16 * (2600 if i == wild else 300)
+        w.fx[i] = w.nx[i] + draw(16) % (2 * spread + 1) - spread
+        w.fy[i] = w.ny[i] + draw(16) % (2 * spread + 1) - spread
+        w.fz[i] = w.ground + (draw(16) % (2 * spread + 1) - spread) // 2
+    if n % 3 == 0:
+        for k in range(9):
+            r.body.target[k] = 0
+        r.body.jump()
+    else:
+        pose = [draw(10) % 401 - 200, draw(10) % 401 - 200, draw(10) % 401 - 200,
+                draw(12) % 1001 - 500, draw(12) % 1001 - 500, draw(12) % 1001 - 500,
+                draw(12) % 1001 - 500, draw(12) % 1001 - 500, draw(12) % 1001 - 500]
+        r.body.set_target(pose)
+        r.body.jump()
+
+
+def plain():
+    before = (list(r.angles), list(r.pulses), r.faults)
+    code = r._output_plain()
+    return code, list(r.angles), list(r.pulses), before
+
+
+for n in range(CASES):
+    pick(n)
+    for k in range(18):
+        s = r.servos[k]
+        s.min_us = 500
+        s.max_us = 2500
+    edge = n % 4
+    if edge:
+        # The plain frame's pulse of one servo becomes its range's end: exactly on it, or 1 us past.
+        if r._output_plain() == tick.OK:
+            k = draw(10) % 18
+            s = r.servos[k]
+            on = r.pulses[k]
+            if edge == 1:
+                s.min_us = on
+            elif edge == 2:
+                s.max_us = on
+            else:
+                s.min_us = on + 1 if draw(1) else 500
+                s.max_us = on - 1 if s.min_us == 500 else 2500
+    old_a = list(r.angles)
+    old_p = list(r.pulses)
+    fast = output(r)
+    fa = list(r.angles)
+    fp = list(r.pulses)
+    r.angles[:] = old_a
+    r.pulses[:] = old_p
+    code, pa, pp, _ = plain()
+    if fast == 0:
+        same = code == tick.OK and fa == pa and fp == pp
+        taken += 1
+        edge_taken += edge in (1, 2)
+    else:
+        same = code != tick.OK and fa == old_a and fp == old_p
+        limit_held += code == tick.FRAME_IK and 3 <= r.fault_code <= 8
+        range_held += code == tick.FRAME_SERVO
+        edge_held += edge == 3 and code == tick.FRAME_SERVO
+    if not same:
+        differ += 1
+        if differ < 4:
+            print("differ", n, fast, code, fa, pa, fp, pp)
+    count += 1
+print((count, taken, limit_held, range_held, edge_taken, edge_held, differ))
+"""
+)
+
+
+SWINGS = (
+    LCG
+    + """
+import robots.default as robot_file
+from hexapod import geometry, walk
+from hexapod.fixmath import cos, sin
+from hexapod._tickfast import swing
+
+w = walk.Walker(geometry.load(robot_file))
+count = differ = clamped = landed = 0
+for n in range(CASES):
+    i = draw(8) % 6
+    wt = 2 + draw(8) % 40  # swing ticks: the short swings (<= 3) take the stroke's other branch
+    w.su[i] = draw(8) % wt
+    turn = draw(14) % 18001 - 9000
+    w._aim[0] = cos(turn)
+    w._aim[1] = sin(turn)
+    w._aim[2] = draw(14) % 19201 - 9600
+    w._aim[3] = draw(14) % 19201 - 9600
+    w._carry[0] = draw(14) % 19201 - 9600
+    w._carry[1] = draw(14) % 19201 - 9600
+    w._carry[2] = draw(12) % 6001 - 3000
+    w.sx[i] = w.nx[i] + draw(14) % 16001 - 8000
+    w.sy[i] = w.ny[i] + draw(14) % 16001 - 8000
+    w.rho[i] = 50 + draw(10) % 700  # small discs: both reach clamps bind often
+    w.lift = 100 + draw(9) % 501
+    w.ground = -(draw(12) % 1500 + 300) << 4
+    su = w.su[i]
+    u1 = w._swing_step(i, wt)
+    plain = (u1, w.fx[i], w.fy[i], w.fz[i], list(w._xy))
+    w.su[i] = su
+    w.fx[i] = w.fy[i] = w.fz[i] = 0
+    u2 = swing(w, i, wt)
+    fast = (u2, w.fx[i], w.fy[i], w.fz[i], list(w._xy))
+    clamped += (plain[4][0] - w.nx[i]) ** 2 + (plain[4][1] - w.ny[i]) ** 2 >= (w.rho[i] << 4) ** 2 - (64 * w.rho[i])
+    landed += u1 >= wt
+    if plain != fast:
+        differ += 1
+        if differ < 4:
+            print("differ", n, plain, fast)
+    count += 1
+print((count, clamped, landed, differ))
+"""
+)
+
+
+STANCES = (
+    LCG
+    + """
+import robots.default as robot_file
+from hexapod import geometry, walk
+from hexapod._tickfast import stance
+
+w = walk.Walker(geometry.load(robot_file))
+count = differ = held = 0
+for n in range(CASES):
+    for i in range(6):
+        w.su[i] = -1 if draw(2) else draw(4)
+        w.px[i] = w.nx[i] + draw(15) % 8001 - 4000
+        w.py[i] = w.ny[i] + draw(15) % 8001 - 4000
+        w.fx[i] = w.nx[i] + draw(14) % 16001 - 8000
+        w.fy[i] = w.ny[i] + draw(14) % 16001 - 8000
+        w.rho[i] = 200 + draw(10) % 800
+        w.ax[i] = w.ay[i] = 0
+    bx = draw(16) % 200001 - 100000  # the ground frame's origin may lie far away (< _REANCHOR)
+    by = draw(16) % 200001 - 100000
+    for i in range(6):
+        w.px[i] += bx
+        w.py[i] += by
+    cd = draw(16) % 72001 - 36000 if n % 4 == 0 else draw(10) % 1001 - 500  # turned a little, or anywhere
+    h1 = w._stance(bx, by, cd)
+    plain = (h1, list(w.ax), list(w.ay))
+    for i in range(6):
+        w.ax[i] = w.ay[i] = 0
+    fast = (stance(w, bx, by, cd), list(w.ax), list(w.ay))
+    held += h1
+    if plain != fast:
+        differ += 1
+        if differ < 4:
+            print("differ", n, plain, fast)
+    count += 1
+print((count, held, differ))
+"""
+)
+
+
+def check_stances(result, cases):
+    count, held, differ = result
+    assert count == cases and cases // 10 < held < cases - cases // 10, result
+    assert differ == 0, result
+
+
+def check_swings(result, cases):
+    count, clamped, landed, differ = result
+    assert count == cases and clamped > cases // 10 and landed > cases // 50, result
+    assert differ == 0, result
+
+
+def check(result, cases):
+    count, taken, limit_held, range_held, edge_taken, edge_held, differ = result
+    assert count == cases
+    # Every branch is exercised: frames taken (some at a range's very end), held for a joint
+    # limit, held for a pulse range (some 1 us past an end).
+    assert taken > cases // 5 and limit_held > cases // 50 and range_held > cases // 20, result
+    assert edge_taken > cases // 20 and edge_held > cases // 50, result
+    assert differ == 0, result
+
+
+def test_viper_frame_equals_plain_frame_on_the_vm(mp):
+    cases = 4000
+    check(mp.value("CASES = %d\n" % cases + CASES, heapsize="1m"), cases)
+
+
+def test_viper_swing_equals_plain_swing_on_the_vm(mp):
+    cases = 20000
+    check_swings(mp.value("CASES = %d\n" % cases + SWINGS, heapsize="1m"), cases)
+
+
+def test_viper_stance_equals_plain_stance_on_the_vm(mp):
+    cases = 10000
+    check_stances(mp.value("CASES = %d\n" % cases + STANCES, heapsize="1m"), cases)
+
+
+def test_robot_on_the_vm_uses_the_viper_frame_swing_and_stance(mp):
+    src = "from hexapod import tick, walk\nprint((tick._output_fast, walk._swing_fast, walk._stance_fast))"
+    assert "None" not in mp.run(src)
+
+
+@pytest.mark.skipif(pico.missing() is not None, reason=pico.missing() or "")
+def test_viper_frame_equals_plain_frame_on_the_emulated_pico():
+    cases = 1000  # 1,000 frames (6,000 leg solves, 18,000 pulses), 2,000 swings, 1,000 stances: ~1 min
+    with pico.flashed() as fs:
+        status, out, err, _ = pico.run_source("CASES = %d\n" % cases + CASES, fs=fs, timeout=600)
+        assert status == 0, out + err
+        check(ast.literal_eval(out.strip().splitlines()[-1]), cases)
+        status, out, err, _ = pico.run_source("CASES = %d\n" % (cases * 2) + SWINGS, fs=fs, timeout=600)
+        assert status == 0, out + err
+        check_swings(ast.literal_eval(out.strip().splitlines()[-1]), cases * 2)
+        status, out, err, _ = pico.run_source("CASES = %d\n" % cases + STANCES, fs=fs, timeout=600)
+        assert status == 0, out + err
+        check_stances(ast.literal_eval(out.strip().splitlines()[-1]), cases)
