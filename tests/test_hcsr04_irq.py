@@ -235,3 +235,67 @@ starts.append(clock.now_us() - 777)
 print(starts)
 """
     assert rt.value(src) == [0, 20000, 40000, 63000, 80000, 125000, 145000]
+
+
+def test_a_port_without_pin_irq_falls_back_to_time_pulse_us(rt):
+    src = (
+        prelude()
+        + """
+class OldPin:
+    # a port's Pin without irq(): value() only
+    def __init__(self, pin):
+        self._pin = pin
+
+    def value(self, v=None):
+        return self._pin.value(v)
+
+
+m = model.HCSR04(2, 3, distance=2500)
+def old_pulse(pin, level, timeout_us):
+    return time_pulse_us(pin._pin, level, timeout_us)
+
+
+s = drv.HCSR04(Pin(2, Pin.OUT), OldPin(Pin(3, Pin.IN)), clock, old_pulse, samples=1, irq=True)
+rr = drv.RoundRobin([s], neighbours=())
+d, st = [0], [0]
+t0 = clock.now_us()
+i = rr.tick(d, st)
+print((s.split, rr.split, i, st[0], d[0], clock.now_us() - t0 > 460))
+"""
+    )
+    split, rr_split, i, st, d, blocked = rt.value(src)
+    assert (split, rr_split, i, st, blocked) == (False, False, 0, 0, True)  # same tick, blocking
+    assert abs(d - 2500) <= 2
+
+
+def test_main_build_times_the_echo_by_irq(rt):
+    src = """
+import _stub_clock as clock
+import _stub_pins
+import _stub_i2c
+import hcsr04_model
+from _stub_i2c import shared_bus
+from pca9685_model import PCA9685Model
+from hexapod import board as boards
+import main
+clock.reset(0)
+_stub_pins.reset()
+_stub_i2c.reset()
+bus = shared_bus(0)
+b = boards.load("pico")
+for c in b["pca9685"]["chips"]:
+    bus.attach(PCA9685Model(c["address"], osc_hz=c["osc_hz"]))
+sonars = [hcsr04_model.HCSR04(t, e, distance=3000 + 1000 * k) for k, (t, e) in enumerate(boards.sensor_pins(b))]
+r = main.build(clock=clock)
+blocked = 0
+for n in range(12):
+    t0 = clock.now_us()
+    r.step()
+    blocked = max(blocked, clock.now_us() - t0)
+    r.wait()
+print((r.sonar.split, blocked, r.distances))
+"""
+    split, blocked, dist = rt.value(src, heapsize="4m")
+    assert split is True
+    assert blocked <= 2 + 10 + 600  # the trigger and the driver's start-up sleeps, never an echo
+    assert [abs(d - (3000 + 1000 * k)) <= 2 for k, d in enumerate(dist)] == [True] * 5
