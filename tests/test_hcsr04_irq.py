@@ -47,6 +47,30 @@ print((seen, now))
     assert now == 101020
 
 
+def test_stub_irq_sees_a_forced_or_unplugged_line_move(rt):
+    src = (
+        prelude()
+        + """
+seen = []
+m = model.HCSR04(2, 3, distance=1000)
+m.stuck_high = True
+p = Pin(3, Pin.IN)
+p.irq(lambda q: seen.append((q.value(), clock.ticks_us())))
+clock.sleep_us(5)
+pins.disconnect(3)  # the stuck module unplugged: the line falls to its pull (none: low)
+clock.sleep_us(5)
+pins.force(3, 1)
+pins.force(3, 1)  # no change, no edge
+clock.sleep_us(5)
+pins.force(3, -1)
+clock.sleep_us(5)
+pins.connect(3, m)  # plugged back in, still stuck high
+print(seen)
+"""
+    )
+    assert rt.value(src) == [(0, 1005), (1, 1010), (0, 1015), (1, 1020)]
+
+
 def test_stub_irq_two_pins_with_edges_at_one_instant_both_run(rt):
     src = (
         prelude()

@@ -55,17 +55,32 @@ def connect(pin_id, model):
     w = _wire(pin_id)
     if w.model is not None and w.model is not model:
         raise ValueError("pin %r is already connected to %r" % (pin_id, w.model))
+    before = _read(w, clock.now_us())
     w.model = model
+    _step(w, before)
 
 
 def disconnect(pin_id):
     """Unplug whatever model drives pin_id (the line floats to its pull)."""
-    _wire(pin_id).model = None
+    w = _wire(pin_id)
+    before = _read(w, clock.now_us())
+    w.model = None
+    _step(w, before)
 
 
 def force(pin_id, level):
     """Hold an input line at level 0/1 by hand; -1 releases it."""
-    _wire(pin_id).forced = level
+    w = _wire(pin_id)
+    before = _read(w, clock.now_us())
+    w.forced = level
+    _step(w, before)
+
+
+def _step(w, before):
+    # A line that a hand or a plug moved at once: an edge now, for its IRQ handler as any other.
+    lv = _read(w, clock.now_us())
+    if lv != before and w.handler is not None and w.irq_trigger & (Pin.IRQ_RISING if lv else Pin.IRQ_FALLING):
+        w.handler(w.irq_pin)
 
 
 _irq_wires = []  # wires with an IRQ handler, in the order they got one
