@@ -39,7 +39,13 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=time, max_range=10000, sampl
         trigger, echo = pins[k]
         sensors.append(
             hcsr04.HCSR04(
-                Pin(trigger, Pin.OUT), Pin(echo, Pin.IN), clock, time_pulse_us, max_range=max_range, samples=samples[k]
+                Pin(trigger, Pin.OUT),
+                Pin(echo, Pin.IN),
+                clock,
+                time_pulse_us,
+                max_range=max_range,
+                samples=samples[k],
+                irq=True,  # the echo timed by its pin's IRQ: nothing waits for it (drivers/hcsr04.py)
             )
         )
     r = Runner(

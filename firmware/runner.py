@@ -19,6 +19,8 @@ from drivers import hcsr04
 from hexapod import follow, tick
 
 FRAME_MS = 20
+FRAME_US = 20000
+SPIN_US = 1500  # a frame's last stretch waits in sleep_us: sleep_ms may end up to 1 ms late
 
 
 class Runner:
@@ -27,7 +29,7 @@ class Runner:
     def __init__(self, geometry, servo_maps, bank, sensors, clock, mounts=None):
         """geometry: hexapod.geometry.load(...); servo_maps: 18 ServoMaps (leg/joint order);
         bank: has write_frame(pulses), failed_frames, reinits; sensors: hcsr04 rangers in
-        drivers.hcsr04 order; clock: ticks_ms/ticks_add/ticks_diff/sleep_ms; mounts: the five
+        drivers.hcsr04 order; clock: ticks_ms/ticks_us/ticks_add/ticks_diff/sleep_ms/sleep_us; mounts: the five
         sensors' (x, y, heading), 0.1 mm and cdeg (hexapod.board.sensor_mounts; default: the
         shipped board files')."""
         self.clock = clock
@@ -39,7 +41,7 @@ class Runner:
         self.sonar_faults = 0  # pings that came back NO_ECHO, STUCK or OUT_OF_RANGE
         self.frames = 0
         self.held = 0  # ticks whose frame the robot held back (hexapod.tick reason codes)
-        self.next_ms = clock.ticks_ms()
+        self.next_us = clock.ticks_us()  # the next frame's start
         self.follower = follow.Follower(self.robot, follow.DEFAULT_MOUNTS if mounts is None else mounts)
         self._start = None  # a follow setting waiting for the robot to stand
         self.console = None  # console.Console: polled once a frame when set (console.start)
@@ -87,14 +89,19 @@ class Runner:
         return code
 
     def wait(self):
-        """Sleep until the next 20 ms frame boundary (at once when late: the tick counts overruns)."""
+        """Sleep until the next 20 ms frame boundary, to the us: whole ms, then the rest in
+        sleep_us (at once when late: the tick counts overruns)."""
         clock = self.clock
-        self.next_ms = clock.ticks_add(self.next_ms, FRAME_MS)
-        late = clock.ticks_diff(clock.ticks_ms(), self.next_ms)
-        if late < 0:
-            clock.sleep_ms(-late)
-        elif late > FRAME_MS:
-            self.next_ms = clock.ticks_ms()  # far behind: start counting from now, never burst
+        self.next_us = clock.ticks_add(self.next_us, FRAME_US)
+        left = clock.ticks_diff(self.next_us, clock.ticks_us())
+        if left < -FRAME_US:
+            self.next_us = clock.ticks_us()  # far behind: start counting from now, never burst
+            return
+        if left > SPIN_US:
+            clock.sleep_ms((left - SPIN_US) // 1000)
+            left = clock.ticks_diff(self.next_us, clock.ticks_us())
+        if left > 0:
+            clock.sleep_us(left)
 
     def run(self, frames=-1, status_every=0):
         """Run frames (forever when -1), each on its 20 ms boundary; print status_line every

@@ -20,7 +20,7 @@ sensors = []
 for k in range(5):
     models.append(model.HCSR04(10 + 2 * k, 11 + 2 * k, distance=1000 + 500 * k, temp_centi_c=TEMP))
     sensors.append(drv.HCSR04(Pin(10 + 2 * k, Pin.OUT), Pin(11 + 2 * k, Pin.IN), clock, time_pulse_us,
-                              max_range=MAXR, temp_centi_c=TEMP, samples=SAMPLES))
+                              max_range=MAXR, temp_centi_c=TEMP, samples=SAMPLES, irq=IRQ))
 for a, b in drv.NEIGHBOURS:
     model.link(models[a], models[b])
 dist = [0] * 5
@@ -48,9 +48,10 @@ def flags():
 """
 
 
-def rig(start=0, temp=2000, max_range=10000, samples=5):
+def rig(start=0, temp=2000, max_range=10000, samples=5, irq=False):
     return (
         RIG.replace("START", str(start))
+        .replace("IRQ", str(irq))
         .replace("TEMP", str(temp))
         .replace("MAXR", str(max_range))
         .replace("SAMPLES", str(samples))
@@ -292,10 +293,10 @@ def test_round_robin_plan_is_valid_and_shortest(rt, n, tick_ms, neighbours, cycl
     assert len(slots) == shortest_cycle(n, tick_ms, neighbours, cycle_ms, crosstalk_ms)
 
 
-@pytest.mark.parametrize("start", [0, PERIOD - 250000])
-def test_five_sensors_in_the_loop_read_right_without_breaking_any_rule(rt, start):
+@pytest.mark.parametrize("start,irq", [(0, False), (PERIOD - 250000, False), (PERIOD - 250000, True)])
+def test_five_sensors_in_the_loop_read_right_without_breaking_any_rule(rt, start, irq):
     src = (
-        rig(start=start)
+        rig(start=start, irq=irq)
         + """
 rr = drv.RoundRobin(sensors)
 worst = run(rr, 100)
@@ -325,9 +326,10 @@ print((rr.slots, flags()["crosstalk"]))
     assert crosstalk > 0
 
 
-def test_faults_keep_the_loop_running_and_no_tick_blocks_past_the_bound(rt):
+@pytest.mark.parametrize("irq", [False, True])
+def test_faults_keep_the_loop_running_and_no_tick_blocks_past_the_bound(rt, irq):
     src = (
-        rig()
+        rig(irq=irq)
         + """
 rr = drv.RoundRobin(sensors)
 run(rr, 10)
@@ -385,9 +387,10 @@ print((r, d[0], st[0], models[0].flags["short_trigger"], models[0].pings, clock.
     assert rt.value(src) == (2, -1, 2, 1, 0, True)
 
 
-def test_zero_heap_allocation_per_tick(mp):
+@pytest.mark.parametrize("irq", [False, True])
+def test_zero_heap_allocation_per_tick(mp, irq):
     src = (
-        rig()
+        rig(irq=irq)
         + """
 import gc
 rr = drv.RoundRobin(sensors)

@@ -1,8 +1,15 @@
-"""HC-SR04 ranging: one sensor on machine.time_pulse_us, a median filter, a five-sensor round robin.
+"""HC-SR04 ranging: one sensor timed by echo pin IRQs (or machine.time_pulse_us), a median
+filter, a five-sensor round robin.
 
 Units: distances in 0.1 mm, temperature in 0.01 degC, pulse and block times in us, tick in ms.
 Pins, the clock (`time` on a board, `_stub_clock` in tests) and time_pulse_us are passed in.
 A ping reports a status; a distance is written only with OK, never in place of a fault.
+
+With irq=True (main.py) the echo pin's IRQ stores ticks_us() at the echo's rise and fall into
+a preallocated array (a hard IRQ: no allocation), so nothing waits for the echo: the round robin
+fires a sensor in one tick and reads its echo at the next (one tick of latency, 20 ms, instead
+of up to 14 ms of busy waiting per frame). Without Pin.irq on a port, or irq=False, ping()
+blocks in time_pulse_us as before. Statuses, timeouts and limits are the same either way.
 """
 
 from array import array
@@ -15,9 +22,10 @@ NO_ECHO = const(2)  # echo never rose within the timeout (missing echo, unplugge
 STUCK = const(3)  # echo already high before the trigger: nothing fired
 TOO_CLOSE = const(4)  # echo shorter than the module's 2 cm minimum
 WAIT = const(5)  # asked again within 60 ms of its last ping: nothing fired, buffers untouched
+PENDING = const(6)  # fired, the echo still within its timeouts: nothing to report yet
 NO_DISTANCE = const(-1)  # what dist[i] holds whenever status[i] is not OK
 
-STATUS_NAMES = ("ok", "out of range", "no echo", "echo stuck high", "too close", "wait")
+STATUS_NAMES = ("ok", "out of range", "no echo", "echo stuck high", "too close", "wait", "pending")
 
 MIN_RANGE = const(200)  # 2 cm
 MAX_RANGE = const(40000)  # 4 m
@@ -99,7 +107,9 @@ class MedianRanger:
 
         WAIT leaves both buffers untouched. The median covers the OK pings among the last N.
         """
-        s = self.ping()
+        return self._record(self.ping(), dist, status, i)
+
+    def _record(self, s, dist, status, i):
         if s == WAIT:
             return s
         win = self._win
@@ -108,7 +118,12 @@ class MedianRanger:
         if self._head == len(win):
             self._head = 0
         status[i] = s
-        dist[i] = self._median() if s == OK else NO_DISTANCE
+        if s != OK:
+            dist[i] = NO_DISTANCE
+        elif len(win) == 1:
+            dist[i] = self.distance  # one sample: its own median (a call less: 0.15 ms on a Pico)
+        else:
+            dist[i] = self._median()
         return s
 
     def _median(self):
@@ -128,11 +143,30 @@ class MedianRanger:
         return (srt[(m - 1) >> 1] + srt[m >> 1]) >> 1
 
 
-class HCSR04(MedianRanger):
-    """One HC-SR04 on MicroPython: trigger is an output Pin, echo an input Pin."""
+def _edge_handler(edges, ticks_us):
+    """The echo pin's hard IRQ: ticks_us() of the first two edges into edges[1:3], edges[0] counts
+    them (to 3). A closure, not a bound method: nothing to look up before the timestamp."""
 
-    def __init__(self, trigger, echo, clock, time_pulse_us=None, *, max_range=10000, temp_centi_c=2000, samples=5):
-        if time_pulse_us is None:
+    def edge(pin):
+        t = ticks_us()
+        n = edges[0]
+        if n < 2:
+            edges[n + 1] = t
+        if n < 3:
+            edges[0] = n + 1
+
+    return edge
+
+
+class HCSR04(MedianRanger):
+    """One HC-SR04 on MicroPython: trigger is an output Pin, echo an input Pin; irq=True times
+    the echo with the echo pin's IRQ (fire() now, collect_into() a tick later) where Pin.irq exists."""
+
+    def __init__(
+        self, trigger, echo, clock, time_pulse_us=None, *, max_range=10000, temp_centi_c=2000, samples=5, irq=False
+    ):
+        self.split = bool(irq) and hasattr(echo, "irq")  # fire and collect apart (RoundRobin)
+        if time_pulse_us is None and not self.split:
             from machine import time_pulse_us
         self._trigger = trigger
         self._echo = echo
@@ -140,19 +174,26 @@ class HCSR04(MedianRanger):
         self._pulse = time_pulse_us
         self._last = 0  # ticks_us of the last trigger
         self._fired = False
+        self._state = WAIT  # of the ping fire() sent: PENDING while listening, else what to report
+        self._t0 = 0  # ticks_us when the trigger fell: the rise timeout counts from here
+        # The IRQ's only memory: edges since the trigger (0..3), ticks_us at the rise and the fall.
+        self._edges = array("i", [0, 0, 0])
         MedianRanger.__init__(self, samples, max_range, temp_centi_c)
         trigger.value(0)
+        if self.split:
+            echo.irq(_edge_handler(self._edges, clock.ticks_us), echo.IRQ_RISING | echo.IRQ_FALLING, hard=True)
 
     def _block_us(self):
-        # trigger, then time_pulse_us: up to timeout_us waiting for the rise, as long again timing it
+        # trigger, then the echo: up to timeout_us waiting for the rise, as long again timing it
+        # (time_pulse_us blocks that long; with the IRQ the next tick collects it: it must fit a tick)
         return 2 + TRIGGER_US + 2 * self.timeout_us
 
-    def ping(self):
-        """Fire one ping; return a status code, and with OK the distance in self.distance (0.1 mm)."""
+    def _fire(self):
         clock = self._clock
         now = clock.ticks_us()
         if self._fired and clock.ticks_diff(now, self._last) < MIN_CYCLE_US:
             return WAIT
+        self._edges[0] = 0
         if self._echo.value():
             return STUCK
         t = self._trigger
@@ -163,6 +204,60 @@ class HCSR04(MedianRanger):
         t.value(0)
         self._last = now
         self._fired = True
+        return PENDING
+
+    def fire(self):
+        """Trigger a ping and return at once: PENDING (the IRQ listens), or WAIT / STUCK, which
+        collect_into() reports (irq=True only)."""
+        s = self._fire()
+        self._t0 = self._clock.ticks_us()
+        self._state = s
+        return s
+
+    def result(self):
+        """Status of the ping fire() sent, from the IRQ's timestamps (as time_pulse_us would
+        judge it); PENDING while the echo may still rise or fall; OK sets self.distance."""
+        s = self._state
+        if s != PENDING:
+            return s
+        clock = self._clock
+        e = self._edges
+        n = e[0]
+        to = self.timeout_us
+        if n == 0:
+            return PENDING if clock.ticks_diff(clock.ticks_us(), self._t0) < to else NO_ECHO
+        rise = clock.ticks_diff(e[1], self._t0)
+        if rise < 0 or rise >= to:  # rose before our trigger fell (not ours), or too late
+            return NO_ECHO
+        if n == 1:
+            return PENDING if clock.ticks_diff(clock.ticks_us(), e[1]) < to else OUT_OF_RANGE
+        us = clock.ticks_diff(e[2], e[1])
+        if us >= to:
+            return OUT_OF_RANGE
+        return self.accept(self.to_distance(us))
+
+    def _wait_result(self):
+        s = self.result()
+        while s == PENDING:  # only when asked early (a ping(), or a tick sooner than max_block_us)
+            self._clock.sleep_us(100)
+            s = self.result()
+        self._state = WAIT  # reported once
+        return s
+
+    def collect_into(self, dist, status, i):
+        """The ping fire() sent, into status[i] and dist[i] as measure_into(); waits for the rest
+        of the echo only when called sooner than max_block_us after fire(). Returns the status."""
+        return self._record(self._wait_result(), dist, status, i)
+
+    def ping(self):
+        """Fire one ping and wait for it; return a status code, and with OK the distance in
+        self.distance (0.1 mm)."""
+        if self.split:
+            self.fire()
+            return self._wait_result()
+        s = self._fire()
+        if s != PENDING:
+            return s
         us = self._pulse(self._echo, 1, self.timeout_us)
         if us == -2:
             return NO_ECHO
@@ -215,7 +310,10 @@ def _place(i, at, slots, gap, neighbours):
 
 
 class RoundRobin:
-    """Fires one sensor per tick from a fixed slot table; results into caller-owned buffers."""
+    """Fires one sensor per tick from a fixed slot table; results into caller-owned buffers.
+
+    Sensors that split (HCSR04 with irq=True) report a tick after they fire: each tick collects
+    the previous slot's echo, then fires this slot's."""
 
     def __init__(self, sensors, *, tick_ms=20, neighbours=NEIGHBOURS, cycle_ms=60, crosstalk_ms=38):
         n = len(sensors)
@@ -241,14 +339,27 @@ class RoundRobin:
         self.sensors = sensors
         self.slots = plan(n, tick_ms, neighbours, cycle_ms, crosstalk_ms)
         self.max_block_us = worst
+        self.split = True
+        for s in sensors:
+            self.split = self.split and getattr(s, "split", False)
         self._pos = 0
+        self._fired = -1  # the sensor fired on the last tick (split sensors)
 
     def tick(self, dist, status):
-        """Run this tick's slot: ping that sensor into dist/status; return its index or -1 (idle)."""
+        """Run this tick's slot into dist/status; return the index of the sensor whose result
+        came in (this slot's, or with split sensors the last slot's), -1 when none."""
         i = self.slots[self._pos]
         self._pos += 1
         if self._pos == len(self.slots):
             self._pos = 0
+        if not self.split:
+            if i >= 0:
+                self.sensors[i].measure_into(dist, status, i)
+            return i
+        j = self._fired
+        if j >= 0:
+            self.sensors[j].collect_into(dist, status, j)
         if i >= 0:
-            self.sensors[i].measure_into(dist, status, i)
-        return i
+            self.sensors[i].fire()
+        self._fired = i
+        return j

@@ -11,10 +11,17 @@ MODE2.OCH is set (outputs change on ACK): a channel's output only changes once a
 its registers arrived, so a burst cut short by a NACK never outputs half a pulse width.
 """
 
+from array import array
+
 import micropython
 from micropython import const
 
 from hexapod.servo import PULSE_MAX_US, PULSE_MIN_US
+
+try:
+    from drivers._pca9685_viper import put as _put
+except (ImportError, SyntaxError):  # CPython, CircuitPython, a port without viper
+    _put = None
 
 _MODE1 = const(0x00)
 _MODE2 = const(0x01)
@@ -116,6 +123,9 @@ class PCA9685:
                 % (stagger_us, top, channels, PULSE_MAX_US)
             )
         self._on = [ch * step for ch in range(channels)]  # ON count of each channel
+        # what the viper stage reads: the count's constants, then each channel's ON count
+        self._params = array("i", [0] * 5 + self._on)
+        self._pack()
         self._retries = retries
         self._check_every = check_every
         self._ext = _EXTCLK if ext_clock else 0
@@ -148,6 +158,16 @@ class PCA9685:
         self._den = 1000 * (prescale + 1)
         self._den1000 = 1000 * self._den
         self._den2000 = 2000 * self._den
+        if hasattr(self, "_params"):  # a later prescale (cp_pca9685 reads the chip's back)
+            self._pack()
+
+    def _pack(self):
+        p = self._params
+        p[0] = self._khz
+        p[1] = self._rem
+        p[2] = self._den
+        p[3] = self._den1000
+        p[4] = self._den2000
 
     @micropython.native
     def count(self, pulse_us):
@@ -191,6 +211,9 @@ class PCA9685:
             raise ValueError("channel %r, allowed 0..%d" % (channel, self.channels - 1))
         if type(pulse_us) is not int or not PULSE_MIN_US <= pulse_us <= PULSE_MAX_US:
             raise ValueError("pulse_us %r, allowed %d..%d us" % (pulse_us, PULSE_MIN_US, PULSE_MAX_US))
+        if _put is not None:
+            _put(self._frame, self._params, channel, pulse_us)
+            return
         on = self._on[channel]
         off = on + self.count(pulse_us)
         f = self._frame
@@ -365,7 +388,11 @@ class ServoBank:
             q = self._maps[k].clamp(p)
             if q != p:
                 self.clamped += 1
-            self._chip_of[k].stage(self._ch_of[k], q)
+            c = self._chip_of[k]
+            if _put is not None and PULSE_MIN_US <= q <= PULSE_MAX_US:  # stage() without its checks
+                _put(c._frame, c._params, self._ch_of[k], q)  # (channels were checked in __init__)
+            else:
+                c.stage(self._ch_of[k], q)
         status = OK
         for c in self.chips:
             status |= c.flush()

@@ -55,8 +55,9 @@ def bench_tick(args, fs, tmp):
     }
 
 
-# The frame's parts on the board, timed apart over walking frames: the ping (round robin, blocking
-# echo wait), the tick with its two bursts, and the two bursts alone (the same pulses again).
+# The frame's parts on the board, timed apart over walking frames 20 ms apart (as the loop's): the
+# ping (round robin: the last slot's echo collected from its IRQ timestamps, this slot's fired), the
+# tick with its two bursts, and the two bursts alone (the same pulses again).
 PARTS = """
 import time, gc, main
 from array import array
@@ -74,8 +75,10 @@ burst = array("i", [0] * N)
 pulses = r.robot.pulses
 gc.collect()
 gc.disable()
+start = time.ticks_us()
 for n in range(N):
     t += 20
+    time.sleep_us(time.ticks_diff(time.ticks_add(start, 20000 * n), time.ticks_us()))
     t0 = time.ticks_us()
     r.sonar.tick(r.distances, r.sonar_status)
     t1 = time.ticks_us()

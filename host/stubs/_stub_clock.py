@@ -14,6 +14,16 @@ TICKS_MAX = TICKS_PERIOD - 1
 _HALF = TICKS_PERIOD // 2
 
 _now = 0  # virtual microseconds since reset(), never wraps
+# Set by _stub_pins while a Pin has an IRQ handler: called with the instant time is about to
+# reach; it moves _now to each edge on the way and runs the handlers there, as a board would.
+_edge_hook = None
+
+
+def _to(t_us):
+    global _now
+    if _edge_hook is not None:
+        _edge_hook(t_us)
+    _now = t_us
 
 
 def reset(start_us=0):
@@ -31,17 +41,15 @@ def now_us():
 
 def advance_us(us):
     """Move virtual time forward by us (int >= 0)."""
-    global _now
     if us < 0:
         raise ValueError("advance_us: %r, time only moves forward" % (us,))
-    _now += us
+    _to(_now + us)
 
 
 def advance_to(t_us):
     """Move virtual time forward to the unwrapped instant t_us; never backwards."""
-    global _now
     if t_us > _now:
-        _now = t_us
+        _to(t_us)
 
 
 def ticks_us():
@@ -71,23 +79,20 @@ def ticks_diff(ticks1, ticks2):
 
 def sleep_us(us):
     """Advance virtual time by us; a negative value returns at once, as on a board."""
-    global _now
     if us > 0:
-        _now += us
+        _to(_now + us)
 
 
 def sleep_ms(ms):
     """Advance virtual time by ms milliseconds."""
-    global _now
     if ms > 0:
-        _now += ms * 1000
+        _to(_now + ms * 1000)
 
 
 def sleep(seconds):
     """Advance virtual time by seconds (int or float), rounded to the nearest us."""
-    global _now
     if seconds > 0:
-        _now += int(seconds * 1000000 + 0.5)
+        _to(_now + int(seconds * 1000000 + 0.5))
 
 
 def monotonic():

@@ -6,7 +6,10 @@ driver's Pin(7) writes and answers its reads. A model is any object with three m
   level(pin_id, t_us)              the level the model drives at t_us, or -1 if it does not
   next_change(pin_id, t_us)        first instant > t_us (unwrapped us) its level changes, or -1
 Time comes from the virtual clock (_stub_clock); time_pulse_us advances it to the edge it
-waits for, so a 5 ms echo costs no real time. Nothing on a read or write path allocates.
+waits for, so a 5 ms echo costs no real time. Pin.irq handlers run at their edges: whenever the
+clock is about to move, the edges the models drive up to the new instant are visited in time
+order, the clock is set to each and the handler called there (ticks_us() in it reads the edge's
+instant, as a board's IRQ would, minus the latency). Nothing on a read, write or IRQ path allocates.
 """
 
 import _stub_clock as clock
@@ -33,7 +36,10 @@ class _Wire:
         self.out = 0  # last level written by the board
         self.forced = -1  # a level a test holds the line at, -1 when released
         self.model = None
-        self.handler = None
+        self.handler = None  # Pin.irq's handler, called with irq_pin at each edge in irq_trigger
+        self.irq_pin = None
+        self.irq_trigger = 0
+        self.irq_t = 0  # unwrapped us up to which this wire's edges were handled
 
 
 def _wire(pin_id):
@@ -49,22 +55,62 @@ def connect(pin_id, model):
     w = _wire(pin_id)
     if w.model is not None and w.model is not model:
         raise ValueError("pin %r is already connected to %r" % (pin_id, w.model))
+    before = _read(w, clock.now_us())
     w.model = model
+    _step(w, before)
 
 
 def disconnect(pin_id):
     """Unplug whatever model drives pin_id (the line floats to its pull)."""
-    _wire(pin_id).model = None
+    w = _wire(pin_id)
+    before = _read(w, clock.now_us())
+    w.model = None
+    _step(w, before)
 
 
 def force(pin_id, level):
     """Hold an input line at level 0/1 by hand; -1 releases it."""
-    _wire(pin_id).forced = level
+    w = _wire(pin_id)
+    before = _read(w, clock.now_us())
+    w.forced = level
+    _step(w, before)
+
+
+def _step(w, before):
+    # A line that a hand or a plug moved at once: an edge now, for its IRQ handler as any other.
+    lv = _read(w, clock.now_us())
+    if lv != before and w.handler is not None and w.irq_trigger & (Pin.IRQ_RISING if lv else Pin.IRQ_FALLING):
+        w.handler(w.irq_pin)
+
+
+_irq_wires = []  # wires with an IRQ handler, in the order they got one
+
+
+def _dispatch(t_end):
+    """Run the IRQ handlers of every edge up to t_end (unwrapped us) at its instant, in order."""
+    start = clock._now  # edges up to here were handled when time got here (or skipped by a clock reset)
+    while True:
+        first = None
+        t = -1
+        for w in _irq_wires:
+            e = _next_change(w, w.irq_t if w.irq_t > start else start)
+            if 0 <= e <= t_end and (first is None or e < t):
+                first = w
+                t = e
+        if first is None:
+            return
+        first.irq_t = t
+        clock._now = t
+        lv = _read(first, t)
+        if first.irq_trigger & (Pin.IRQ_RISING if lv else Pin.IRQ_FALLING):
+            first.handler(first.irq_pin)
 
 
 def reset():
-    """Forget every wire and model, restore freq and reset cause (between tests)."""
+    """Forget every wire, model and IRQ handler, restore freq and reset cause (between tests)."""
     _wires.clear()
+    _irq_wires.clear()
+    clock._edge_hook = None
     _state["freq"] = 125000000
     _state["reset_cause"] = PWRON_RESET
 
@@ -158,8 +204,26 @@ class Pin:
         self.value(1 - self._w.out)
 
     def irq(self, handler=None, trigger=3, hard=False):
-        """Store the handler; the virtual clock has no interrupts, models that need it call it."""
-        self._w.handler = handler
+        """Call handler(pin) at each edge in trigger (IRQ_RISING | IRQ_FALLING) of this input from
+        now on, at the edge's instant on the virtual clock; handler None removes it. hard is
+        accepted and ignored (a stub handler runs like a hard one: it must not sleep)."""
+        if handler is not None and not callable(handler):
+            raise ValueError("Pin %r: irq handler %r, allowed a callable or None" % (self.id, handler))
+        if not isinstance(trigger, int) or isinstance(trigger, bool) or trigger < 1 or trigger > 3:
+            raise ValueError(
+                "Pin %r: irq trigger %r, allowed IRQ_RISING, IRQ_FALLING or both (1..3)" % (self.id, trigger)
+            )
+        w = self._w
+        w.handler = handler
+        w.irq_pin = self
+        w.irq_trigger = trigger
+        w.irq_t = clock.now_us()
+        if handler is None:
+            if w in _irq_wires:
+                _irq_wires.remove(w)
+        elif w not in _irq_wires:
+            _irq_wires.append(w)
+        clock._edge_hook = _dispatch if _irq_wires else None
         return self
 
     def __repr__(self):

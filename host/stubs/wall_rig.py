@@ -131,7 +131,9 @@ def _build_on_sink(board_name):
     for k in range(len(pins)):
         trigger, echo = pins[k]
         sensors.append(
-            hcsr04.HCSR04(Pin(trigger, Pin.OUT), Pin(echo, Pin.IN), clock, time_pulse_us, samples=main.SONAR_SAMPLES[k])
+            hcsr04.HCSR04(
+                Pin(trigger, Pin.OUT), Pin(echo, Pin.IN), clock, time_pulse_us, samples=main.SONAR_SAMPLES[k], irq=True
+            )
         )
     g = geometry.load(robots.default)
     return Runner(g, [row[2] for row in table], Tee(None), sensors, clock, boards.sensor_mounts(board))

@@ -3,7 +3,8 @@
 # sets the stubs up first and has `_stub_clock` on the path). Stands up, walks a tripod through
 # forward, turn, crab and back, and stops; one Runner.step + Runner.wait per 20 ms frame, as
 # Runner.run. Prints main.py's status line at the end, then one JSON line: the frame's time
-# (ping, follower, tick, both bursts) in us, the period, the slack, the heap.
+# (ping, follower, tick, both bursts) in us, the period (and how many of the gaps between frame
+# starts lie within 10 and 100 us of 20 ms), the slack, the heap.
 # Arguments: [frames (default 500)].
 import gc
 import json
@@ -54,6 +55,10 @@ def summary(free_after_boot, heap):
         "period_min_us": gaps[0],
         "period_max_us": gaps[-1],
         "period_median_us": gaps[len(gaps) // 2],
+        "period_p1_us": gaps[len(gaps) // 100],
+        "period_p99_us": gaps[(len(gaps) * 99) // 100],
+        "periods_within_10us": sum(1 for g in gaps if -10 <= g - 20000 <= 10),
+        "periods_within_100us": sum(1 for g in gaps if -100 <= g - 20000 <= 100),
         "slack_min_us": 20000 - busy[-1],
         "slack_median_us": 20000 - busy[FRAMES // 2],
         "heap_free_after_boot": free_after_boot,
