@@ -13,10 +13,11 @@ from tests.test_runner import SETUP
 
 CORE = sorted("hexapod/" + f for f in os.listdir(os.path.join(FIRMWARE, "hexapod")) if f.endswith(".py"))
 # What main.py and runner.py import (read by hand from them): the MicroPython drivers, and the
-# viper staging pca9685 imports (a CircuitPython board gets it too: its import fails there, caught).
+# viper staging pca9685 imports (MicroPython only).
 MP_DRIVERS = ["drivers/__init__.py", "drivers/_pca9685_viper.py", "drivers/hcsr04.py", "drivers/pca9685.py"]
 # code.py's drivers, and what they import: cp_pca9685 -> pca9685, cp_hcsr04_pulsein -> hcsr04.
-CP_DRIVERS = MP_DRIVERS + ["drivers/cp_clock.py", "drivers/cp_hcsr04_pulsein.py", "drivers/cp_pca9685.py"]
+CP_DRIVERS = [p for p in MP_DRIVERS if "viper" not in p]
+CP_DRIVERS += ["drivers/cp_clock.py", "drivers/cp_hcsr04_pulsein.py", "drivers/cp_pca9685.py"]
 
 
 def expected(board, entry, drivers):
@@ -445,3 +446,23 @@ def test_the_cli_flashes_a_board_and_make_flash_calls_it(tmp_path, fake_board, c
         cwd=ROOT,
     )
     assert ".venv/bin/hexapod flash --board esp32_devkit --port /dev/ttyUSB0  --dry-run" in make.stdout, make.stdout
+
+
+def test_a_circuitpython_drive_gets_no_micropython_emitter_decorators(tmp_path):
+    # CircuitPython's compiler (py/compile.c) raises "invalid micropython decorator" for native and
+    # viper on boards that do not enable them (the RP2040 and ESP32 builds do not): a drive with one
+    # would fail at import. The sources the Pico gets do carry them (the test has teeth).
+    _, image, _ = flash.stage("feather_rp2040", "default", out=str(tmp_path / "cp"))
+    carrying = []
+    for rel in image:
+        text = (tmp_path / "cp" / rel).read_text()
+        compile(text, rel, "exec")  # still Python
+        if "@micropython." in text:
+            carrying.append(rel)
+        source = os.path.join(FIRMWARE if os.path.exists(os.path.join(FIRMWARE, rel)) else ROOT, rel)
+        if rel != "code.py":  # the rest is the source less its decorator lines
+            kept = [ln for ln in flash._read(source).splitlines() if ln.strip() != "@micropython.native"]
+            assert text.splitlines() == kept, rel
+    assert carrying == []
+    natives = [p for p in MP_DRIVERS + CORE if "@micropython." in flash._read(os.path.join(FIRMWARE, p))]
+    assert "drivers/pca9685.py" in natives and "drivers/pca9685.py" in image

@@ -30,7 +30,11 @@ PROVIDED = {"machine", "time", "sys", "os", "array", "micropython", "gc", "selec
 PROVIDED |= {"microcontroller", "pulseio", "supervisor", "struct", "math", "hashlib", "errno", "io", "storage"}
 PROVIDED |= {"watchdog"}
 # Viper modules: MicroPython only (the core imports them only there); CircuitPython boards never get them.
-VIPER = ("hexapod/_ikfast.py", "hexapod/_tickfast.py")
+VIPER = ("hexapod/_ikfast.py", "hexapod/_tickfast.py", "drivers/_pca9685_viper.py")
+# CircuitPython compiles `@micropython.native` only where a board enables it (none of ours: a
+# SyntaxError at import otherwise); the decorator changes speed, never results, so its drive gets
+# the sources without it.
+NATIVE_LINE = re.compile(r"^[ \t]*@micropython\.native[ \t]*\n", re.M)
 
 
 class FlashError(Exception):
@@ -173,7 +177,8 @@ def stage(board, robot, out=None, arch=None):
         elif cp:
             dest = os.path.join(out, rel)
             os.makedirs(os.path.dirname(dest), exist_ok=True)
-            shutil.copyfile(src, dest)
+            with open(dest, "w") as f:
+                f.write(NATIVE_LINE.sub("", _read(src)))
         else:
             rel = rel[:-3] + ".mpy"
             dest = os.path.join(out, rel)
