@@ -449,7 +449,7 @@ def plot(path, world, traces, title, dashed=None):
         lowest = min(min(t[3] for t in trace) for _, trace in traces) / 10
         top = max(max(t[3] for t in trace) for _, trace in traces) / 10
         wall_y = world.walls[0][1] / 10
-        ax.set_ylim(min(lowest, wall_y) - 4, max(top, wall_y) + 3)
+        ax.set_ylim(min(lowest, wall_y) - (7 if dashed else 4), max(top, wall_y) + 3)  # room for the legend
     ax.set_xlabel("x (cm)")
     ax.set_ylabel("y (cm)")
     ax.set_title(title, fontsize=9)
@@ -546,6 +546,28 @@ def parse(args):
     return world, setpoints, trials, seed, args.follow, gains, args.runtime, jobs
 
 
+def _failures(row):
+    """A row's failures as text: "too far 2, contact 1" or "none"."""
+    return ", ".join("%s %d" % kv for kv in row["failures"].items()) or "none"
+
+
+def _print_json(total, rows, world, seed, trials, gains, runtime, form, **extra):
+    """The run as one JSON object on stdout: the totals, what was run, the rows."""
+    out = dict(total)
+    del out["setpoint_cm"]
+    out.update(
+        world=world.name,
+        seed=seed,
+        trials_per_setpoint=trials,
+        gains=list(gains),
+        runtime=runtime,
+        form=form,
+        **extra,
+        rows=rows,
+    )
+    print(json.dumps(out))
+
+
 def run(args):
     if args.physics:
         return run_physics(args)
@@ -573,19 +595,7 @@ def run(args):
             % (world.name, *used),
         )
     if args.json:
-        out = dict(total)
-        del out["setpoint_cm"]
-        out.update(
-            world=world.name,
-            seed=seed,
-            trials_per_setpoint=trials,
-            gains=list(used),
-            runtime=runtime,
-            form=args.form,
-            paper_success="0.92-0.96",
-            rows=rows,
-        )
-        print(json.dumps(out))
+        _print_json(total, rows, world, seed, trials, used, runtime, args.form, paper_success="0.92-0.96")
         return 0
     side = side or world.follow
     print(
@@ -593,10 +603,9 @@ def run(args):
         "firmware on %s" % (world.name, side, trials, seed, used[0], used[1], used[2], args.form, runtime)
     )
     print(table(rows))
-    fails = {k: v for k, v in total["failures"].items()}
     print(
         "all: %.1f %% success of %d trials; failures: %s"
-        % (100 * total["success_rate"], total["trials"], ", ".join("%s %d" % kv for kv in fails.items()) or "none")
+        % (100 * total["success_rate"], total["trials"], _failures(total))
     )
     if plot_path:
         print("plot: %s" % plot_path)
@@ -671,18 +680,7 @@ def run_physics(args):
         for r in [total] + rows:
             for m in wall_physics.MOVERS:
                 del r[m]["setpoint_cm"]
-        out = dict(total)
-        del out["setpoint_cm"]
-        out.update(
-            world=world.name,
-            seed=seed,
-            trials_per_setpoint=trials,
-            gains=list(used),
-            runtime=runtime,
-            form=args.form,
-            rows=rows,
-        )
-        print(json.dumps(out))
+        _print_json(total, rows, world, seed, trials, used, runtime, args.form)
         return 0
     print(
         "hexapod sim wall --physics: world %s (%s wall), %d trials per set point, seed %d, Kp %g Ki %g Kd %g, "
@@ -694,13 +692,7 @@ def run_physics(args):
     for m in wall_physics.MOVERS:
         t = total[m]
         print(
-            "%s: %.1f %% success of %d trials; failures: %s"
-            % (
-                m,
-                100 * t["success_rate"],
-                t["trials"],
-                ", ".join("%s %d" % kv for kv in t["failures"].items()) or "none",
-            )
+            "%s: %.1f %% success of %d trials; failures: %s" % (m, 100 * t["success_rate"], t["trials"], _failures(t))
         )
     print("same outcome in %d of %d trials" % (total["same_outcome"], total["trials"]))
     if plot_path:
