@@ -113,19 +113,24 @@ def test_along_the_wall_both_simulators_hold_the_same_path():
 
 
 def test_path_difference_by_hand():
-    # Two parallel paths 4 mm apart, the second one 30 mm longer and starting 10 mm later: the
-    # points beyond the other path's ends are left out, the rest are 4 mm off.
+    # Two parallel paths 4 mm apart, the second one starting 10 mm later and ending 30 mm
+    # further: points whose nearest point on the other path is within 30 mm of its start or
+    # end are left out, the rest are 4 mm off.
     a = [(0, 0, x, 0.0, 0) for x in range(0, 101, 10)]
     b = [(0, 0, x, 4.0, 0) for x in range(10, 131, 10)]
     assert wall_physics.path_difference(a, b) == (4.0, 4.0)
-    # Two corners 3 mm apart: d's three points are 3 mm from c; c's corner (53, 0) is 3 sqrt 2 from
-    # d's corner; c's ends lie beyond d's and are left out.
-    c = [(0, 0, 0, 0, 0), (0, 0, 53, 0, 0), (0, 0, 53, 50, 0)]
-    d = [(0, 0, 10, 3, 0), (0, 0, 50, 3, 0), (0, 0, 50, 40, 0)]
+    # Two corners 3 mm apart (the paths' vertices only): d's corner is 3 mm from c's first leg,
+    # c's corner is 3 sqrt 2 from d's; the four ends are left out.
+    c = [(0, 0, 0, 0, 0), (0, 0, 100, 0, 0), (0, 0, 100, 100, 0)]
+    d = [(0, 0, 0, 3, 0), (0, 0, 97, 3, 0), (0, 0, 97, 100, 0)]
     mean, most = wall_physics.path_difference(c, d)
     assert most == pytest.approx(3 * math.sqrt(2), abs=0.005) and mean == pytest.approx(
-        (9 + 3 * math.sqrt(2)) / 4, abs=0.005
+        (3 + 3 * math.sqrt(2)) / 2, abs=0.005
     )
+    # A path that hooks back at its end (the body's last wobble before the finish): the other
+    # path's points past it stay out.
+    e = [(0, 0, x, 2.0, 0) for x in range(0, 181, 10)] + [(0, 0, 172, -4.0, 0)]
+    assert wall_physics.path_difference(a + [(0, 0, x, 0.0, 0) for x in range(110, 201, 10)], e) == (2.0, 2.0)
     assert wall_physics.path_difference(a, a[:1]) == (None, None)
 
 

@@ -89,9 +89,13 @@ class PhysicsMover:
 MOVERS = {"kinematic": FeetMover, "physics": PhysicsMover}
 
 
+END_MM = 30.0  # the paths' first and last 30 mm are not compared: they end at different places
+
+
 def _to_polyline(p, a):
     """Distance (mm) of each point p (n x 2) to the polyline through a (m x 2, its points in
-    order), NaN where the nearest polyline point is one of its two ends (p is beyond that path)."""
+    order), NaN where the nearest polyline point is within END_MM of its start or end along it
+    (p is beyond that path, or where it begins or ends)."""
     import numpy as np
 
     if len(a) < 2:
@@ -104,15 +108,18 @@ def _to_polyline(p, a):
     dist = np.hypot(p[:, None, 0] - near[:, :, 0], p[:, None, 1] - near[:, :, 1])
     k = dist.argmin(axis=1)
     rows = np.arange(len(p))
-    beyond = ((k == 0) & (t[rows, k] == 0.0)) | ((k == len(a) - 2) & (t[rows, k] == 1.0))
-    return np.where(beyond, np.nan, dist[rows, k])
+    seg = np.sqrt(ll[0])
+    along = np.concatenate(([0.0], np.cumsum(seg)))[k] + t[rows, k] * seg[k]
+    inside = (along >= END_MM) & (along <= seg.sum() - END_MM)
+    return np.where(inside, dist[rows, k], np.nan)
 
 
 def path_difference(a, b):
     """How far apart two trials' paths of the side sonars' midpoint are (traces of sim_wall.run_trial):
     the mean and the largest distance (mm) of each path's points to the other path, both ways
-    pooled, where both paths are (a point beyond the other path's start or end is left out: the
-    traces are sampled every 5 frames and end at different places)."""
+    pooled, where both paths are: a point whose nearest point on the other path is within
+    END_MM of that path's start or end is left out (the traces are sampled every 5 frames and
+    end at different places)."""
     import numpy as np
 
     pa = np.array([(t[2], t[3]) for t in a], dtype=float).reshape(-1, 2)
