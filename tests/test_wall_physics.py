@@ -102,7 +102,7 @@ def test_along_the_wall_both_simulators_hold_the_same_path():
     # Undisturbed, 12 cm: both done, no contact, each held within 3 mm (the sonar noise's sd),
     # and the two paths of the side sonars' midpoint less than 1 mm apart on average and 3 mm at
     # most: under one sd of a ping's noise, a difference the follower cannot see.
-    # Measured: 0.22 mm mean, 0.89 mm at most; RMS 0.10 and 0.29 mm.
+    # Measured: 0.22 mm mean, 0.73 mm at most; RMS 0.10 and 0.29 mm.
     w = world.load("wall")
     k = sim_wall.run_trial(w, 12, "u", disturb=False, record=True, bus="sink")
     p = sim_wall.run_trial(w, 12, "u", disturb=False, record=True, bus="sink", mover="physics")
