@@ -161,7 +161,7 @@ class Body:
 
     def legs_from_pulses(self, pulses):
         """Feet and links (body frame, mm) from the 18 pulses sent (us); legs without a pulse keep theirs."""
-        feet, links = [], []
+        legs = []
         for i in range(6):
             if not pulses[3 * i]:
                 return False
@@ -173,14 +173,20 @@ class Body:
             a = m + math.radians(t1)
             ca, sa = math.cos(a), math.sin(a)
             reach = (0.0, coxa, coxa + femur * math.cos(a2), math.hypot(fx, fy))
-            pts = [(mx + r * ca, my + r * sa) for r in reach]
-            links += [pts[k] + pts[k + 1] for k in range(3)]
-            feet.append((pts[3][0], pts[3][1], fz))
-        self.feet, self.links = feet, links
+            legs.append([(mx + r * ca, my + r * sa, fz) for r in reach])
+        self.set_legs(legs)
         return True
 
+    def set_legs(self, legs):
+        """Links and feet (body frame, mm) from each leg's coxa axis, femur joint, knee and foot
+        (x, y, z): the links are their plan view, the feet keep z."""
+        links = []
+        for pts in legs:
+            links += [pts[k][:2] + pts[k + 1][:2] for k in range(3)]
+        self.feet, self.links = [tuple(pts[3]) for pts in legs], links
+
     def neutral_legs(self, height_mm=None):
-        """Links and feet of the neutral stance (for the start check before any frame)."""
+        """Links and feet of the neutral stance (for the start check before any frame); returns its 18 pulses (us)."""
         g = self.g
         h = g.body_height if height_mm is None else height_mm * 10
         out = [0, 0, 0]
@@ -190,6 +196,7 @@ class Body:
             for k in range(3):
                 self.maps[3 * i + k].pulse(out[k], pulses, 3 * i + k)
         self.legs_from_pulses(pulses)
+        return pulses
 
     def move(self, old_feet, speed=1.0, slip=0.0):
         """Integrate the body's motion since old_feet (this frame's feet on the ground in both
@@ -207,7 +214,12 @@ class Body:
         self.stance = q
         if len(q) < 2:
             return 0.0
-        phi, tx, ty = rigid_2d(q, p)
+        return self.advance(*rigid_2d(q, p), speed, slip)
+
+    def advance(self, phi, tx, ty, speed=1.0, slip=0.0):
+        """Move by one frame's step: the new body pose in the old body frame (phi rad, tx, ty mm),
+        translation scaled by `speed`, heading plus `slip` (rad) while it moves. Returns the
+        distance moved (mm)."""
         tx *= speed
         ty *= speed
         c, s = math.cos(self.theta), math.sin(self.theta)

@@ -85,7 +85,12 @@ class Run:
         while r.mode != tick.STANDING:
             self.now += TICK_MS
             r.tick(self.now)
+        self.settle()
+
+    def settle(self):
+        """Put the model in the stance of the frame's pulses and let it settle (SETTLE_S)."""
         d = self.data
+        self.mj.mj_resetData(self.model, d)
         d.qpos[:] = 0
         d.qpos[2] = self.g.body_height * 1e-4 + self.foot_r
         d.qpos[3] = 1.0
@@ -101,6 +106,20 @@ class Run:
         for k in range(18):
             if p[k]:
                 self.data.ctrl[k] = self.servos[k].angle(p[k]) * math.pi / 18000
+
+    def drive(self, pulses):
+        """One tick driven from outside: 18 pulses (us, 0 = keep) as the targets, then STEPS_PER_TICK steps."""
+        self.frame.write_frame(pulses)
+        self._targets()
+        for _ in range(STEPS_PER_TICK):
+            self.mj.mj_step(self.model, self.data)
+
+    def body_pose(self):
+        """The body's plan-view pose: x, y (mm), heading (rad) from the free joint."""
+        d = self.data
+        qw, qx, qy, qz = d.qpos[3:7]
+        yaw = math.atan2(2 * (qw * qz + qx * qy), 1 - 2 * (qy * qy + qz * qz))
+        return float(d.qpos[0]) * 1000, float(d.qpos[1]) * 1000, yaw
 
     # -- the walk ----------------------------------------------------------------------
 

@@ -22,7 +22,7 @@ import subprocess
 import sys
 
 from hexapod import follow as fw_follow
-from hexapod_host import mpvm
+from hexapod_host import mpvm, wall_physics
 from hexapod_host.room import MAX_MM, MIN_MM, Body, beam_distance, point_segment, segments_cross
 from hexapod_host.world import DEFAULT, WorldError, load, shipped
 
@@ -157,8 +157,10 @@ def run_trial(
     max_frames=None,
     bus="pca",
     form="yaw",
+    mover="kinematic",
 ):
-    """One trial; returns a dict of its figures (and the path when record)."""
+    """One trial; returns a dict of its figures (and the path when record). mover: "kinematic"
+    (the body moves by its stance feet) or "physics" (MuJoCo moves it: hexapod_host.wall_physics)."""
     rng = random.Random(seed)
     side = side or world.follow
     walls = world.walls
@@ -178,7 +180,7 @@ def run_trial(
     wx, wy = px + nx * (sp + off), py + ny * (sp + off)  # the side sonars' midpoint
     c, s = math.cos(theta), math.sin(theta)
     body.place(wx - (c * mx - s * my), wy - (s * mx + c * my), theta)
-    body.neutral_legs()
+    standing = body.neutral_legs()
     touched = body.touches(walls)
     if touched >= 0:
         raise WorldError(
@@ -201,7 +203,7 @@ def run_trial(
         _, code = fw.begin(side, int(round(sp * 10)), fw_follow.SPEED, form, milli, pings())
         limit = int(world.time_limit_s / FRAME_S) if max_frames is None else max_frames
         errors, path, trace = [], 0.0, []
-        old_feet = None
+        legs = wall_physics.MOVERS[mover](body, standing)
         why, faults, n = "time limit", 0, 0
         finished = False
         near = list(range(len(walls)))
@@ -210,11 +212,11 @@ def run_trial(
             code, pulses, mode, faults, reason = fw.frame(d)
             n += 1
             slip = rng.gauss(0.0, slip_sd) if disturb else 0.0
-            if not body.legs_from_pulses(pulses):
-                continue
             x0, y0 = body.x, body.y
-            path += body.move(old_feet, speed, slip)
-            old_feet = body.feet
+            moved = legs.step(pulses, speed, slip)
+            if moved is None:
+                continue
+            path += moved
             sx, sy = body.to_world(mx, my)
             dist = wall_distance(walls, sx, sy)
             err = dist - sp
@@ -266,9 +268,24 @@ def run_trial(
 
 
 def _task(args):
-    world_src, side, setpoint, seed, gains, runtime, record, form = args
+    world_src, side, setpoint, seed, gains, runtime, record, form, mover = args
     world = load(world_src)
-    return run_trial(world, setpoint, seed, gains=gains, side=side, runtime=runtime, record=record, form=form)
+    if mover != "both":
+        return run_trial(
+            world, setpoint, seed, gains=gains, side=side, runtime=runtime, record=record, form=form, mover=mover
+        )
+    # The same trial (seed, start, noise, slip, speed error) with each mover; the paths compared.
+    # The frame sink, not the I2C bus: the same frames (test_the_sink_and_the_i2c_bus_send_the_same_frames), faster.
+    pair = {}
+    for m in wall_physics.MOVERS:
+        pair[m] = run_trial(
+            world, setpoint, seed, gains=gains, side=side, runtime=runtime, record=True, form=form, mover=m, bus="sink"
+        )
+    a, b = pair["kinematic"], pair["physics"]
+    pair["path_diff_mm"], pair["path_diff_max_mm"] = wall_physics.path_difference(a["trace"], b["trace"])
+    if not record:
+        del a["trace"], b["trace"]
+    return pair
 
 
 def summarise(setpoint, results):
@@ -296,14 +313,28 @@ def summarise(setpoint, results):
 
 
 def run_trials(
-    world_src, setpoints, trials, seed, *, gains=None, side=None, runtime="cpython", jobs=None, bar=False, form="yaw"
+    world_src,
+    setpoints,
+    trials,
+    seed,
+    *,
+    gains=None,
+    side=None,
+    runtime="cpython",
+    jobs=None,
+    bar=False,
+    form="yaw",
+    mover="kinematic",
 ):
-    """All trials, in order, spread over `jobs` processes; returns {setpoint: [result, ...]}."""
+    """All trials, in order, spread over `jobs` processes; returns {setpoint: [result, ...]}.
+    mover "both": each result is {"kinematic": result, "physics": result, "path_diff_mm", "path_diff_max_mm"}."""
     world = load(world_src)
     tasks = []
     for sp in setpoints:
         for i in range(trials):
-            tasks.append((world_src, side, sp, trial_seed(seed, world.name, sp, i), gains, runtime, i == 0, form))
+            tasks.append(
+                (world_src, side, sp, trial_seed(seed, world.name, sp, i), gains, runtime, i == 0, form, mover)
+            )
     jobs = jobs or os.cpu_count() or 1
     progress = None
     if bar:
@@ -359,8 +390,9 @@ def table(rows):
     return "\n".join("  ".join(v.rjust(w) for v, w in zip(line, widths, strict=True)) for line in lines)
 
 
-def plot(path, world, traces, title):
-    """Seed 000 Fig. 9's picture: the walls, the set-point bands, one trajectory per curve."""
+def plot(path, world, traces, title, dashed=None):
+    """Seed 000 Fig. 9's picture: the walls, the set-point bands, one trajectory per curve;
+    `dashed`: (label, traces) drawn dashed in the same colours (the physics simulator's)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -401,13 +433,23 @@ def plot(path, world, traces, title):
             ys = [y1 + wny * lo, y2 + wny * lo, y2 + wny * hi, y1 + wny * hi]
             ax.fill([v / 10 for v in xs], [v / 10 for v in ys], color=col, alpha=0.25, lw=0)
         ax.plot([t[2] / 10 for t in trace], [t[3] / 10 for t in trace], color=col, lw=1.4, label="%g cm" % sp)
+        if dashed:
+            other = dashed[1][k][1]
+            ax.plot(
+                [t[2] / 10 for t in other],
+                [t[3] / 10 for t in other],
+                color=col,
+                lw=1.4,
+                ls=(0, (3, 2)),
+                label="%g cm %s" % (sp, dashed[0]),
+            )
     if len(world.walls) > 1:
         ax.set_aspect("equal")
     else:  # one straight wall: seed 000 Fig. 9's stretched view of the distance to it
         lowest = min(min(t[3] for t in trace) for _, trace in traces) / 10
         top = max(max(t[3] for t in trace) for _, trace in traces) / 10
         wall_y = world.walls[0][1] / 10
-        ax.set_ylim(min(lowest, wall_y) - 4, max(top, wall_y) + 3)
+        ax.set_ylim(min(lowest, wall_y) - (7 if dashed else 4), max(top, wall_y) + 3)  # room for the legend
     ax.set_xlabel("x (cm)")
     ax.set_ylabel("y (cm)")
     ax.set_title(title, fontsize=9)
@@ -458,6 +500,11 @@ def register(sub):
     p.add_argument("--runtime", default="cpython", metavar="RT", help="cpython or micropython (the firmware loop)")
     p.add_argument("--jobs", metavar="N", help="worker processes (default: every core)")
     p.add_argument("--form", default="yaw", metavar="FORM", help="yaw (default) or sweeps (seed 000's coxa sweeps)")
+    p.add_argument(
+        "--physics",
+        action="store_true",
+        help="run each trial twice, the body moved by its feet and by MuJoCo, and compare (docs/wall.md)",
+    )
     p.set_defaults(func=run)
 
 
@@ -499,7 +546,31 @@ def parse(args):
     return world, setpoints, trials, seed, args.follow, gains, args.runtime, jobs
 
 
+def _failures(row):
+    """A row's failures as text: "too far 2, contact 1" or "none"."""
+    return ", ".join("%s %d" % kv for kv in row["failures"].items()) or "none"
+
+
+def _print_json(total, rows, world, seed, trials, gains, runtime, form, **extra):
+    """The run as one JSON object on stdout: the totals, what was run, the rows."""
+    out = dict(total)
+    del out["setpoint_cm"]
+    out.update(
+        world=world.name,
+        seed=seed,
+        trials_per_setpoint=trials,
+        gains=list(gains),
+        runtime=runtime,
+        form=form,
+        **extra,
+        rows=rows,
+    )
+    print(json.dumps(out))
+
+
 def run(args):
+    if args.physics:
+        return run_physics(args)
     world, setpoints, trials, seed, side, gains, runtime, jobs = parse(args)
     src = world.source
     bar = not args.json and sys.stderr.isatty()
@@ -524,19 +595,7 @@ def run(args):
             % (world.name, *used),
         )
     if args.json:
-        out = dict(total)
-        del out["setpoint_cm"]
-        out.update(
-            world=world.name,
-            seed=seed,
-            trials_per_setpoint=trials,
-            gains=list(used),
-            runtime=runtime,
-            form=args.form,
-            paper_success="0.92-0.96",
-            rows=rows,
-        )
-        print(json.dumps(out))
+        _print_json(total, rows, world, seed, trials, used, runtime, args.form, paper_success="0.92-0.96")
         return 0
     side = side or world.follow
     print(
@@ -544,11 +603,98 @@ def run(args):
         "firmware on %s" % (world.name, side, trials, seed, used[0], used[1], used[2], args.form, runtime)
     )
     print(table(rows))
-    fails = {k: v for k, v in total["failures"].items()}
     print(
         "all: %.1f %% success of %d trials; failures: %s"
-        % (100 * total["success_rate"], total["trials"], ", ".join("%s %d" % kv for kv in fails.items()) or "none")
+        % (100 * total["success_rate"], total["trials"], _failures(total))
     )
+    if plot_path:
+        print("plot: %s" % plot_path)
+    return 0
+
+
+def comparison_table(rows):
+    """The side-by-side figures (wall_physics.compare rows) as aligned text."""
+    head = ("set point", "trials", "success", "(physics)", "same", "RMS error", "(physics)", "mean time", "(physics)")
+    head += ("path apart", "(max)")
+    lines = [head]
+
+    def mm(v):
+        return "-" if v is None else "%.2f mm" % v
+
+    def sec(v):
+        return "-" if v is None else "%.1f s" % v
+
+    for r in rows:
+        k, p = r["kinematic"], r["physics"]
+        lines.append(
+            (
+                "%g cm" % r["setpoint_cm"],
+                "%d" % r["trials"],
+                "%.1f %%" % (100 * k["success_rate"]),
+                "%.1f %%" % (100 * p["success_rate"]),
+                "%d" % r["same_outcome"],
+                mm(k["rms_mm"]),
+                mm(p["rms_mm"]),
+                sec(k["time_s"]),
+                sec(p["time_s"]),
+                mm(r["path_diff_mm"]),
+                mm(r["path_diff_max_mm"]),
+            )
+        )
+    widths = [max(len(line[k]) for line in lines) for k in range(len(head))]
+    return "\n".join("  ".join(v.rjust(w) for v, w in zip(line, widths, strict=True)) for line in lines)
+
+
+def run_physics(args):
+    """`hexapod sim wall --physics`: every trial with both movers, the figures side by side."""
+    world, setpoints, trials, seed, side, gains, runtime, jobs = parse(args)
+    bar = not args.json and sys.stderr.isatty()
+    by_sp = run_trials(
+        world.source,
+        setpoints,
+        trials,
+        seed,
+        gains=gains,
+        side=side,
+        runtime=runtime,
+        jobs=jobs,
+        bar=bar,
+        form=args.form,
+        mover="both",
+    )
+    rows = [wall_physics.compare(sp, by_sp[sp], summarise) for sp in setpoints]
+    total = wall_physics.compare(None, [p for sp in setpoints for p in by_sp[sp]], summarise)
+    used = gains or PAPER_GAINS
+    plot_path = args.plot if args.plot is not None else (None if args.json else PLOT)
+    if plot_path:
+        first = [by_sp[sp][0] for sp in setpoints]
+        plot(
+            plot_path,
+            world,
+            [(sp, p["kinematic"]["trace"]) for sp, p in zip(setpoints, first, strict=True)],
+            "world %s, first trial per set point: side sonars' midpoint; solid: moved by its feet, dashed: by MuJoCo"
+            % world.name,
+            dashed=("physics", [(sp, p["physics"]["trace"]) for sp, p in zip(setpoints, first, strict=True)]),
+        )
+    if args.json:
+        for r in [total] + rows:
+            for m in wall_physics.MOVERS:
+                del r[m]["setpoint_cm"]
+        _print_json(total, rows, world, seed, trials, used, runtime, args.form)
+        return 0
+    print(
+        "hexapod sim wall --physics: world %s (%s wall), %d trials per set point, seed %d, Kp %g Ki %g Kd %g, "
+        "form %s, firmware on %s; each trial run twice on the same seed: the body moved by its stance feet "
+        "(kinematic), then by MuJoCo (physics)"
+        % (world.name, side or world.follow, trials, seed, *used, args.form, runtime)
+    )
+    print(comparison_table(rows))
+    for m in wall_physics.MOVERS:
+        t = total[m]
+        print(
+            "%s: %.1f %% success of %d trials; failures: %s" % (m, 100 * t["success_rate"], t["trials"], _failures(t))
+        )
+    print("same outcome in %d of %d trials" % (total["same_outcome"], total["trials"]))
     if plot_path:
         print("plot: %s" % plot_path)
     return 0
