@@ -31,7 +31,7 @@ def test_ctrl_c_relaxes_or_holds_and_leaves_the_runner(rt, on_exit):
         + """
 import boards.pico
 boards.pico.BOARD["on_exit"] = %r
-boards.pico.BOARD["watchdog_ms"] = 2000
+boards.pico.BOARD["watchdog_ms"] = 4000
 try:
     r2 = main.main(clock=clock, reader=CtrlC(400))
 finally:
@@ -46,7 +46,7 @@ print(repr((r2 is main.runner, r2.frames, channels(), r2.robot.mode, r2.watchdog
     assert out[1].startswith("ok leg 1 angles ")  # the console answered while the loop ran
     assert out[2] == "stopped: servos %s; runner.run() resumes" % ("relaxed" if on_exit == "relax" else "held")
     same, frames, widths, mode, expired, timeout = ast.literal_eval(out[3])
-    assert same and frames > 5 and not expired and timeout == 2000
+    assert same and frames > 5 and not expired and timeout == 4000
     if on_exit == "relax":
         assert widths == [0] * 18 and mode == 0
     else:
@@ -71,9 +71,11 @@ print(repr((fed, r.watchdog.expired())))
 @pytest.mark.parametrize(
     "key, value, message",
     [
-        ("watchdog_ms", 500, "board 'pico': watchdog_ms: 500, allowed 1000..8000 ms (or None: no watchdog)"),
-        ("watchdog_ms", 9000, "board 'pico': watchdog_ms: 9000, allowed 1000..8000 ms (or None: no watchdog)"),
-        ("watchdog_ms", "2s", "board 'pico': watchdog_ms: '2s', allowed 1000..8000 ms (or None: no watchdog)"),
+        ("watchdog_ms", 500, "board 'pico': watchdog_ms: 500, allowed 4000..8000 ms (or None: no watchdog)"),
+        ("watchdog_ms", 3999, "board 'pico': watchdog_ms: 3999, allowed 4000..8000 ms (or None: no watchdog)"),
+        ("watchdog_ms", 8001, "board 'pico': watchdog_ms: 8001, allowed 4000..8000 ms (or None: no watchdog)"),
+        ("watchdog_ms", 9000, "board 'pico': watchdog_ms: 9000, allowed 4000..8000 ms (or None: no watchdog)"),
+        ("watchdog_ms", "2s", "board 'pico': watchdog_ms: '2s', allowed 4000..8000 ms (or None: no watchdog)"),
         ("on_exit", "freeze", "board 'pico': on_exit: 'freeze', allowed 'relax' or 'hold'"),
         ("walk_timeout_ms", 100, "board 'pico': walk_timeout_ms: 100, allowed 200..10000 ms"),
     ],
@@ -89,10 +91,10 @@ def test_console_settings_are_checked_at_load(key, value, message):
     with pytest.raises(ValueError) as e:
         board.validate(b)
     assert str(e.value) == message
-    for ok in (1000, 8000, None):
-        b[key] = ok if key != "on_exit" else "hold"
-        if key == "walk_timeout_ms" and ok == 8000:
-            continue
+    # and the range ends are accepted
+    ends = {"watchdog_ms": (4000, 8000, None), "walk_timeout_ms": (200, 10000, None), "on_exit": ("hold", "relax")}
+    for ok in ends[key]:
+        b[key] = ok
         board.validate(b)
 
 

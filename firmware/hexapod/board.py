@@ -129,11 +129,12 @@ def validate(board):
 
 
 def _console(ck, board):
-    """The console's settings (docs/console.md): watchdog_ms None or 1000..8000 (machine.WDT fed
-    every frame; the rp2 allows at most 8388 ms), on_exit "relax"/"hold", walk_timeout_ms
-    200..10000 (a console walk's life without renewal)."""
+    """The console's settings (docs/console.md): watchdog_ms None or 4000..8000 (machine.WDT fed
+    every frame; the rp2 allows at most 8388 ms; a gait, pose or height change runs the servo
+    guard, 1.5-1.8 s without a frame on an emulated Pico, so less would reset the board),
+    on_exit "relax"/"hold", walk_timeout_ms 200..10000 (a console walk's life without renewal)."""
     if board.get("watchdog_ms") is not None:
-        ck.int_in("watchdog_ms", board["watchdog_ms"], 1000, 8000, " ms (or None: no watchdog)")
+        ck.int_in("watchdog_ms", board["watchdog_ms"], 4000, 8000, " ms (or None: no watchdog)")
     if board.get("on_exit", "relax") not in ON_EXIT:
         ck.fail("on_exit", "%r, allowed %s" % (board["on_exit"], " or ".join(repr(x) for x in ON_EXIT)))
     if board.get("walk_timeout_ms") is not None:
