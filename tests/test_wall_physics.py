@@ -195,3 +195,17 @@ def test_cli_bad_arguments_exit_2(args, message, capsys, tmp_path, monkeypatch):
     assert exc.value.code == 2
     assert message in capsys.readouterr().err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_pair_without_a_path_difference_is_left_out_of_the_row():
+    # A trial stopped within its first 30 mm has no comparable path (path_difference gives None):
+    # the row's mean and largest difference come from the other pairs (a 200-trial run at 8 cm
+    # crashed on this before).
+    def pair(ok, diff):
+        run = {"success": ok, "time_s": 10.0 if ok else 1.0}
+        return {"kinematic": run, "physics": dict(run), "path_diff_mm": diff, "path_diff_max_mm": diff and 2 * diff}
+
+    row = wall_physics.compare(8, [pair(True, 1.0), pair(False, None), pair(True, 3.0)], lambda sp, runs: len(runs))
+    assert (row["path_diff_mm"], row["path_diff_max_mm"], row["same_outcome"], row["time_diff_s"]) == (2.0, 6.0, 3, 0.0)
+    row = wall_physics.compare(8, [pair(False, None)], lambda sp, runs: len(runs))
+    assert (row["path_diff_mm"], row["path_diff_max_mm"], row["time_diff_s"]) == (None, None, None)

@@ -147,7 +147,9 @@ def compare(setpoint, pairs, summarise):
         "physics": phys,
         "same_outcome": sum(1 for p in pairs if p["kinematic"]["success"] == p["physics"]["success"]),
         "path_diff_mm": round(sum(diffs) / len(diffs), 2) if diffs else None,
-        "path_diff_max_mm": max((p["path_diff_max_mm"] for p in pairs if diffs), default=None),
+        "path_diff_max_mm": max(
+            (p["path_diff_max_mm"] for p in pairs if p["path_diff_max_mm"] is not None), default=None
+        ),
         "time_diff_s": round(sum(p["physics"]["time_s"] - p["kinematic"]["time_s"] for p in both) / len(both), 2)
         if both
         else None,
