@@ -21,6 +21,7 @@ from hexapod.fixmath import _SIN
 _G_T1 = const(10)  # hexapod.leg's result slots (viper folds only local consts)
 _G_T2 = const(11)
 _G_T3 = const(12)
+_REPLAN = const(64)  # hexapod.walk.REPLAN_STEP
 
 _SIN_WORDS = array("i", _SIN)  # Q15, 0..90 degrees: no negative word (viper's ptr32 loads are unsigned)
 
@@ -80,6 +81,18 @@ def _clamp(xy, nx: int, ny: int, r: int) -> int:
 
 
 @micropython.viper
+def _stroke(u: int, w: int) -> int:
+    """hexapod.trajectory.swing_stroke's stroke fraction at tick u of w, Q15."""
+    n = w - 2 if w > 3 else w
+    k = u - 1 if w > 3 else u
+    if k >= n:
+        return 32768
+    if k <= 0:
+        return 0
+    return (32768 + int(_sin90((k << 1) - n, n)) + 1) >> 1
+
+
+@micropython.viper
 def swing(walker, i: int, w: int) -> int:
     """hexapod.walk.Walker._swing_step: leg i's swing foot at its next tick u of w into
     fx, fy, fz[i], the touch-down point into walker._xy; returns u."""
@@ -111,23 +124,42 @@ def swing(walker, i: int, w: int) -> int:
     c1 = k1 - (((sx >> 4) * k2) >> 11)
     c2 = k0 + (((t1 >> 4) * k2) >> 11)
     c3 = k1 - (((t0 >> 4) * k2) >> 11)
-    # trajectory.swing_stroke: the stroke fraction and u / w.
-    n = w - 2 if w > 3 else w
-    kk = u - 1 if w > 3 else u
-    stroke = 0
-    if kk >= n:
-        stroke = 32768
-    elif kk > 0:
-        stroke = (32768 + int(_sin90((kk << 1) - n, n)) + 1) >> 1
-    frac = (u << 15) // w
-    cx = c0 + int(_mq(c2 - c0, stroke))
-    cy = c1 + int(_mq(c3 - c1, stroke))
-    x = sx + int(_mq(cx, frac)) + int(_mq(t0 - sx - cx, stroke))
-    y = sy + int(_mq(cy, frac)) + int(_mq(t1 - sy - cy, stroke))
-    xy = walker._cv  # scratch (the plain code's carries)
-    xy[0] = x
-    xy[1] = y
+    # The plan at the last tick (u - 1), against where the foot is: nonzero when re-aimed.
+    xy = walker._plan
+    st = int(_stroke(u - 1, w))
+    frac = ((u - 1) << 15) // w
+    cx = c0 + int(_mq(c2 - c0, st))
+    cy = c1 + int(_mq(c3 - c1, st))
+    xy[0] = sx + int(_mq(cx, frac)) + int(_mq(t0 - sx - cx, st))
+    xy[1] = sy + int(_mq(cy, frac)) + int(_mq(t1 - sy - cy, st))
     _clamp(xy, nx, ny, r)
+    rx = int(xy[0]) - int(walker.fx[i])
+    ry = int(xy[1]) - int(walker.fy[i])
+    st = int(_stroke(u, w))
+    frac = (u << 15) // w
+    cx = c0 + int(_mq(c2 - c0, st))
+    cy = c1 + int(_mq(c3 - c1, st))
+    xy[0] = sx + int(_mq(cx, frac)) + int(_mq(t0 - sx - cx, st))
+    xy[1] = sy + int(_mq(cy, frac)) + int(_mq(t1 - sy - cy, st))
+    _clamp(xy, nx, ny, r)
+    if rx or ry:
+        # Walker._swing_step: the foot moves as the new plan does, plus at most _REPLAN a tick.
+        if 0 < st < 32768:
+            if rx > _REPLAN:
+                rx -= _REPLAN
+            elif rx < 0 - _REPLAN:
+                rx += _REPLAN
+            else:
+                rx = 0
+            if ry > _REPLAN:
+                ry -= _REPLAN
+            elif ry < 0 - _REPLAN:
+                ry += _REPLAN
+            else:
+                ry = 0
+        xy[0] = int(xy[0]) - rx
+        xy[1] = int(xy[1]) - ry
+        _clamp(xy, nx, ny, r)
     walker.fx[i] = xy[0]
     walker.fy[i] = xy[1]
     walker.fz[i] = int(walker.ground) + int(_mq(int(walker.lift) << 4, lifted))
