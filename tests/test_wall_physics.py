@@ -64,8 +64,8 @@ def test_a_straight_walk_goes_the_same_way_in_both():
 def test_an_arc_is_the_same_arc_in_both():
     # 20 mm/s at 6 deg/s (inside the servo guard's budget: not scaled), frames 300..550: the
     # model's heading goes from 36 to 66 degrees, so its steps must be turned into the body frame
-    # right. Kinematically 30 degrees on a circle of 191.0 mm (v / w). Physics: the turn within the goal (>= 95 %
-    # of the yaw rate, <= 105 %; measured 29.6 degrees), the chord within 3 % of the kinematic
+    # right. Kinematically 30 degrees on a circle of 191.0 mm (v / w). Physics: the turn within
+    # the goal (>= 95 % of the yaw rate, <= 105 %; measured 29.6 degrees), the chord within 3 % of the kinematic
     # one (as the straight walk), and pointing half its own turn off the start heading, as a
     # circle's chord does.
     (k0, p0), (k1, p1), gap = walk_both(200, 600)

@@ -9,7 +9,8 @@ Stance feet stay fixed on the ground: the walker integrates the body's planar mo
 the body frame, so a foot moves back in a straight line (an arc when turning) at constant
 speed. A swing lifts the foot from where it left the ground to its touch-down target along
 trajectory.swing_shape (seed 003 eq. 12-14 with a smooth touch-down); the target is where
-the foot must land to pass its neutral point at mid-stance (re-aimed every tick).
+the foot must land to pass its neutral point at mid-stance (re-aimed every tick; after a
+command change the foot strays at most REPLAN_STEP a tick from the new plan's own move).
 
 Reach: every foot lives in a disc of radius rho[i] around its neutral point, found by leg
 IK (hexapod.reach) at ground and lift height. Commands are scaled down so half a
