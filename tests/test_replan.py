@@ -13,20 +13,14 @@ import pytest
 
 import robots.default as d
 from hexapod import geometry, tick, walk
+from tests.test_servo_guard import standing as standing_robot
 
 # 60 degrees (6000 cdeg) per 170 ms, one 20 ms tick, the planner's share: 282.35 cdeg.
 BUDGET = 6000 * 20 / d.SERVO["speed_ms_per_60deg"] * d.SERVO["planner_share_permille"] / 1000
 
 
 def standing():
-    g = geometry.load(d)
-    robot = tick.Robot(g, tick.default_servos(g), tick.FrameBuffer())
-    t = [0]
-    robot.stand_up()
-    while robot.mode != tick.STANDING:
-        robot.tick(t[0])
-        t[0] += 20
-    return robot, t
+    return standing_robot(geometry.load(d))
 
 
 def worst_step(robot, t, commands, ticks, settle=100):
