@@ -93,6 +93,37 @@ def _stroke(u: int, w: int) -> int:
 
 
 @micropython.viper
+def _bounded(d: int) -> int:
+    """d limited to -_REPLAN.._REPLAN."""
+    if d > _REPLAN:
+        return _REPLAN
+    if d < 0 - _REPLAN:
+        return 0 - _REPLAN
+    return d
+
+
+@micropython.viper
+def _plan_at(walker, i: int, u: int, w: int) -> int:
+    """Walker._swing_at: the swing planned from leg i's lift-off to walker._xy (carries in
+    walker._cv) at tick u of w, inside the reach disc, into walker._plan; returns the stroke (Q15)."""
+    cv = walker._cv
+    c0 = int(cv[0])
+    c1 = int(cv[1])
+    t = walker._xy
+    sx = int(walker.sx[i])
+    sy = int(walker.sy[i])
+    st = int(_stroke(u, w))
+    frac = (u << 15) // w
+    cx = c0 + int(_mq(int(cv[2]) - c0, st))
+    cy = c1 + int(_mq(int(cv[3]) - c1, st))
+    xy = walker._plan
+    xy[0] = sx + int(_mq(cx, frac)) + int(_mq(int(t[0]) - sx - cx, st))
+    xy[1] = sy + int(_mq(cy, frac)) + int(_mq(int(t[1]) - sy - cy, st))
+    _clamp(xy, int(walker.nx[i]), int(walker.ny[i]), int(walker.rho[i]))
+    return st
+
+
+@micropython.viper
 def swing(walker, i: int, w: int) -> int:
     """hexapod.walk.Walker._swing_step: leg i's swing foot at its next tick u of w into
     fx, fy, fz[i], the touch-down point into walker._xy; returns u."""
@@ -119,44 +150,23 @@ def swing(walker, i: int, w: int) -> int:
     k0 = int(k[0])
     k1 = int(k[1])
     k2 = int(k[2])
-    # carry_at at lift-off (sx, sy) and at touch-down (t0, t1).
-    c0 = k0 + (((sy >> 4) * k2) >> 11)
-    c1 = k1 - (((sx >> 4) * k2) >> 11)
-    c2 = k0 + (((t1 >> 4) * k2) >> 11)
-    c3 = k1 - (((t0 >> 4) * k2) >> 11)
+    # carry_at at lift-off (sx, sy) and at touch-down (t0, t1), into _cv as the plain code has them.
+    cv = walker._cv
+    cv[0] = k0 + (((sy >> 4) * k2) >> 11)
+    cv[1] = k1 - (((sx >> 4) * k2) >> 11)
+    cv[2] = k0 + (((t1 >> 4) * k2) >> 11)
+    cv[3] = k1 - (((t0 >> 4) * k2) >> 11)
     # The plan at the last tick (u - 1), against where the foot is: nonzero when re-aimed.
     xy = walker._plan
-    st = int(_stroke(u - 1, w))
-    frac = ((u - 1) << 15) // w
-    cx = c0 + int(_mq(c2 - c0, st))
-    cy = c1 + int(_mq(c3 - c1, st))
-    xy[0] = sx + int(_mq(cx, frac)) + int(_mq(t0 - sx - cx, st))
-    xy[1] = sy + int(_mq(cy, frac)) + int(_mq(t1 - sy - cy, st))
-    _clamp(xy, nx, ny, r)
+    _plan_at(walker, i, u - 1, w)
     rx = int(xy[0]) - int(walker.fx[i])
     ry = int(xy[1]) - int(walker.fy[i])
-    st = int(_stroke(u, w))
-    frac = (u << 15) // w
-    cx = c0 + int(_mq(c2 - c0, st))
-    cy = c1 + int(_mq(c3 - c1, st))
-    xy[0] = sx + int(_mq(cx, frac)) + int(_mq(t0 - sx - cx, st))
-    xy[1] = sy + int(_mq(cy, frac)) + int(_mq(t1 - sy - cy, st))
-    _clamp(xy, nx, ny, r)
+    st = int(_plan_at(walker, i, u, w))
     if rx or ry:
         # Walker._swing_step: the foot moves as the new plan does, plus at most _REPLAN a tick.
         if 0 < st < 32768:
-            if rx > _REPLAN:
-                rx -= _REPLAN
-            elif rx < 0 - _REPLAN:
-                rx += _REPLAN
-            else:
-                rx = 0
-            if ry > _REPLAN:
-                ry -= _REPLAN
-            elif ry < 0 - _REPLAN:
-                ry += _REPLAN
-            else:
-                ry = 0
+            rx -= int(_bounded(rx))
+            ry -= int(_bounded(ry))
         xy[0] = int(xy[0]) - rx
         xy[1] = int(xy[1]) - ry
         _clamp(xy, nx, ny, r)
