@@ -126,11 +126,18 @@ for n in range(CASES):
     w.rho[i] = 50 + draw(10) % 700  # small discs: both reach clamps bind often
     w.lift = 100 + draw(9) % 501
     w.ground = -(draw(12) % 1500 + 300) << 4
+    # Where the foot was last tick: near lift-off, off the plan by less or more than the
+    # re-aim allows a tick (walk.REPLAN_STEP, 64 fine), so every branch runs.
+    spread = 100 if n % 2 else 6000
+    fx = w.fx[i] = w.sx[i] + draw(14) % (2 * spread + 1) - spread
+    fy = w.fy[i] = w.sy[i] + draw(14) % (2 * spread + 1) - spread
     su = w.su[i]
     u1 = w._swing_step(i, wt)
     plain = (u1, w.fx[i], w.fy[i], w.fz[i], list(w._xy))
     w.su[i] = su
-    w.fx[i] = w.fy[i] = w.fz[i] = 0
+    w.fx[i] = fx
+    w.fy[i] = fy
+    w.fz[i] = 0
     u2 = swing(w, i, wt)
     fast = (u2, w.fx[i], w.fy[i], w.fz[i], list(w._xy))
     clamped += (plain[4][0] - w.nx[i]) ** 2 + (plain[4][1] - w.ny[i]) ** 2 >= (w.rho[i] << 4) ** 2 - (64 * w.rho[i])

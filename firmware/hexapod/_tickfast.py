@@ -21,6 +21,7 @@ from hexapod.fixmath import _SIN
 _G_T1 = const(10)  # hexapod.leg's result slots (viper folds only local consts)
 _G_T2 = const(11)
 _G_T3 = const(12)
+_REPLAN = const(64)  # hexapod.walk.REPLAN_STEP
 
 _SIN_WORDS = array("i", _SIN)  # Q15, 0..90 degrees: no negative word (viper's ptr32 loads are unsigned)
 
@@ -80,6 +81,49 @@ def _clamp(xy, nx: int, ny: int, r: int) -> int:
 
 
 @micropython.viper
+def _stroke(u: int, w: int) -> int:
+    """hexapod.trajectory.swing_stroke's stroke fraction at tick u of w, Q15."""
+    n = w - 2 if w > 3 else w
+    k = u - 1 if w > 3 else u
+    if k >= n:
+        return 32768
+    if k <= 0:
+        return 0
+    return (32768 + int(_sin90((k << 1) - n, n)) + 1) >> 1
+
+
+@micropython.viper
+def _bounded(d: int) -> int:
+    """d limited to -_REPLAN.._REPLAN."""
+    if d > _REPLAN:
+        return _REPLAN
+    if d < 0 - _REPLAN:
+        return 0 - _REPLAN
+    return d
+
+
+@micropython.viper
+def _plan_at(walker, i: int, u: int, w: int) -> int:
+    """Walker._swing_at: the swing planned from leg i's lift-off to walker._xy (carries in
+    walker._cv) at tick u of w, inside the reach disc, into walker._plan; returns the stroke (Q15)."""
+    cv = walker._cv
+    c0 = int(cv[0])
+    c1 = int(cv[1])
+    t = walker._xy
+    sx = int(walker.sx[i])
+    sy = int(walker.sy[i])
+    st = int(_stroke(u, w))
+    frac = (u << 15) // w
+    cx = c0 + int(_mq(int(cv[2]) - c0, st))
+    cy = c1 + int(_mq(int(cv[3]) - c1, st))
+    xy = walker._plan
+    xy[0] = sx + int(_mq(cx, frac)) + int(_mq(int(t[0]) - sx - cx, st))
+    xy[1] = sy + int(_mq(cy, frac)) + int(_mq(int(t[1]) - sy - cy, st))
+    _clamp(xy, int(walker.nx[i]), int(walker.ny[i]), int(walker.rho[i]))
+    return st
+
+
+@micropython.viper
 def swing(walker, i: int, w: int) -> int:
     """hexapod.walk.Walker._swing_step: leg i's swing foot at its next tick u of w into
     fx, fy, fz[i], the touch-down point into walker._xy; returns u."""
@@ -106,28 +150,26 @@ def swing(walker, i: int, w: int) -> int:
     k0 = int(k[0])
     k1 = int(k[1])
     k2 = int(k[2])
-    # carry_at at lift-off (sx, sy) and at touch-down (t0, t1).
-    c0 = k0 + (((sy >> 4) * k2) >> 11)
-    c1 = k1 - (((sx >> 4) * k2) >> 11)
-    c2 = k0 + (((t1 >> 4) * k2) >> 11)
-    c3 = k1 - (((t0 >> 4) * k2) >> 11)
-    # trajectory.swing_stroke: the stroke fraction and u / w.
-    n = w - 2 if w > 3 else w
-    kk = u - 1 if w > 3 else u
-    stroke = 0
-    if kk >= n:
-        stroke = 32768
-    elif kk > 0:
-        stroke = (32768 + int(_sin90((kk << 1) - n, n)) + 1) >> 1
-    frac = (u << 15) // w
-    cx = c0 + int(_mq(c2 - c0, stroke))
-    cy = c1 + int(_mq(c3 - c1, stroke))
-    x = sx + int(_mq(cx, frac)) + int(_mq(t0 - sx - cx, stroke))
-    y = sy + int(_mq(cy, frac)) + int(_mq(t1 - sy - cy, stroke))
-    xy = walker._cv  # scratch (the plain code's carries)
-    xy[0] = x
-    xy[1] = y
-    _clamp(xy, nx, ny, r)
+    # carry_at at lift-off (sx, sy) and at touch-down (t0, t1), into _cv as the plain code has them.
+    cv = walker._cv
+    cv[0] = k0 + (((sy >> 4) * k2) >> 11)
+    cv[1] = k1 - (((sx >> 4) * k2) >> 11)
+    cv[2] = k0 + (((t1 >> 4) * k2) >> 11)
+    cv[3] = k1 - (((t0 >> 4) * k2) >> 11)
+    # The plan at the last tick (u - 1), against where the foot is: nonzero when re-aimed.
+    xy = walker._plan
+    _plan_at(walker, i, u - 1, w)
+    rx = int(xy[0]) - int(walker.fx[i])
+    ry = int(xy[1]) - int(walker.fy[i])
+    st = int(_plan_at(walker, i, u, w))
+    if rx or ry:
+        # Walker._swing_step: the foot moves as the new plan does, plus at most _REPLAN a tick.
+        if 0 < st < 32768:
+            rx -= int(_bounded(rx))
+            ry -= int(_bounded(ry))
+        xy[0] = int(xy[0]) - rx
+        xy[1] = int(xy[1]) - ry
+        _clamp(xy, nx, ny, r)
     walker.fx[i] = xy[0]
     walker.fy[i] = xy[1]
     walker.fz[i] = int(walker.ground) + int(_mq(int(walker.lift) << 4, lifted))

@@ -9,7 +9,8 @@ Stance feet stay fixed on the ground: the walker integrates the body's planar mo
 the body frame, so a foot moves back in a straight line (an arc when turning) at constant
 speed. A swing lifts the foot from where it left the ground to its touch-down target along
 trajectory.swing_shape (seed 003 eq. 12-14 with a smooth touch-down); the target is where
-the foot must land to pass its neutral point at mid-stance (re-aimed every tick).
+the foot must land to pass its neutral point at mid-stance (re-aimed every tick; after a
+command change the foot strays at most REPLAN_STEP a tick from the new plan's own move).
 
 Reach: every foot lives in a disc of radius rho[i] around its neutral point, found by leg
 IK (hexapod.reach) at ground and lift height. Commands are scaled down so half a
@@ -28,7 +29,7 @@ import sys
 from micropython import const
 
 from hexapod.body import FINE, FINE_SHIFT, Body
-from hexapod.fixmath import cos, isqrt, mul_q15, sin
+from hexapod.fixmath import ONE, cos, isqrt, mul_q15, sin
 from hexapod.gait import TICK_MS, TRIPOD, GaitClock, actual_cycle_ms, check_cycle_ms, check_gait, swing_stance_ticks
 from hexapod.reach import servo_radii
 from hexapod.trajectory import swing_shape, swing_stroke
@@ -52,6 +53,7 @@ SPEED_STEP = const(40)  # most vx or vy changes per tick, 0.1 mm/s (200 mm/s^2)
 YAW_STEP = const(100)  # most the yaw rate changes per tick, cdeg/s
 _HALF_TURN = const(9000)  # half a stance never turns more than this, cdeg
 _DEG360 = const(3600000)  # in fixmath.ANGLE_UNIT
+REPLAN_STEP = const(64)  # most a re-aimed swing foot strays from its plan's move a tick, per axis, fine (0.4 mm)
 _REANCHOR = const(4194304)  # ground-frame fine units before the origin is moved to the body
 
 
@@ -103,6 +105,7 @@ class Walker:
         self.next_rho = [0] * 6
         self._shape = [0, 0]
         self._stroke = [0, 0]  # swing_stroke's (stroke, carry) fractions
+        self._plan = [0, 0]  # where the swing's plan puts a foot, fine
         # The stance's ground motion over one swing at the command: x, y shift (fine), turn (Q15 rad).
         self._carry = [0, 0, 0]
         self._cv = [0, 0, 0, 0]  # this swing's carries at lift-off (x, y) and touch-down (x, y), fine
@@ -442,58 +445,78 @@ class Walker:
     def _swing(self, i, w, still):
         u = self._swing_step(i, w) if _swing_fast is None else _swing_fast(self, i, w)
         if u >= w:
-            t = self._xy
+            # Lands where the swing put it: on _xy unless a late re-aim left it short.
             self.su[i] = -1
-            self.fx[i] = t[0]
-            self.fy[i] = t[1]
             self.fz[i] = self.ground
             self._to_ground(i)
-            if self.state == STOPPING and still:
+            if self.state == STOPPING and still and self.fx[i] == self.nx[i] and self.fy[i] == self.ny[i]:
                 self.done[i] = 1
         else:
             self.su[i] = u
 
     def _swing_step(self, i, w):
         """Leg i's swing foot at its next tick u of w into fx, fy, fz[i], its touch-down point
-        into _xy; returns u (hexapod/_tickfast.py's swing is the same in viper)."""
+        into _xy; returns u (hexapod/_tickfast.py's swing is the same in viper).
+
+        The foot follows the swing planned to the touch-down point the command asks for now; when
+        the command changed since the last tick, the plan jumps, and the foot moves only as the
+        new plan does plus at most REPLAN_STEP a tick toward it (none on the first and last two
+        ticks: those move like the stance), so a late re-aim never yanks a joint."""
         u = self.su[i] + 1
         t = self._xy
         self.target(i, t)
         # Keep the touch-down point inside the reach disc, whatever the ramp is doing.
-        dx = (t[0] - self.nx[i]) >> FINE_SHIFT
-        dy = (t[1] - self.ny[i]) >> FINE_SHIFT
-        e2 = dx * dx + dy * dy
-        r = self.rho[i]
-        if e2 > r * r:
-            e = isqrt(e2)
-            t[0] = self.nx[i] + (dx * r // e << FINE_SHIFT)
-            t[1] = self.ny[i] + (dy * r // e << FINE_SHIFT)
+        self._in_reach(i, t)
         sh = swing_shape(u, w, self._shape)
+        cv = self._cv
+        self.carry_at(self.sx[i], self.sy[i], cv, 0)
+        self.carry_at(t[0], t[1], cv, 2)
+        p = self._plan
+        self._swing_at(i, u - 1, w, p)
+        rx = p[0] - self.fx[i]  # how far the plan moved since the last tick, fine (0 when steady)
+        ry = p[1] - self.fy[i]
+        self._swing_at(i, u, w, p)
+        if rx or ry:
+            st = self._stroke[0]
+            if 0 < st < ONE:
+                rx -= REPLAN_STEP if rx > REPLAN_STEP else -REPLAN_STEP if rx < -REPLAN_STEP else rx
+                ry -= REPLAN_STEP if ry > REPLAN_STEP else -REPLAN_STEP if ry < -REPLAN_STEP else ry
+            p[0] -= rx
+            p[1] -= ry
+            self._in_reach(i, p)
+        self.fx[i] = p[0]
+        self.fy[i] = p[1]
+        self.fz[i] = self.ground + mul_q15(self.lift << FINE_SHIFT, sh[1])
+        return u
+
+    def _swing_at(self, i, u, w, p):
+        """Where the swing planned from leg i's lift-off to _xy (carries in _cv) puts the foot at
+        tick u of w, inside the reach disc: into p[0:2], fine."""
+        cv = self._cv
+        t = self._xy
         sx = self.sx[i]
         sy = self.sy[i]
-        cv = self._cv
-        self.carry_at(sx, sy, cv, 0)
-        self.carry_at(t[0], t[1], cv, 2)
         st = swing_stroke(u, w, self._stroke)
         # The carry turns from lift-off's to touch-down's as the stroke goes (they differ
         # when turning); x = S + C u / w + (T - S - C) stroke.
         cx = cv[0] + mul_q15(cv[2] - cv[0], st[0])
         cy = cv[1] + mul_q15(cv[3] - cv[1], st[0])
-        x = sx + mul_q15(cx, st[1]) + mul_q15(t[0] - sx - cx, st[0])
-        y = sy + mul_q15(cy, st[1]) + mul_q15(t[1] - sy - cy, st[0])
+        p[0] = sx + mul_q15(cx, st[1]) + mul_q15(t[0] - sx - cx, st[0])
+        p[1] = sy + mul_q15(cy, st[1]) + mul_q15(t[1] - sy - cy, st[0])
         # Leaving and meeting the ground at the stance's speed carries the foot a little past
         # both ends of the swing: keep it inside the reach disc.
-        dx = (x - self.nx[i]) >> FINE_SHIFT
-        dy = (y - self.ny[i]) >> FINE_SHIFT
+        self._in_reach(i, p)
+
+    def _in_reach(self, i, p):
+        """Pull the point p[0:2] (fine) onto leg i's reach disc when it lies outside, in place."""
+        dx = (p[0] - self.nx[i]) >> FINE_SHIFT
+        dy = (p[1] - self.ny[i]) >> FINE_SHIFT
         e2 = dx * dx + dy * dy
+        r = self.rho[i]
         if e2 > r * r:
             e = isqrt(e2)
-            x = self.nx[i] + (dx * r // e << FINE_SHIFT)
-            y = self.ny[i] + (dy * r // e << FINE_SHIFT)
-        self.fx[i] = x
-        self.fy[i] = y
-        self.fz[i] = self.ground + mul_q15(self.lift << FINE_SHIFT, sh[1])
-        return u
+            p[0] = self.nx[i] + (dx * r // e << FINE_SHIFT)
+            p[1] = self.ny[i] + (dy * r // e << FINE_SHIFT)
 
     def _to_ground(self, i):
         """Pin leg i's foot where it is now, in the ground frame."""
