@@ -15,10 +15,12 @@ from hexapod_host import FIRMWARE, ROOT, mpvm
 VM_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm", "bench_tick.py")
 CONSOLE_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm", "bench_console.py")
 CONSOLE_HEAP = "512k"
-WALL_HEAP = "160k"
 # The gait rows: the walker's servo guard (physics) and jog mode (console) outgrew 128 KB beside
-# the script and its 20 KB timing buffer; a Pico has ~128 KB free after main.build.
-GAIT_HEAP = "160k"
+# the script and its 20 KB timing buffer. At 160 KB the wall row's Follower() hit MemoryError in
+# some heap layouts (158 KB failed, 150/154/162 ran, 2026-11-23): 192 KB leaves room. The heap's
+# size does not change a tick's cost or its 0 bytes; a Pico has ~109 KB free after boot.
+WALL_HEAP = "192k"
+GAIT_HEAP = "192k"
 
 
 def build_mpy(dest):
