@@ -14,6 +14,7 @@ import pytest
 import robots.default as d
 from hexapod import geometry, tick
 from hexapod.gait import RIPPLE, TETRAPOD, TRIPOD, WAVE
+from hexapod.walk import WALKING
 from hexapod_host import sim_physics as sp
 
 GUARD = {"planner_share_permille": 400}
@@ -376,3 +377,29 @@ def test_bench_guard_counts_and_runs_in_the_vm():
     tripod = out["rows"][0]
     assert (tripod["gait"], tripod["cycle_ms"]) == ("tripod", 1000)
     assert tripod["guard"]["ik_solves"] * 5 < tripod["exhaustive"]["ik_solves"]  # 2,365 vs 14,700
+
+
+# Abrupt command changes, each held past a full stance: a stance that began at one command's
+# touch-down and walks a whole stance at another used to end far past the scaled step (e.g.
+# the tetrapod's left rear foot 63 mm from neutral, its step 30 mm) and the next swing asked
+# the tibia for 390 cdeg a tick (docs/physics.md, reversals).
+REVERSALS = ((600, 0, 0), (-600, 0, 0), (0, 600, 0), (600, 0, 0), (0, -600, 0), (0, 0, 3000), (0, 0, -3000))
+
+
+@pytest.mark.parametrize("gait", [TRIPOD, TETRAPOD, RIPPLE, WAVE])
+def test_command_reversals_keep_every_joint_inside_the_budget(gait):
+    g = geometry.load(d)
+    budget = int(6000 / 8.5 * 0.4)  # the datasheet's budget (see the module docstring), cdeg per tick
+    robot, t = standing(g)
+    assert robot.set_gait(gait) == tick.OK
+    worst = 0
+    for cmd in REVERSALS:
+        assert robot.walk(*cmd) == tick.OK
+        prev = list(robot.angles)
+        for _ in range(robot.walker.clock.cycle_ticks):
+            assert robot.tick(t[0]) == tick.OK
+            t[0] += 20
+            worst = max(worst, *(abs(a - b) for a, b in zip(robot.angles, prev, strict=True)))
+            prev = list(robot.angles)
+    assert robot.walker.state == WALKING  # still walking: the guard held the body, it did not stop it
+    assert worst <= budget, worst

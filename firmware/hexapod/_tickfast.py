@@ -189,7 +189,7 @@ def stance(walker, bx: int, by: int, cd: int) -> int:
     ny = walker.ny
     fx = walker.fx
     fy = walker.fy
-    rho = walker.rho
+    rho = walker.stance_rho
     out_x = walker.ax
     out_y = walker.ay
     for i in range(6):

@@ -53,6 +53,7 @@ SPEED_STEP = const(40)  # most vx or vy changes per tick, 0.1 mm/s (200 mm/s^2)
 YAW_STEP = const(100)  # most the yaw rate changes per tick, cdeg/s
 _HALF_TURN = const(9000)  # half a stance never turns more than this, cdeg
 _DEG360 = const(3600000)  # in fixmath.ANGLE_UNIT
+STANCE_SLACK = const(16)  # a stance foot may end this far past the scaled step (rounding), 0.1 mm
 REPLAN_STEP = const(64)  # most a re-aimed swing foot strays from its plan's move a tick, per axis, fine (0.4 mm)
 _REANCHOR = const(4194304)  # ground-frame fine units before the origin is moved to the body
 
@@ -71,6 +72,11 @@ class Walker:
         self.rho = [0] * 6  # reach disc radius around each neutral foot, 0.1 mm
         self.srho = [STEP_MAX] * 6  # largest half stance the servos' speed allows, 0.1 mm
         self.next_srho = [STEP_MAX] * 6
+        # How far from neutral the body may carry a stance foot, 0.1 mm: the step the command is
+        # scaled to (reach, step, servo speed), not just the reach disc. A stance that began at
+        # another command's touch-down would otherwise end past it, and the next swing would
+        # turn the joints faster than the servo budget (docs/physics.md, 2026-11-23 reversals).
+        self.stance_rho = [0] * 6
         self.servo_peak = 0  # largest joint change (cdeg/tick) of a swing without a step, last configure
         self.pose_body = None  # the Body whose pose the servo-speed check uses (else level)
         self.fx = [0] * 6  # current feet, body frame, fine
@@ -278,6 +284,12 @@ class Walker:
             k = worst - 1 if worst >= k else worst
         if k < 0:
             k = 0
+        for i in range(6):
+            lim = self.rho[i] if self.rho[i] < self.step else self.step
+            if 0 < self.srho[i] < lim:
+                lim = self.srho[i]  # (no room to step at all: walking is refused, keep the reach)
+            lim += STANCE_SLACK
+            self.stance_rho[i] = lim if lim < self.rho[i] else self.rho[i]
         self.scale_permille = k
         self.cmd[0] = vx * k // 1000
         self.cmd[1] = vy * k // 1000
@@ -543,7 +555,7 @@ class Walker:
             ay = mul_q15(y, c) - mul_q15(x, s)
             dx = (ax - self.nx[i]) >> FINE_SHIFT
             dy = (ay - self.ny[i]) >> FINE_SHIFT
-            r = self.rho[i]
+            r = self.stance_rho[i]
             if dx * dx + dy * dy > r * r:
                 ox = (self.fx[i] - self.nx[i]) >> FINE_SHIFT
                 oy = (self.fy[i] - self.ny[i]) >> FINE_SHIFT
