@@ -179,7 +179,7 @@ def swing(walker, i: int, w: int) -> int:
 @micropython.viper
 def stance(walker, bx: int, by: int, cd: int) -> int:
     """hexapod.walk.Walker._stance: the stance feet at body (bx, by) (fine) turned cd (cdeg) into
-    ax, ay; 1 when a foot would leave its reach disc (and move away from neutral), else 0."""
+    ax, ay; 1 when a foot would leave its stance_rho disc (and move away from neutral), else 0."""
     c = int(_sin(cd + 9000))  # fixmath.cos
     s = int(_sin(cd))
     su = walker.su

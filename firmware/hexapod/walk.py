@@ -542,7 +542,7 @@ class Walker:
 
     def _stance(self, bx, by, cd):
         """The stance feet read back into the body frame with the body at (bx, by) (fine) turned
-        cd (cdeg), into ax, ay; 1 when that would carry a foot out of its reach disc (and further
+        cd (cdeg), into ax, ay; 1 when that would carry a foot out of its stance_rho disc (and further
         from neutral than it is), else 0 (hexapod/_tickfast.py's stance is the same in viper)."""
         c = cos(cd)
         s = sin(cd)
