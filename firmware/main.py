@@ -24,15 +24,17 @@ STATUS_FRAMES = 250  # 5 s of 20 ms frames
 SONAR_SAMPLES = (3, 1, 1, 1, 1)
 
 
-def build(board_name=BOARD, robot_name=ROBOT, clock=time, max_range=10000, samples=SONAR_SAMPLES):
+def build(board_name=BOARD, robot_name=ROBOT, clock=time, max_range=10000, samples=SONAR_SAMPLES, bank=None):
     """The Runner for a board and robot on this machine's I2C and pins (max_range: 0.1 mm;
-    samples: pings per median for each sensor, drivers.hcsr04 order)."""
+    samples: pings per median for each sensor, drivers.hcsr04 order; bank: where frames go,
+    None for the board's PCA9685s on its I2C)."""
     board = boards.load(board_name)
     robot_module = __import__("robots." + robot_name, None, None, ("NAME",))
-    bus = board["i2c"]
-    i2c = I2C(bus["id"], scl=Pin(bus["scl"]), sda=Pin(bus["sda"]), freq=bus["freq"])
     table = boards.servo_table(board)
-    bank = pca9685.servo_bank(i2c, board["pca9685"], table, sleep_us=clock.sleep_us)
+    if bank is None:
+        bus = board["i2c"]
+        i2c = I2C(bus["id"], scl=Pin(bus["scl"]), sda=Pin(bus["sda"]), freq=bus["freq"])
+        bank = pca9685.servo_bank(i2c, board["pca9685"], table, sleep_us=clock.sleep_us)
     sensors = []
     pins = boards.sensor_pins(board)
     for k in range(len(pins)):

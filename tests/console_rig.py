@@ -15,24 +15,15 @@ import _stub_clock as clock
 import _stub_i2c
 import _stub_pins
 import hcsr04_model
-from _stub_i2c import shared_bus
-from pca9685_model import PCA9685Model
+import stub_board
 from hexapod import board as boards
 import console
 import main
 
-clock.reset(0)
-_stub_pins.reset()
-_stub_i2c.reset()
-bus = shared_bus(0)
-bus.clock_us = clock.now_us
-BOARD = boards.load("pico")
+BOARD = stub_board.reset("pico")
 TABLE = boards.servo_table(BOARD)
-chips = {}
-for c in BOARD["pca9685"]["chips"]:
-    chips[c["address"]] = PCA9685Model(c["address"], osc_hz=c["osc_hz"])
-    bus.attach(chips[c["address"]])
-SONAR = [hcsr04_model.HCSR04(t, e, distance=3000 + 1000 * k) for k, (t, e) in enumerate(boards.sensor_pins(BOARD))]
+bus, chips = stub_board.pca9685_models(BOARD)
+SONAR = stub_board.sonar_models(BOARD, [3000 + 1000 * k for k in range(5)])
 r = main.build(clock=clock)
 reader = console.BufferReader()
 REPLIES = []

@@ -7,22 +7,14 @@ import _stub_clock as clock
 import _stub_i2c
 import _stub_pins
 import hcsr04_model
-from _stub_i2c import shared_bus
-from pca9685_model import PCA9685Model
+import stub_board
 from hexapod import board as boards
 import main
 
-clock.reset(0)
-_stub_pins.reset()
-_stub_i2c.reset()
-bus = shared_bus(0)
-bus.clock_us = clock.now_us
-BOARD = boards.load("pico")
+BOARD = stub_board.reset("pico")
 TABLE = boards.servo_table(BOARD)
-chips = {}
-for c in BOARD["pca9685"]["chips"]:
-    chips[c["address"]] = PCA9685Model(c["address"], osc_hz=c["osc_hz"])
-SONAR = [hcsr04_model.HCSR04(t, e, distance=3000 + 1000 * k) for k, (t, e) in enumerate(boards.sensor_pins(BOARD))]
+bus, chips = stub_board.pca9685_models(BOARD, attach=False)
+SONAR = stub_board.sonar_models(BOARD, [3000 + 1000 * k for k in range(5)])
 
 
 def plug(address):
@@ -160,7 +152,7 @@ print((heap_bytes(run, 300), r.frames, r.held, r.bank.failed_frames, r.robot.mod
 
 def test_esp32_board_builds_and_runs(rt):
     src = (
-        SETUP.replace('boards.load("pico")', 'boards.load("esp32_devkit")')
+        SETUP.replace('stub_board.reset("pico")', 'stub_board.reset("esp32_devkit")')
         + """
 plug(0x40)
 plug(0x41)

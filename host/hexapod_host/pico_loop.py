@@ -17,19 +17,9 @@ DISTANCES = (3000, 4000, 5000, 6000, 7000)  # 0.1 mm, drivers.hcsr04 order
 HOST_SETUP = """
 import sys
 import _stub_clock as clock
-import _stub_i2c
-import _stub_pins
-import hcsr04_model
-from _stub_i2c import shared_bus
-from pca9685_model import PCA9685Model
-from hexapod import board as boards
+import stub_board
 
-clock.reset(0)
-_stub_pins.reset()
-_stub_i2c.reset()
-bus = shared_bus(0)
-bus.clock_us = clock.now_us
-BOARD = boards.load("pico")
+BOARD = stub_board.reset("pico")
 BURSTS = []
 
 
@@ -64,11 +54,11 @@ def counts(r):
     return out
 
 
-for c in BOARD["pca9685"]["chips"]:
-    m = PCA9685Model(c["address"], osc_hz=c["osc_hz"])
+bus, chips = stub_board.pca9685_models(BOARD, attach=False)
+for m in chips.values():
     recorder(m)
     bus.attach(m)
-SONAR = [hcsr04_model.HCSR04(t, e, distance=d) for (t, e), d in zip(boards.sensor_pins(BOARD), %r)]
+SONAR = stub_board.sonar_models(BOARD, %r)
 sys.argv[:] = ["host", "%d"]
 """
 

@@ -14,12 +14,9 @@ cannot tell: it sees pins, a clock and a bus.
 """
 
 import _stub_clock as clock
-import _stub_i2c
-import _stub_pins
 import hcsr04_model
 import main
-from _stub_i2c import shared_bus
-from pca9685_model import PCA9685Model
+import stub_board
 
 from hexapod import board as boards
 from hexapod import tick
@@ -56,24 +53,15 @@ class Rig:
     """main.build's Runner on the stub machine, HC-SR04 models at distances the caller sets."""
 
     def __init__(self, board_name="pico", bus="pca"):
-        clock.reset(0)
-        _stub_pins.reset()
-        _stub_i2c.reset()
-        board = boards.load(board_name)
-        if bus == "pca":
-            i2c_bus = shared_bus(board["i2c"]["id"])
-            i2c_bus.clock_us = clock.now_us
-            for c in board["pca9685"]["chips"]:
-                i2c_bus.attach(PCA9685Model(c["address"], osc_hz=c["osc_hz"]))
-        elif bus != "sink":
+        if bus not in ("pca", "sink"):
             raise ValueError("bus: %r, allowed 'pca' or 'sink'" % (bus,))
-        self.sonars = [hcsr04_model.HCSR04(t, e, distance=40001) for t, e in boards.sensor_pins(board)]
+        board = stub_board.reset(board_name)
         if bus == "pca":
-            self.runner = main.build(board_name, clock=clock)
-            self.tee = Tee(self.runner.bank)
-        else:
-            self.runner = _build_on_sink(board_name)
-            self.tee = Tee(None)
+            stub_board.pca9685_models(board)
+        self.sonars = stub_board.sonar_models(board, [40001] * len(boards.sensor_pins(board)))
+        # bus="sink": the Tee alone stands for the servo bank (no I2C traffic)
+        self.runner = main.build(board_name, clock=clock, bank=None if bus == "pca" else Tee(None))
+        self.tee = Tee(self.runner.bank if bus == "pca" else None)
         self.runner.robot.frame = self.tee
         self.robot = self.runner.robot
         self.follower = self.runner.follower
@@ -113,30 +101,6 @@ class Rig:
         code = self.step()
         f = self.follower
         return code, self.tee.pulses, f.mode, f.fault_total, f.reason
-
-
-def _build_on_sink(board_name):
-    """main.build with the servo bank replaced by the Tee alone (no I2C traffic)."""
-    from machine import Pin, time_pulse_us
-    from runner import Runner
-
-    import robots.default
-    from drivers import hcsr04
-    from hexapod import geometry
-
-    board = boards.load(board_name)
-    table = boards.servo_table(board)
-    sensors = []
-    pins = boards.sensor_pins(board)
-    for k in range(len(pins)):
-        trigger, echo = pins[k]
-        sensors.append(
-            hcsr04.HCSR04(
-                Pin(trigger, Pin.OUT), Pin(echo, Pin.IN), clock, time_pulse_us, samples=main.SONAR_SAMPLES[k], irq=True
-            )
-        )
-    g = geometry.load(robots.default)
-    return Runner(g, [row[2] for row in table], Tee(None), sensors, clock, boards.sensor_mounts(board))
 
 
 def serve(readline=None, write=None):
