@@ -25,7 +25,7 @@ WALK_TIMEOUT_MS = const(1000)
 JOINTS = ("coxa", "femur", "tibia")
 COMMANDS = (
     "help status stand sit relax foot nudge joint pulse get walk stop gait sonar wall pid "
-    "cal trim dir range save load defaults"
+    "cal trim dir range save load defaults echo"
 )
 _STATUS_WORDS = ("ok", "out_of_range", "no_echo", "stuck", "too_close", "wait")
 
@@ -93,9 +93,10 @@ class BufferReader:
 class Console:
     """Command lines -> calls on a runner.Runner; replies through `out` (print on a board)."""
 
-    def __init__(self, runner, reader=None, out=print, store=None, walk_timeout_ms=WALK_TIMEOUT_MS):
+    def __init__(self, runner, reader=None, out=print, store=None, walk_timeout_ms=WALK_TIMEOUT_MS, write=None):
         """runner: runner.Runner; reader: has read_byte(); store: calstore.Store or None (no
-        file: save/load answer err); walk_timeout_ms: a console walk's life without renewal."""
+        file: save/load answer err); walk_timeout_ms: a console walk's life without renewal;
+        write: raw text out without a line end (sys.stdout.write), for `echo on`."""
         self.runner = runner
         self.robot = runner.robot
         self.reader = reader
@@ -104,8 +105,11 @@ class Console:
         self.walk_timeout_ms = walk_timeout_ms
         self._buf = bytearray(LINE_MAX)
         self._n = 0
-        self._long = False
+        self._over = 0  # characters typed past LINE_MAX (dropped, but a backspace takes them back)
         self._bad = -1  # the first non-text byte of the line being read
+        self._bad_at = 0  # its position in the line
+        self.write = write
+        self.echo = False  # typed characters sent back (a person in a terminal; off for tools)
         self._cr = False
         self._walking = False  # a console walk runs, expiring at _deadline (ticks_ms)
         self._deadline = 0
@@ -138,6 +142,7 @@ class Console:
             "save": self._save,
             "load": self._load,
             "defaults": self._defaults,
+            "echo": self._echo,
         }
 
     # -- the frame's part ---------------------------------------------------------------
@@ -165,18 +170,37 @@ class Console:
                 self._end_line()
                 continue
             self._cr = False
+            if b == 8 or b == 127:  # backspace (terminals send either): the line's last character goes
+                self._erase()
+                continue
             if self._n >= LINE_MAX:
-                self._long = True
+                self._over += 1  # not echoed either: the terminal shows where the line stopped
             else:
                 self._buf[self._n] = b
                 self._n += 1
+                if self.echo and (32 <= b <= 126 or b == 9):
+                    self.write(chr(b) if b != 9 else " ")
             if ((b < 32 and b != 9) or b > 126) and self._bad < 0:
                 self._bad = b
+                self._bad_at = self._n + self._over - 1
+
+    def _erase(self):
+        if self._over:
+            self._over -= 1
+        elif self._n:
+            self._n -= 1
+            b = self._buf[self._n]
+            if self.echo and (32 <= b <= 126 or b == 9):  # only what was echoed is rubbed out
+                self.write("\b \b")
+        if self._bad >= 0 and self._n + self._over <= self._bad_at:
+            self._bad = -1  # the non-text byte itself was taken back
 
     def _end_line(self):
         n = self._n
         self._n = 0
-        if self._long:
+        if self.echo:
+            self.write("\r\n")
+        if self._over:
             reply = "err line too long (at most %d characters)" % LINE_MAX
         elif self._bad >= 0:
             reply = "err non-text byte 0x%02x in line (allowed: printable ASCII)" % self._bad
@@ -186,7 +210,7 @@ class Console:
             reply = self.do(bytes(self._buf[:n]).decode())
             if reply is None:
                 return
-        self._long = False
+        self._over = 0
         self._bad = -1
         self.lines += 1
         self.out(reply)
@@ -581,6 +605,15 @@ class Console:
             self._defaults([])
         return reply
 
+    def _echo(self, args):
+        if len(args) > 1 or (args and args[0] not in ("on", "off")):
+            raise ValueError("need on, off or nothing (ask), got %r" % (" ".join(args)[:20],))
+        if args and args[0] == "on" and self.write is None:
+            raise ValueError("this console has no raw output to echo to")
+        if args:
+            self.echo = args[0] == "on"
+        return "ok echo " + ("on" if self.echo else "off")
+
     def _defaults(self, args):
         self._args(args, 0, "no arguments")
         code = self.apply([(0, b[1], b[2], b[3]) for b in self.base])
@@ -590,11 +623,12 @@ class Console:
         return "ok defaults"
 
 
-def start(runner, reader, os=None, opener=open, out=print, walk_timeout_ms=WALK_TIMEOUT_MS):
+def start(runner, reader, os=None, opener=open, out=print, walk_timeout_ms=WALK_TIMEOUT_MS, write=None):
     """Attach a console to runner (runner.console) and load the calibration file (os: the
-    filesystem module, None: none). Prints one 'cal: ...' line when the file cannot be used."""
+    filesystem module, None: none). Prints one 'cal: ...' line when the file cannot be used.
+    write: raw text out (sys.stdout.write) for `echo on`; None: echo is refused."""
     store = None if os is None else Store(os, opener)
-    c = Console(runner, reader, out, store, walk_timeout_ms)
+    c = Console(runner, reader, out, store, walk_timeout_ms, write)
     if store is not None:
         reply = c.load_file()
         if reply.startswith("ok defaults ("):

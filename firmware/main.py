@@ -67,10 +67,17 @@ def main(frames=-1, clock=time, board_name=BOARD, robot_name=ROBOT, reader=None)
     r = runner = build(board_name, robot_name, clock)
     if reader is not None:
         import os
+        import sys
 
         import console
 
-        console.start(r, reader, os, walk_timeout_ms=r.board.get("walk_timeout_ms") or console.WALK_TIMEOUT_MS)
+        console.start(
+            r,
+            reader,
+            os,
+            walk_timeout_ms=r.board.get("walk_timeout_ms") or console.WALK_TIMEOUT_MS,
+            write=sys.stdout.write,
+        )
     r.robot.stand_up()
     if r.board.get("follow"):
         r.follow_when_standing(r.board["follow"])

@@ -78,7 +78,7 @@ def test_commands_reply_one_line_each_on_both_runtimes(both_runtimes):
     assert len(replies) == len(lines)
     assert replies[0] == (
         "ok help status stand sit relax foot nudge joint pulse get walk stop gait sonar wall pid "
-        "cal trim dir range save load defaults"
+        "cal trim dir range save load defaults echo"
     )
     assert replies[3].startswith("ok leg 2 angles 0.00 12.50 ") and " pulses 1500 1625 " in replies[3]
     assert " angles 0.00 12.50 -80.00 pulses 1500 1625 1600 " in replies[4]  # 2400 + 10 x -80
@@ -344,3 +344,63 @@ def test_while_following_a_wall_jogs_and_walks_are_refused_until_wall_off(rt):
     for reply, word in zip(r[2:6], ("foot", "joint", "walk", "relax"), strict=True):
         assert reply == "err %s: the robot is following a wall; 'wall off' first" % word
     assert r[6] == "ok wall off" and r[7].startswith("ok mode ")
+
+
+def test_backspace_and_echo(rt):
+    """A person in a terminal: backspace (0x08 or 0x7f) takes back the line's last character,
+    `echo on` sends typed characters back; tools (echo off, the default) see only replies."""
+    src = (
+        RIG
+        + """
+RAW = []
+con.write = RAW.append
+def run(data, n=3):
+    del REPLIES[:]
+    del RAW[:]
+    reader.feed(data)
+    frames(n)
+    return [list(REPLIES), "".join(RAW)]
+print(repr(run(b"get 2x\\x7f\\r")))
+print(repr(run(b"echo\\necho on\\n")))
+print(repr(run(b"gex\\x08t\\t1\\r\\n")))
+print(repr(run(b"\\x7f\\x7f\\n")))
+print(repr(run(b"get 3\\x01\\x7f\\n")))
+print(repr(run(b"get\\x01 3\\x7f\\n")))
+print(repr(run(b"x" * 96 + b"\\x7f\\n", 5)))
+print(repr(run(b"x" * 97 + b"\\x7f\\x7f\\x7f\\n", 5)))
+print(repr(run(b"echo off\\nget 4\\n")))
+"""
+    )
+    out = [ast.literal_eval(x) for x in rt.run(src, heapsize="4m").splitlines()]
+    assert out[0][0][0].startswith("ok leg 2 ") and out[0][1] == ""  # the typo went; echo off: nothing raw
+    assert out[1] == [["ok echo off", "ok echo on"], ""]
+    (reply,), raw = out[2]
+    assert reply.startswith("ok leg 1 ") and raw == "gex\b \bt 1\r\n"  # a tab echoes as a space
+    assert out[3] == [[], "\r\n"]  # nothing to take back, a blank line: no reply
+    (reply,), raw = out[4]
+    assert reply.startswith("ok leg 3 ") and raw == "get 3\r\n"  # the unechoed 0x01 is not rubbed out
+    assert out[5] == [["err non-text byte 0x01 in line (allowed: printable ASCII)"], "get 3\b \b\r\n"]
+    # 96 characters less one is exactly a line again; the 96th was never echoed
+    (reply,), raw = out[6]
+    assert reply == "err unknown command 'xxxxxxxxxxxxxxxxxxxx' (help lists them)" and raw == "x" * 95 + "\r\n"
+    (reply,), raw = out[7]
+    assert reply.startswith("err unknown command") and raw == "x" * 95 + "\b \b\r\n"
+    assert out[8][0][0] == "ok echo off" and out[8][0][1].startswith("ok leg 4 ") and out[8][1] == "echo off\r\n"
+
+
+def test_echo_refuses_bad_words(rt):
+    src = (
+        RIG
+        + """
+for line in ("echo maybe", "echo on off", "echo ON", "echo 1", "echo on"):
+    print(repr(say(line)))
+con.write = print
+print(repr(say("echo on off")))
+print(repr(con.echo))
+"""
+    )
+    out = [ast.literal_eval(x) for x in rt.run(src, heapsize="4m").splitlines()]
+    need = "err echo: need on, off or nothing (ask), got %r"
+    assert out[:4] == [need % "maybe", need % "on off", need % "ON", need % "1"]
+    assert out[4] == "err echo: this console has no raw output to echo to"  # the rig's console has none
+    assert out[5] == need % "on off" and out[6] is False  # refused: echo stays off

@@ -161,3 +161,23 @@ def test_a_walk_not_renewed_stops_in_real_time(board):
     while status_of(link)["mode"] != "standing":  # the steps under way finish, the feet land
         assert time.monotonic() < deadline
         time.sleep(0.05)
+
+
+def test_echo_on_a_terminal(board):
+    """A person in `screen`: after `echo on` the board sends back what is typed, a backspace
+    as \\b \\b, the line end as \\r\\n, then the reply; the link still finds its replies."""
+    path, link = board()
+    assert link.request("echo on") == "ok echo on"
+    link.port.write(b"get 1\x7f2\r")
+    link.port.flush()
+    deadline = time.monotonic() + 10
+    raw = b""
+    while raw.count(b"\n") < 2 and time.monotonic() < deadline:
+        raw += link.port.read(256)
+    echoed, reply = raw.split(b"\r\n", 1)
+    assert echoed == b"get 1\b \b2"
+    assert reply.strip().startswith(b"ok leg 2 angles ")
+    assert link.request("get 3").startswith("ok leg 3 ")  # the echoed line goes to link.other
+    assert link.other[-1] == "get 3"
+    assert link.request("echo off") == "ok echo off"
+    link.close()

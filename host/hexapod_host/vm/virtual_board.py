@@ -12,40 +12,30 @@ import sys
 import time
 
 import _stub_clock as clock
-import _stub_i2c
-import _stub_pins
 import console
-import hcsr04_model
 import main
-from _stub_i2c import shared_bus
-from pca9685_model import PCA9685Model
-
-from hexapod import board as boards
+import stub_board
 
 BOARD = sys.argv[1] if len(sys.argv) > 1 else "pico"
 ROBOT = sys.argv[2] if len(sys.argv) > 2 else "default"
 CAL_DIR = sys.argv[3] if len(sys.argv) > 3 else ""
 FRAMES = int(sys.argv[4]) if len(sys.argv) > 4 else -1
 
-clock.reset(0)
-_stub_pins.reset()
-_stub_i2c.reset()
-bus = shared_bus(0)
-bus.clock_us = clock.now_us
-board = boards.load(BOARD)
-chips = []
-for c in board["pca9685"]["chips"]:
-    m = PCA9685Model(c["address"], osc_hz=c["osc_hz"])
-    bus.attach(m)
-    chips.append(m)
+board = stub_board.reset(BOARD)
+bus, models = stub_board.pca9685_models(board)
+chips = [models[a] for a in sorted(models)]  # the model command: 0x40 first
 # Walls 30-70 cm away, one per sensor, so `sonar` has something to show.
-sonars = [hcsr04_model.HCSR04(t, e, distance=3000 + 1000 * k) for k, (t, e) in enumerate(boards.sensor_pins(board))]
+sonars = stub_board.sonar_models(board, [3000 + 1000 * k for k in range(5)])
 
 r = main.build(BOARD, ROBOT, clock=clock)
 if CAL_DIR:
     os.chdir(CAL_DIR)
 con = console.start(
-    r, console.PollReader(), os if CAL_DIR else None, walk_timeout_ms=board.get("walk_timeout_ms") or 1000
+    r,
+    console.PollReader(),
+    os if CAL_DIR else None,
+    walk_timeout_ms=board.get("walk_timeout_ms") or 1000,
+    write=sys.stdout.write,
 )
 
 
