@@ -97,6 +97,7 @@ def _pump(t) -> int:
                 _TIMER.deinit()
             return 0
         j = k
+        s[7] = r[21]  # a TX_ABRT left by machine.I2C's own transactions is not this write's
         r[27] = 0  # IC_TAR changes only while IC_ENABLE is 0
         r[1] = s[8 + 8 * j]
         r[27] = 1
