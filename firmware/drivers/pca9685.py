@@ -445,23 +445,29 @@ class ServoBank:
             self.reinits += 1
         return st
 
+    @micropython.native
     def write(self, pulses_us):
         """pulses_us[k] (us) to servo k, each forced into its calibrated min..max; status bits.
 
         A pulse of 0 means no pulse at all: that servo goes limp (channel full OFF).
         """
-        n = self._n
-        if len(pulses_us) != n:
-            raise ValueError("%d pulses for %d servos" % (len(pulses_us), n))
+        if len(pulses_us) != self._n:
+            raise ValueError("%d pulses for %d servos" % (len(pulses_us), self._n))
         got = -1
         if _stage_all is not None:
             try:
                 got = _stage_all(pulses_us, self._maps, self._tab, self._bufs)
             except (TypeError, OverflowError):  # not an int: the plain path says which and how
                 got = -1
-        if got >= 0:  # all staged in one viper call; else the plain path (it raises on a bad pulse)
+        if got < 0:
+            self._stage_plain(pulses_us)
+        else:  # all staged in one viper call
             self.clamped += got
-            return self._flush_all()
+        return self._flush_all()
+
+    def _stage_plain(self, pulses_us):
+        """write()'s staging without viper (CPython) or for a list stage_all leaves to it (it raises)."""
+        n = self._n
         for k in range(n):  # refuse a bad list before staging any of it
             if type(pulses_us[k]) is not int:
                 raise ValueError("servo %d: pulse_us %r, allowed an int (us)" % (k, pulses_us[k]))
@@ -474,7 +480,6 @@ class ServoBank:
             if q != p:
                 self.clamped += 1
             self._chip_of[k].stage(self._ch_of[k], q)  # (raises on a limit outside 500..2500 us)
-        return self._flush_all()
 
     @micropython.native
     def _flush_all(self):
