@@ -9,6 +9,13 @@ that reset (brownout), which is then initialised again and sent the frame.
 
 MODE2.OCH is set (outputs change on ACK): a channel's output only changes once all four of
 its registers arrived, so a burst cut short by a NACK never outputs half a pulse width.
+
+On the rp2 port (viper) servo_bank() sends the frames in the background (drivers/_i2c_rp2.py:
+the I2C block's FIFO refilled by a timer IRQ) and stages all servos in one viper call: the CPU no
+longer waits for the bus. A burst's outcome (RETRIED, FAILED, `errors`) then comes with the
+NEXT frame's status (ServoBank.sync() takes it in at once); every other transaction (MODE1
+read-back, start-up, off, relax) first waits, bounded, for the bus; the MODE1 read-backs of the
+chips fall on different frames. Elsewhere (ESP32, CPython, the VM) writes block, as before.
 """
 
 from array import array
