@@ -225,11 +225,21 @@ class Sender:
         return True
 
     def _drop(self):
-        irq = machine.disable_irq()
+        """The bus never finished (a chip holding SCL low?): timer off, the transfer aborted as the
+        datasheet says (IC_ENABLE.ABORT: STOP, TX FIFO flushed; the block clears ABORT when done,
+        waited for 1 ms at most), the block off and on, the queued writes FAILED. Not exercised on
+        the emulator (rp2040js models neither a held SCL nor the abort's end)."""
         self._timer.deinit()
         s = self._st
         m = machine.mem32
-        m[s[0] + 0x6C] = 0  # IC_ENABLE 0 flushes the FIFO
+        enable = s[0] + 0x6C
+        m[enable] = 3  # ENABLE | ABORT
+        t0 = ticks_us()
+        while m[enable] & 2 and ticks_diff(ticks_us(), t0) < 1000:
+            pass
+        m[enable] = 0  # IC_ENABLE 0 flushes the FIFO whatever the abort did
+        m[enable] = 1
+        s[7] = m[s[0] + 0x54]  # reading IC_CLR_TX_ABRT clears it
         for j in range(SLOTS):
             o = 8 + 8 * j
             if s[o + 2]:
@@ -237,8 +247,6 @@ class Sender:
                 s[o + 4] |= _FAILED
         s[_ACTIVE] = -1
         s[_RUN] = 0
-        m[s[0] + 0x6C] = 1
-        machine.enable_irq(irq)
 
     @property
     def stats(self):
