@@ -5,6 +5,8 @@ the blocking path and on the sender (there one frame later: a burst's outcome co
 next frame), worked out by hand below, not from the driver."""
 
 import json
+import os
+import tempfile
 
 import pytest
 
@@ -36,6 +38,8 @@ for n in range(%d):
         power.value(0)
     out.append(bank.write_frame(pulses))
     time.sleep_ms(20)
+bank.write_frame([1000] * 18)  # two frames back to back: the second waits for the first's bus
+bank.write_frame([2000] * 18)
 end = bank.sync()
 bg = bank._sender
 print(json.dumps({"status": out, "sync": end, "failed_frames": bank.failed_frames, "reinits": bank.reinits,
@@ -46,9 +50,17 @@ print(json.dumps({"status": out, "sync": end, "failed_frames": bank.failed_frame
 
 def on_board(background, fs):
     src = SCRIPT % (POWER_PIN, background, FRAMES, OFF, ON)
-    status, out, err, _ = pico.run_source(src, fs=fs, devices=pico.devices(power_pins={0x41: POWER_PIN}))
+    with tempfile.TemporaryDirectory() as tmp:
+        trace = os.path.join(tmp, "trace.jsonl")
+        status, out, err, _ = pico.run_source(
+            src, fs=fs, devices=pico.devices(power_pins={0x41: POWER_PIN}), trace=trace
+        )
+        with open(trace) as f:
+            bursts = [(r["chip"], r["counts"]) for r in map(json.loads, f) if "chip" in r]
     assert status == 0, out + err
-    return json.loads(out.strip().splitlines()[-1])
+    got = json.loads(out.strip().splitlines()[-1])
+    got["bursts"] = bursts
+    return got
 
 
 @pytest.fixture(scope="module")
@@ -82,8 +94,12 @@ def test_a_chip_powered_off_and_on_mid_run(background, fs):
     assert got["failed_frames"] == ON - OFF and got["reinits"] == 1
     assert got["errors"] == [0, 3 * (ON - OFF) + 3] and got["resets"] == [0, 1]
     assert got["sync"] == 0  # the last frame's bursts went through
+    # The two frames written back to back both arrived, in order: 1000 and 2000 us are
+    # round(t * 25 MHz / 122) = 205 and 410 counts at PRE_SCALE 121 (data sheet eq. 1).
+    last = [(0x40, 205), (0x41, 205), (0x40, 410), (0x41, 410)]
+    assert [(a, c[:9]) for a, c in got["bursts"][-4:]] == [(a, [n] * 9) for a, n in last]
     if background:
         refills, done, nacks = got["stats"]
-        assert done == 2 * FRAMES - (ON - OFF)  # every burst but the failed ones
+        assert done == 2 * (FRAMES + 2) - (ON - OFF)  # every burst but the failed ones
         assert nacks == 3 * (ON - OFF)  # the address NACKs the sender saw (the reads are blocking)
         assert got["errno"] == [0, 5]  # EIO, what machine.I2C raises for a NACK on silicon
