@@ -37,3 +37,82 @@ def test_viper_stage_bytes_equal_the_plain_path_and_the_data_sheet(both_runtimes
             us = 500 + k  # PULSE_MIN_US..PULSE_MAX_US
             exact = Fraction(us * osc, 1000000 * (prescale + 1))  # data sheet: counts = t * osc / (prescale + 1)
             assert off - on == int(exact + Fraction(1, 2)), (osc, us, on, off)  # rounded half up
+
+
+# ServoBank.write's one-call staging (stage_all) against the plain path: two chips at different
+# oscillators, servos on shuffled channels, ServoMaps with their own limits, one swapped and one
+# recalibrated between frames; a pulse of 0 (full OFF), pulses at and 1 us past every limit.
+LIMITS = [(600 + 40 * k, 2400 - 30 * k) for k in range(18)]
+CHANNELS = [(k % 2, (5 * (k // 2)) % 9) for k in range(18)]
+
+
+def bank_cases():
+    import random
+
+    rng = random.Random(7)
+    cases = []
+    for lo, hi in LIMITS[:6]:
+        cases.append([lo - 1, lo, lo + 1, hi - 1, hi, hi + 1] * 3)
+    for _ in range(40):
+        cases.append([rng.choice((0, rng.randint(500, 2500), rng.randint(-5, 3000))) for _ in range(18)])
+    return cases
+
+
+BANK_SRC = """
+from i2c_bus import I2CBus
+from pca9685_model import PCA9685Model
+from drivers import pca9685
+from hexapod.servo import ServoMap
+import machine
+bus = I2CBus()
+bus.attach(PCA9685Model(0x40, osc_hz=25000000))
+bus.attach(PCA9685Model(0x41, osc_hz=25750000))
+i2c = machine.I2C(0, bus=bus)
+chips = [pca9685.PCA9685(i2c, 0x40, osc_hz=25000000, channels=9, stagger_us=100, sleep_us=bus.sleep_us),
+         pca9685.PCA9685(i2c, 0x41, osc_hz=25750000, channels=9, sleep_us=bus.sleep_us)]
+maps = [ServoMap(centre_us=(lo + hi) // 2, min_us=lo, max_us=hi) for lo, hi in %r]
+B = pca9685.ServoBank(chips, %r, maps)
+out = [pca9685._stage_all is not None]
+def frames():
+    return [bytes(c._frame) for c in chips]
+def err(p):
+    before = frames()
+    try:
+        B.write(p)
+        return ("no error",)
+    except Exception as e:
+        return (type(e).__name__, str(e), frames() == before)
+for k, p in enumerate(%r):
+    if k == 20:
+        B._maps[3] = ServoMap(centre_us=1450, min_us=1400, max_us=1500)  # a swapped ServoMap
+        B._maps[5].min_us = 1000  # a recalibrated one
+    B.write(p)
+    out.append((frames(), B.clamped))
+bad = [1500] * 18
+for v in (True, False, 1500.0, "1500", None, 2 ** 40):
+    p = list(bad)
+    p[7] = v
+    out.append(err(p))
+print(out)
+"""
+
+
+def test_bank_staging_in_one_viper_call_equals_the_plain_path(both_runtimes):
+    cases = bank_cases()
+    cp, mp = both_runtimes(BANK_SRC % (LIMITS, CHANNELS, cases), heapsize="4m")
+    cp, mp = eval(cp.strip().splitlines()[-1]), eval(mp.strip().splitlines()[-1])  # noqa: S307 (our own repr)
+    assert cp[0] is False and mp[0] is True  # CPython stages in Python, the VM in one viper call
+    assert cp[1:] == mp[1:]  # every frame byte for byte, the clamp counts, the refusals
+    # The clamp count by hand: pulses outside each ServoMap's limits (0 is no pulse, not clamped).
+    limits = list(LIMITS)
+    clamped = 0
+    for k, p in enumerate(cases):
+        if k == 20:
+            limits[3] = (1400, 1500)
+            limits[5] = (1000, limits[5][1])
+        clamped += sum(1 for v, (lo, hi) in zip(p, limits, strict=True) if v and not lo <= v <= hi)
+        assert cp[1 + k][1] == clamped, k
+    # 2**40 is an int: clamped to its max like any other; True, False, floats, str, None refused.
+    refusals = cp[1 + len(cases) :]
+    assert [r[0] for r in refusals] == ["ValueError"] * 5 + ["no error"]
+    assert all("servo 7" in r[1] and r[2] for r in refusals[:5])  # named, and nothing staged

@@ -9,6 +9,13 @@ that reset (brownout), which is then initialised again and sent the frame.
 
 MODE2.OCH is set (outputs change on ACK): a channel's output only changes once all four of
 its registers arrived, so a burst cut short by a NACK never outputs half a pulse width.
+
+On the rp2 port (viper) servo_bank() sends the frames in the background (drivers/_i2c_rp2.py:
+the I2C block's FIFO refilled by a timer IRQ) and stages all servos in one viper call: the CPU no
+longer waits for the bus. A burst's outcome (RETRIED, FAILED, `errors`) then comes with the
+NEXT frame's status (ServoBank.sync() takes it in at once); every other transaction (MODE1
+read-back, start-up, off, relax) first waits, bounded, for the bus; the MODE1 read-backs of the
+chips fall on different frames. Elsewhere (ESP32, CPython, the VM) writes block, as before.
 """
 
 from array import array
@@ -20,8 +27,14 @@ from hexapod.servo import PULSE_MAX_US, PULSE_MIN_US
 
 try:
     from drivers._pca9685_viper import put as _put
+    from drivers._pca9685_viper import stage_all as _stage_all
 except (ImportError, SyntaxError):  # CPython, CircuitPython, a port without viper
-    _put = None
+    _put = _stage_all = None
+try:  # frames sent in the background: the rp2 port with viper only (drivers/_i2c_rp2.py)
+    from drivers._i2c_rp2 import for_bus as _sender_for
+    from drivers._i2c_rp2 import queue as _queue
+except (ImportError, SyntaxError):
+    _sender_for = _queue = None
 
 _MODE1 = const(0x00)
 _MODE2 = const(0x01)
@@ -37,6 +50,8 @@ _OUTDRV = const(0x04)
 _FULL = const(0x10)  # LEDn_OFF_H bit 4: full OFF
 _OSC_WAIT_US = const(500)
 _EIO = const(5)
+_ETIMEDOUT = const(110)
+_SKIP = const(0x100)  # _prepare: no frame to send this time
 
 # Status bits returned by flush/write/off/relax/check (0: all went through).
 OK = const(0)
@@ -75,6 +90,7 @@ class PCA9685:
         check_every=10,
         sleep_us=None,
         ext_clock=False,
+        sender=None,
     ):
         if not isinstance(address, int) or not 0x08 <= address <= 0x77 or address == 0x70:
             # 0x70 is every PCA9685's power-on ALLCALL address: a chip strapped there collides at boot.
@@ -147,6 +163,10 @@ class PCA9685:
         self.resets_seen = 0  # chip resets found by the MODE1 read-back
         self.offline = True
         self._since = 0
+        # drivers._i2c_rp2.Sender: frames go out in the background, their outcome (RETRIED,
+        # FAILED, errors) comes back with the next frame's flush; None: writeto, blocking.
+        self._bg = sender
+        self._slot = sender.slot(address) if sender is not None else 0
         self.init()
 
     def _set_prescale(self, prescale):
@@ -169,7 +189,6 @@ class PCA9685:
         p[3] = self._den1000
         p[4] = self._den2000
 
-    @micropython.native
     def count(self, pulse_us):
         """Register counts (ticks of (prescale+1)/osc_hz) for pulse_us (0..2500 us), rounded half up."""
         a = pulse_us * self._khz  # <= 2500 * 50000
@@ -204,7 +223,6 @@ class PCA9685:
         return ok
 
     # -- staging (no I2C) -----------------------------------------------------------------
-    @micropython.native
     def stage(self, channel, pulse_us):
         """Put pulse_us (us, PULSE_MIN_US..PULSE_MAX_US) on channel for the next flush()."""
         if not 0 <= channel < self.channels:
@@ -223,7 +241,6 @@ class PCA9685:
         f[i + 2] = off & 0xFF
         f[i + 3] = off >> 8
 
-    @micropython.native
     def stage_off(self, channel):
         """Put channel full OFF (no pulse, servo limp) for the next flush()."""
         if not 0 <= channel < self.channels:
@@ -238,22 +255,71 @@ class PCA9685:
     # -- I2C ------------------------------------------------------------------------------
     @micropython.native
     def flush(self):
-        """Send the staged frame as one auto-increment burst; status bits."""
+        """Send the staged frame as one auto-increment burst; status bits (with a background
+        sender: RETRIED/FAILED and `errors` of the previous frame's burst, see sync())."""
+        status = self._prepare()
+        if status & _SKIP:
+            return status & 0xFF
+        return status | self._emit()
+
+    def _prepare(self):
+        """flush() before the burst: start-up retried or MODE1 read back when due; | _SKIP when no burst."""
         status = OK
         if self.offline:
             self._since += 1
             if self._since < self._check_every:
-                return OFFLINE
+                return OFFLINE | _SKIP
             if not self.init():
-                return OFFLINE
+                return OFFLINE | _SKIP
             status = REINIT
         elif self._check_every:
             self._since += 1
             if self._since >= self._check_every:
                 status = self.check()
                 if self.offline:
-                    return status | OFFLINE
-        return status | self._send(self._frame, len(self._frame))
+                    return status | OFFLINE | _SKIP
+        return status
+
+    def _emit(self):
+        """The staged frame's burst: sent now (blocking) or queued on the background sender."""
+        bg = self._bg
+        if bg is None:
+            return self._send(self._frame, len(self._frame))
+        v = bg.send(self._slot, self._frame, len(self._frame), self._retries)
+        if v < 0:
+            v = self._requeue()
+        return self._take(v)
+
+    def _requeue(self):
+        """The last burst is still out: wait (bounded), then queue this one; send()'s word."""
+        if not self._quiet():
+            return FAILED
+        return self._bg.send(self._slot, self._frame, len(self._frame), self._retries)
+
+    def _take(self, v):
+        """Status bits of a background outcome (status | 256 x NACKs), its errors counted."""
+        if v >> 8:
+            self.errors += v >> 8
+            self.last_errno = _EIO  # what machine.I2C raises for a NACK on the rp2 port
+        return v & 0xFF
+
+    def sync(self):
+        """Wait (bounded) until a background burst is out and take in its outcome now: status
+        bits (RETRIED, FAILED) that would otherwise come with the next flush(); OK when blocking."""
+        if self._bg is None:
+            return OK
+        if not self._quiet():
+            return FAILED
+        return self._take(self._bg.collect(self._slot))
+
+    def _quiet(self):
+        """True once the background sender (if any) is idle; a bus that never finishes times out:
+        the error is counted and False returned (the caller reports FAILED), never a hang."""
+        if self._bg is None or self._bg.idle():
+            return True
+        self.errors += 1
+        self.last_errno = _ETIMEDOUT
+        return False
 
     def write(self, pulses_us):
         """Stage pulses_us[0..channels-1] (us) on channels 0.. and flush(); status bits."""
@@ -293,6 +359,8 @@ class PCA9685:
     @micropython.native
     def _send(self, buf, n):
         """Write buf (n bytes) in one transaction with bounded retries; OK, RETRIED or FAILED."""
+        if self._bg is not None and not self._quiet():
+            return FAILED
         status = OK
         for _ in range(self._retries + 1):
             try:
@@ -308,6 +376,8 @@ class PCA9685:
 
     def _read_reg(self, reg):
         """One register's value, or -1 when retries ran out."""
+        if self._bg is not None and not self._quiet():
+            return -1
         for _ in range(self._retries + 1):
             try:
                 self._ptr[0] = reg
@@ -352,6 +422,20 @@ class ServoBank:
         self._chip_of = [chips[c] for c, _ in channel_map]
         self._ch_of = [ch for _, ch in channel_map]
         self._maps = list(servo_maps)
+        # bursts go out in the background when every chip shares one sender (drivers/_i2c_rp2.py)
+        bg = self.chips[0]._bg if self.chips else None
+        self._sender = bg if bg is not None and all(c._bg is bg for c in self.chips) else None
+        self._pre = array("i", [0] * len(self.chips))
+        # what the viper staging reads (_pca9685_viper.stage_all): 3 words of scratch per servo,
+        # then per chip its servo count and (servo, channel) pairs; each chip's frame and params
+        tab = [0] * (3 * self._n)
+        for c in range(len(chips)):
+            mine = [k for k in range(self._n) if channel_map[k][0] == c]
+            tab.append(len(mine))
+            for k in mine:
+                tab += (k, channel_map[k][1])
+        self._tab = array("i", tab)
+        self._bufs = [b for c in self.chips for b in (c._frame, c._params)]
         self.clamped = 0  # pulses the calibrated min/max had to catch (the caller should have refused them)
         self.status = OK  # status bits of the last write_frame
         self.failed_frames = 0  # write_frame calls on which some chip kept its previous frame
@@ -374,9 +458,23 @@ class ServoBank:
 
         A pulse of 0 means no pulse at all: that servo goes limp (channel full OFF).
         """
+        if len(pulses_us) != self._n:
+            raise ValueError("%d pulses for %d servos" % (len(pulses_us), self._n))
+        got = -1
+        if _stage_all is not None:
+            try:
+                got = _stage_all(pulses_us, self._maps, self._tab, self._bufs)
+            except (TypeError, OverflowError):  # not an int: the plain path says which and how
+                got = -1
+        if got < 0:
+            self._stage_plain(pulses_us)
+        else:  # all staged in one viper call
+            self.clamped += got
+        return self._flush_all()
+
+    def _stage_plain(self, pulses_us):
+        """write()'s staging without viper (CPython) or for a list stage_all leaves to it (it raises)."""
         n = self._n
-        if len(pulses_us) != n:
-            raise ValueError("%d pulses for %d servos" % (len(pulses_us), n))
         for k in range(n):  # refuse a bad list before staging any of it
             if type(pulses_us[k]) is not int:
                 raise ValueError("servo %d: pulse_us %r, allowed an int (us)" % (k, pulses_us[k]))
@@ -388,14 +486,50 @@ class ServoBank:
             q = self._maps[k].clamp(p)
             if q != p:
                 self.clamped += 1
-            c = self._chip_of[k]
-            if _put is not None and PULSE_MIN_US <= q <= PULSE_MAX_US:  # stage() without its checks
-                _put(c._frame, c._params, self._ch_of[k], q)  # (channels were checked in __init__)
-            else:
-                c.stage(self._ch_of[k], q)
+            self._chip_of[k].stage(self._ch_of[k], q)  # (raises on a limit outside 500..2500 us)
+
+    @micropython.native
+    def _flush_all(self):
+        """Every chip's flush(); status bits."""
+        status = OK
+        chips = self.chips
+        bg = self._sender
+        if bg is None:
+            for c in chips:
+                status |= c.flush()
+            return status
+        pre = self._pre
+        for i in range(len(chips)):  # every MODE1 read-back first: none waits for a burst going out
+            c = chips[i]
+            if c.offline or (c._check_every and c._since + 1 >= c._check_every):
+                pre[i] = c._prepare()
+            else:  # _prepare() when nothing is due, written out (a call costs ~20 us on a Pico)
+                if c._check_every:
+                    c._since += 1
+                pre[i] = OK
+        start = False
+        for i in range(len(chips)):
+            st = pre[i]
+            if st & _SKIP:
+                status |= st & 0xFF
+                continue
+            c = chips[i]
+            v = _queue(c._slot, c._frame, len(c._frame), c._retries)
+            if v < 0:
+                v = c._requeue()
+            if v >= 0x10000:
+                start = True
+                v -= 0x10000
+            status |= st | (c._take(v) if v else OK)
+        if start:
+            bg.start()
+        return status
+
+    def sync(self):
+        """Wait until background bursts are out; their status bits now instead of with the next frame."""
         status = OK
         for c in self.chips:
-            status |= c.flush()
+            status |= c.sync()
         return status
 
     def off(self, servo):
@@ -410,10 +544,15 @@ class ServoBank:
         return status
 
 
-def servo_bank(i2c, pca, table, chip_class=None, **kw):
+def servo_bank(i2c, pca, table, chip_class=None, background=True, **kw):
     """A ServoBank from a board file: pca = BOARD["pca9685"] ({"pwm_hz", "chips": ({"address", "osc_hz"},)}),
-    table = (address, channel, ServoMap) per servo (hexapod.board.servo_table); kw go to each chip."""
+    table = (address, channel, ServoMap) per servo (hexapod.board.servo_table); kw go to each chip.
+    background: frames through drivers._i2c_rp2 where it works (the rp2 port's machine.I2C), else
+    blocking writes."""
     cls = chip_class or PCA9685
+    sender = _sender_for(i2c) if background and _sender_for is not None and chip_class is None else None
+    if sender is not None:
+        kw["sender"] = sender
     chips = []
     index = {}
     for c in pca["chips"]:
@@ -424,4 +563,7 @@ def servo_bank(i2c, pca, table, chip_class=None, **kw):
     for k in range(len(table)):
         if table[k][0] not in index:
             raise ValueError("servo %d: address 0x%02x is not one of the board's PCA9685 chips" % (k, table[k][0]))
+    if sender is not None:  # MODE1 read-backs on different frames: the worst frame carries one, not all
+        for k in range(len(chips)):
+            chips[k]._since = k * chips[k]._check_every // len(chips)
     return ServoBank(chips, [(index[row[0]], row[1]) for row in table], [row[2] for row in table])

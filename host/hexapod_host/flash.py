@@ -30,7 +30,7 @@ PROVIDED = {"machine", "time", "sys", "os", "array", "micropython", "gc", "selec
 PROVIDED |= {"microcontroller", "pulseio", "supervisor", "struct", "math", "hashlib", "errno", "io", "storage"}
 PROVIDED |= {"watchdog"}
 # Viper modules: MicroPython only (the core imports them only there); CircuitPython boards never get them.
-VIPER = ("hexapod/_ikfast.py", "hexapod/_tickfast.py", "drivers/_pca9685_viper.py")
+VIPER = ("hexapod/_ikfast.py", "hexapod/_tickfast.py", "drivers/_pca9685_viper.py", "drivers/_i2c_rp2.py")
 # CircuitPython compiles `@micropython.native` only where a board enables it (none of ours: a
 # SyntaxError at import otherwise); the decorator changes speed, never results, so its drive gets
 # the sources without it.

@@ -256,9 +256,11 @@ def run_source(source, fs=None, **kw):
         return run([path], fs=fs, **kw)
 
 
-def devices(board_name="pico", distances=None, unplugged=()):
+def devices(board_name="pico", distances=None, unplugged=(), power_pins=None):
     """The emulated chips run.mjs attaches for a board file: its PCA9685s on its I2C pins (those
-    in `unplugged` NACK) and its five HC-SR04s at distances (0.1 mm, drivers.hcsr04 order)."""
+    in `unplugged` NACK; power_pins {address: GPIO}: that chip is off while the GPIO is driven
+    high, and powers up afresh when it goes low) and its five HC-SR04s at distances (0.1 mm,
+    drivers.hcsr04 order)."""
     from hexapod import board as boards
 
     board = boards.load(board_name)
@@ -266,8 +268,15 @@ def devices(board_name="pico", distances=None, unplugged=()):
     pins = boards.sensor_pins(board)
     distances = distances or [3000 + 1000 * k for k in range(len(pins))]
     chips = board["pca9685"]["chips"]
+
+    def power(address):
+        return {"power_pin": power_pins[address]} if power_pins and address in power_pins else {}
+
     return {
         "i2c": {"id": bus["id"], "sda": bus["sda"], "scl": bus["scl"]},
-        "pca9685": [{"address": c["address"], "plugged": c["address"] not in unplugged} for c in chips],
+        "pca9685": [
+            dict({"address": c["address"], "plugged": c["address"] not in unplugged}, **power(c["address"]))
+            for c in chips
+        ],
         "sonars": [{"trigger": t, "echo": e, "distance": d} for (t, e), d in zip(pins, distances, strict=True)],
     }

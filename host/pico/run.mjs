@@ -25,7 +25,7 @@
 // before it was stopped.
 //
 // Devices (--devices JSON, all optional): {"i2c": {"id": 0, "sda": 4, "scl": 5},
-//   "pca9685": [{"address": 64, "plugged": true}], "sonars": [{"trigger": 6, "echo": 7,
+//   "pca9685": [{"address": 64, "plugged": true, "power_pin": 22}], "sonars": [{"trigger": 6, "echo": 7,
 //   "distance": 10000}], "temp_centi_c": 2000, "schedule": [[t_us, sonar, distance]]}
 // A PCA9685 answers only while the firmware has routed the I2C block to those pins; its
 // register writes are decoded into per-channel counts, one --trace line per burst (STOP).
@@ -173,13 +173,35 @@ function attachPCA9685(bus, chips) {
   // One register file per chip (NXP data sheet: MODE1 0x11 at power-on, pointer auto-increment
   // with MODE1.AI wrapping LED15_OFF_H -> MODE1, PRE_SCALE writable only asleep).
   const models = new Map();
-  for (const c of chips) {
-    const reg = new Uint8Array(256);
+  const powerOnRegs = (reg) => {
+    reg.fill(0);
     reg[0x00] = 0x11; reg[0x01] = 0x04; reg[0xfe] = 0x1e;
     for (let ch = 0; ch < 16; ch++) reg[0x09 + 4 * ch] = 0x10;  // full OFF
-    models.set(c.address, { reg, plugged: c.plugged !== false, ptr: 0, ledWrites: 0, writes: 0 });
+  };
+  for (const c of chips) {
+    const reg = new Uint8Array(256);
+    powerOnRegs(reg);
+    const m = { reg, plugged: c.plugged !== false, ptr: 0, ledWrites: 0, writes: 0 };
+    models.set(c.address, m);
+    if (c.power_pin !== undefined) {
+      // The chip's supply switched by a GPIO (a test rig's MOSFET): pin driven high = power off
+      // (it NACKs); back low = power-on reset, registers as at power-up (MODE1 0x11: asleep).
+      const pin = mcu.gpio[c.power_pin];
+      pin.addListener(() => {
+        const off = pin.outputEnable && pin.outputValue;
+        if (off && m.plugged) m.plugged = false;
+        else if (!off && !m.plugged) { powerOnRegs(m.reg); m.plugged = true; }
+      });
+    }
   }
   const i2c = mcu.i2c[bus.id];
+  // rp2040js flushes the TX FIFO on an abort (a NACK) but never raises TX_EMPTY for it; the RP2040
+  // does (an empty FIFO is at or below IC_TX_TL; datasheet 4.3.11, TX_ABRT flushes the FIFO), and
+  // pico-sdk's blocking write waits for TX_EMPTY before it looks at the abort: without this a NACK
+  // made machine.I2C wait out its 50 ms timeout (ETIMEDOUT, not silicon's EIO) and left TX_ABRT
+  // set for the next transaction to trip over.
+  const abort = i2c.abort.bind(i2c);
+  i2c.abort = (reason) => { abort(reason); i2c.setInterrupts(1 << 4); };   // R_TX_EMPTY
   const routed = () => mcu.gpio[bus.sda].functionSelect === 3 && mcu.gpio[bus.scl].functionSelect === 3;
   const bitNs = () => (i2c.sclHighPeriod + i2c.sclLowPeriod) * CYCLE_NS;  // one SCL period, clk_sys counts
   let cur = null, first = false;

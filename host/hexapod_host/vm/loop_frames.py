@@ -4,7 +4,9 @@
 # forward, turn, crab and back, and stops; one Runner.step + Runner.wait per 20 ms frame, as
 # Runner.run. Prints main.py's status line at the end, then one JSON line: the frame's time
 # (ping, follower, tick, both bursts) in us, the period (and how many of the gaps between frame
-# starts lie within 10 and 100 us of 20 ms), the slack, the heap.
+# starts lie within 10 and 100 us of 20 ms), the slack, the heap; with the Pico's background I2C
+# sender (drivers/_i2c_rp2.py) its counts and how many frames began a whole period after the last
+# with its bursts still on the bus.
 # Arguments: [frames (default 500)].
 import gc
 import json
@@ -24,9 +26,11 @@ FRAMES = int(sys.argv[1]) if len(sys.argv) > 1 else 500
 COMMANDS = ((60, 1200, 0, 0), (160, 0, 0, 3000), (230, 600, 600, 0), (300, -800, 0, 0), (400, None, 0, 0))
 BUSY = array("i", [0] * FRAMES)  # us from a frame's start to the end of its step
 START = array("i", [0] * FRAMES)  # us from the first frame's start
+LATE = array("i", [0])  # frames begun a whole period after the last with the background sender still busy
 
 
 def loop(r, frames):
+    bg = getattr(r.bank, "_sender", None)
     k = 0
     t_first = clock.ticks_us()
     for n in range(frames):
@@ -38,13 +42,16 @@ def loop(r, frames):
                 r.robot.walk(c[1], c[2], c[3])
             k += 1
         t0 = clock.ticks_us()
+        # (a frame begun at once after an overrun may find the last bursts still going out)
+        if bg is not None and bg._st[3] and n and clock.ticks_diff(t0, t_first) - START[n - 1] >= 19990:
+            LATE[0] += 1
         r.step()
         BUSY[n] = clock.ticks_diff(clock.ticks_us(), t0)
         START[n] = clock.ticks_diff(t0, t_first)
         r.wait()
 
 
-def summary(free_after_boot, heap):
+def summary(free_after_boot, heap, bg=None):
     busy = sorted(BUSY)
     gaps = sorted(START[n + 1] - START[n] for n in range(FRAMES - 1))
     return {
@@ -63,6 +70,8 @@ def summary(free_after_boot, heap):
         "slack_median_us": 20000 - busy[FRAMES // 2],
         "heap_free_after_boot": free_after_boot,
         "heap_bytes_per_frame": heap,
+        "sender": list(bg.stats) if bg is not None else None,  # refills, writes done, NACKs
+        "frames_begun_with_bus_busy": LATE[0],
     }
 
 
@@ -81,4 +90,4 @@ loop(r, FRAMES)
 heap = (gc.mem_alloc() - before) / FRAMES if weigh else -1
 gc.enable()
 print(runner.status_line(r))
-print(json.dumps(summary(free, heap)))
+print(json.dumps(summary(free, heap, getattr(r.bank, "_sender", None))))
