@@ -105,19 +105,26 @@ SWINGS = (
 import robots.default as robot_file
 from hexapod import geometry, walk
 from hexapod.fixmath import cos, sin
-from hexapod._tickfast import swing
+from hexapod._tickfast import swings
 
 w = walk.Walker(geometry.load(robot_file))
-count = differ = clamped = landed = 0
+count = differ = clamped = landed = done = 0
+
+
+def state(i):
+    return (w.su[i], w.fx[i], w.fy[i], w.fz[i], list(w._xy), w.px[i], w.py[i], w.done[i])
+
+
 for n in range(CASES):
     i = draw(8) % 6
     wt = 2 + draw(8) % 40  # swing ticks: the short swings (<= 3) take the stroke's other branch
     w.su[i] = draw(8) % wt
-    turn = draw(14) % 18001 - 9000
+    home = n % 8 == 0  # no turn, no shift: the swing lands on neutral (the STOPPING branch)
+    turn = 0 if home else draw(14) % 18001 - 9000
     w._aim[0] = cos(turn)
     w._aim[1] = sin(turn)
-    w._aim[2] = draw(14) % 19201 - 9600
-    w._aim[3] = draw(14) % 19201 - 9600
+    w._aim[2] = 0 if home else draw(14) % 19201 - 9600
+    w._aim[3] = 0 if n % 16 == 0 else draw(14) % 19201 - 9600  # half the homes land beside neutral
     w._carry[0] = draw(14) % 19201 - 9600
     w._carry[1] = draw(14) % 19201 - 9600
     w._carry[2] = draw(12) % 6001 - 3000
@@ -126,28 +133,51 @@ for n in range(CASES):
     w.rho[i] = 50 + draw(10) % 700  # small discs: both reach clamps bind often
     w.lift = 100 + draw(9) % 501
     w.ground = -(draw(12) % 1500 + 300) << 4
-    # Where the foot was last tick: near lift-off, off the plan by less or more than the
-    # re-aim allows a tick (walk.REPLAN_STEP, 64 fine), so every branch runs.
-    spread = 100 if n % 2 else 6000
-    fx = w.fx[i] = w.sx[i] + draw(14) % (2 * spread + 1) - spread
-    fy = w.fy[i] = w.sy[i] + draw(14) % (2 * spread + 1) - spread
+    # The landing's ground frame: heading anywhere, the body anywhere (< walk._REANCHOR).
+    w.psi = draw(22) % 3600000
+    w.bx = draw(22) % 4000001 - 2000000
+    w.by = draw(22) % 4000001 - 2000000
+    w.state = walk.STOPPING if draw(1) else walk.WALKING
+    still = draw(1)
+    w.done[i] = 0
+    if home:
+        w.rho[i] = 800
+        if n % 32 == 0:  # its last tick, walking home (the STOPPING landing's test)
+            w.su[i] = wt - 1
+            w.state = walk.STOPPING
+            still = 1
+        # The foot exactly on its plan of the last tick (as the plain swing works it out): no re-aim.
+        w.target(i, w._xy)
+        w._in_reach(i, w._xy)
+        w.carry_at(w.sx[i], w.sy[i], w._cv, 0)
+        w.carry_at(w._xy[0], w._xy[1], w._cv, 2)
+        w._swing_at(i, w.su[i], wt, w._plan)
+        fx = w.fx[i] = w._plan[0]
+        fy = w.fy[i] = w._plan[1]
+    else:
+        # Where the foot was last tick: near lift-off, off the plan by less or more than the
+        # re-aim allows a tick (walk.REPLAN_STEP, 64 fine), so every branch runs.
+        spread = 100 if n % 2 else 6000
+        fx = w.fx[i] = w.sx[i] + draw(14) % (2 * spread + 1) - spread
+        fy = w.fy[i] = w.sy[i] + draw(14) % (2 * spread + 1) - spread
     su = w.su[i]
-    u1 = w._swing_step(i, wt)
-    plain = (u1, w.fx[i], w.fy[i], w.fz[i], list(w._xy))
+    w.px[i] = w.py[i] = 0
+    plain = (w._swings(i, i + 1, wt, still),) + state(i)
     w.su[i] = su
     w.fx[i] = fx
     w.fy[i] = fy
-    w.fz[i] = 0
-    u2 = swing(w, i, wt)
-    fast = (u2, w.fx[i], w.fy[i], w.fz[i], list(w._xy))
-    clamped += (plain[4][0] - w.nx[i]) ** 2 + (plain[4][1] - w.ny[i]) ** 2 >= (w.rho[i] << 4) ** 2 - (64 * w.rho[i])
-    landed += u1 >= wt
+    w.fz[i] = w.px[i] = w.py[i] = w.done[i] = 0
+    w._xy[0] = w._xy[1] = 0
+    fast = (swings(w, i, i + 1, wt, still),) + state(i)
+    clamped += (plain[5][0] - w.nx[i]) ** 2 + (plain[5][1] - w.ny[i]) ** 2 >= (w.rho[i] << 4) ** 2 - (64 * w.rho[i])
+    landed += plain[1] < 0
+    done += plain[8]
     if plain != fast:
         differ += 1
         if differ < 4:
             print("differ", n, plain, fast)
     count += 1
-print((count, clamped, landed, differ))
+print((count, clamped, landed, done, differ))
 """
 )
 
@@ -192,6 +222,81 @@ print((count, held, differ))
 )
 
 
+MOVES = (
+    LCG
+    + """
+import robots.default as robot_file
+from hexapod import geometry, walk
+from hexapod.fixmath import cos, mul_q15, sin
+from hexapod._tickfast import move
+
+w = walk.Walker(geometry.load(robot_file))
+count = differ = held = still = anchored = 0
+FIELDS = ("held", "bx", "by", "cx", "cy", "psi")
+LISTS = ("fx", "fy", "px", "py", "ax", "ay")
+
+
+def state():
+    return tuple(getattr(w, f) for f in FIELDS) + tuple(list(getattr(w, f)) for f in LISTS)
+
+
+for n in range(CASES):
+    for i in range(6):
+        w.su[i] = -1 if draw(2) else draw(4)
+        w.fx[i] = w.nx[i] + draw(14) % 16001 - 8000
+        w.fy[i] = w.ny[i] + draw(14) % 16001 - 8000
+        w.stance_rho[i] = 400 + draw(10) % 800
+        w.ax[i] = w.ay[i] = 0
+    # Walking at anything accepted, or not moving at all (the carries alone change).
+    quiet = n % 8 == 0
+    w.vel[0] = 0 if quiet else draw(13) % 6001 - 3000
+    w.vel[1] = 0 if quiet else draw(13) % 6001 - 3000
+    w.vel[2] = 0 if quiet else draw(15) % 18001 - 9000
+    w.psi = draw(22) % 3600000 if n % 4 else (draw(1) * (3600000 - 20000) + draw(14) % 20000)  # or near the wrap
+    w.cx = draw(10) % 1000
+    w.cy = draw(10) % 1000
+    w.held = draw(4)
+    # The ground frame's origin near the body, or just inside or past the re-anchoring bound.
+    far = 4194304 - 4000 if n % 3 == 0 else 0  # walk._REANCHOR, 2**22
+    w.bx = (far + draw(13) % 8001) * (1 if draw(1) else -1)
+    w.by = draw(16) % 200001 - 100000
+    # Stance feet near neutral seen from the body at its heading (the others anywhere: held).
+    c = cos((w.psi + 50) // 100)
+    s = sin((w.psi + 50) // 100)
+    for i in range(6):
+        x = w.nx[i] + draw(14) % 14001 - 7000
+        y = w.ny[i] + draw(14) % 14001 - 7000
+        w.px[i] = w.bx + mul_q15(x, c) - mul_q15(y, s)
+        w.py[i] = w.by + mul_q15(x, s) + mul_q15(y, c)
+    before = state()
+    w._move_body()
+    plain = state()
+    for f, v in zip(FIELDS, before[: len(FIELDS)]):
+        setattr(w, f, v)
+    for f, v in zip(LISTS, before[len(FIELDS) :]):
+        getattr(w, f)[:] = v
+    move(w)
+    fast = state()
+    held += plain[0] != before[0]
+    still += plain[1:3] == before[1:3] and plain[0] == before[0]
+    anchored += plain[1] == 0 and before[1] != 0
+    if plain != fast:
+        differ += 1
+        if differ < 4:
+            print("differ", n, before, plain, fast)
+    count += 1
+print((count, held, still, anchored, differ))
+"""
+)
+
+
+def check_moves(result, cases):
+    count, held, still, anchored, differ = result
+    assert count == cases and held > cases // 10 and still > cases // 20 and anchored > cases // 50, result
+    assert count - held - still > cases // 5, result  # moved
+    assert differ == 0, result
+
+
 def check_stances(result, cases):
     count, held, differ = result
     assert count == cases and cases // 10 < held < cases - cases // 10, result
@@ -199,8 +304,8 @@ def check_stances(result, cases):
 
 
 def check_swings(result, cases):
-    count, clamped, landed, differ = result
-    assert count == cases and clamped > cases // 10 and landed > cases // 50, result
+    count, clamped, landed, done, differ = result
+    assert count == cases and clamped > cases // 10 and landed > cases // 50 and done > cases // 100, result
     assert differ == 0, result
 
 
@@ -229,8 +334,13 @@ def test_viper_stance_equals_plain_stance_on_the_vm(mp):
     check_stances(mp.value("CASES = %d\n" % cases + STANCES, heapsize="1m"), cases)
 
 
+def test_viper_body_move_equals_plain_move_on_the_vm(mp):
+    cases = 10000
+    check_moves(mp.value("CASES = %d\n" % cases + MOVES, heapsize="1m"), cases)
+
+
 def test_robot_on_the_vm_uses_the_viper_frame_swing_and_stance(mp):
-    src = "from hexapod import tick, walk\nprint((tick._output_fast, walk._swing_fast, walk._stance_fast))"
+    src = "from hexapod import tick, walk\nprint((tick._output_fast, walk._swings_fast, walk._move_fast))"
     assert "None" not in mp.run(src)
 
 
@@ -247,3 +357,6 @@ def test_viper_frame_equals_plain_frame_on_the_emulated_pico():
         status, out, err, _ = pico.run_source("CASES = %d\n" % cases + STANCES, fs=fs, timeout=600)
         assert status == 0, out + err
         check_stances(ast.literal_eval(out.strip().splitlines()[-1]), cases)
+        status, out, err, _ = pico.run_source("CASES = %d\n" % cases + MOVES, fs=fs, timeout=600)
+        assert status == 0, out + err
+        check_moves(ast.literal_eval(out.strip().splitlines()[-1]), cases)

@@ -22,6 +22,10 @@ _G_T1 = const(10)  # hexapod.leg's result slots (viper folds only local consts)
 _G_T2 = const(11)
 _G_T3 = const(12)
 _REPLAN = const(64)  # hexapod.walk.REPLAN_STEP
+_STOPPING = const(3)  # hexapod.walk.STOPPING
+_FINE_TICK = const(320)  # hexapod.body.FINE * gait.TICK_MS
+_DEG360 = const(3600000)  # hexapod.walk._DEG360
+_REANCHOR = const(4194304)  # hexapod.walk._REANCHOR
 
 _SIN_WORDS = array("i", _SIN)  # Q15, 0..90 degrees: no negative word (viper's ptr32 loads are unsigned)
 
@@ -57,123 +61,192 @@ def _sin(cdeg: int) -> int:
 
 
 @micropython.viper
-def _sin90(t: int, s: int) -> int:
-    """hexapod.trajectory.sin90: sin(t 90 / s degrees) in Q15."""
-    return int(_sin((t * 18000 + s) // (s << 1)))
-
-
-@micropython.viper
-def _clamp(xy, nx: int, ny: int, r: int) -> int:
-    """Walker._swing_step's reach clamp: the point xy[0:2] (fine) pulled onto the disc of radius
-    r (0.1 mm) around (nx, ny) when outside it, in place."""
-    x = int(xy[0])
-    y = int(xy[1])
-    dx = (x - nx) >> 4
-    dy = (y - ny) >> 4
-    e2 = dx * dx + dy * dy
-    if e2 > r * r:
-        e = int(_isqrt(e2))
-        x = nx + ((dx * r // e) << 4)
-        y = ny + ((dy * r // e) << 4)
-    xy[0] = x
-    xy[1] = y
-    return 0
-
-
-@micropython.viper
-def _stroke(u: int, w: int) -> int:
-    """hexapod.trajectory.swing_stroke's stroke fraction at tick u of w, Q15."""
-    n = w - 2 if w > 3 else w
-    k = u - 1 if w > 3 else u
-    if k >= n:
-        return 32768
-    if k <= 0:
-        return 0
-    return (32768 + int(_sin90((k << 1) - n, n)) + 1) >> 1
-
-
-@micropython.viper
-def _bounded(d: int) -> int:
-    """d limited to -_REPLAN.._REPLAN."""
-    if d > _REPLAN:
-        return _REPLAN
-    if d < 0 - _REPLAN:
-        return 0 - _REPLAN
-    return d
-
-
-@micropython.viper
-def _plan_at(walker, i: int, u: int, w: int) -> int:
-    """Walker._swing_at: the swing planned from leg i's lift-off to walker._xy (carries in
-    walker._cv) at tick u of w, inside the reach disc, into walker._plan; returns the stroke (Q15)."""
-    cv = walker._cv
-    c0 = int(cv[0])
-    c1 = int(cv[1])
-    t = walker._xy
-    sx = int(walker.sx[i])
-    sy = int(walker.sy[i])
-    st = int(_stroke(u, w))
-    frac = (u << 15) // w
-    cx = c0 + int(_mq(int(cv[2]) - c0, st))
-    cy = c1 + int(_mq(int(cv[3]) - c1, st))
-    xy = walker._plan
-    xy[0] = sx + int(_mq(cx, frac)) + int(_mq(int(t[0]) - sx - cx, st))
-    xy[1] = sy + int(_mq(cy, frac)) + int(_mq(int(t[1]) - sy - cy, st))
-    _clamp(xy, int(walker.nx[i]), int(walker.ny[i]), int(walker.rho[i]))
-    return st
-
-
-@micropython.viper
-def swing(walker, i: int, w: int) -> int:
-    """hexapod.walk.Walker._swing_step: leg i's swing foot at its next tick u of w into
-    fx, fy, fz[i], the touch-down point into walker._xy; returns u."""
-    u = int(walker.su[i]) + 1
-    nx = int(walker.nx[i])
-    ny = int(walker.ny[i])
-    r = int(walker.rho[i])
+def swings(walker, lo: int, hi: int, w: int, still: int) -> int:
+    """hexapod.walk.Walker._swing_all over legs lo..hi-1: each swing foot (su >= 0) one tick on
+    (Walker._swing_step, the touch-down point into walker._xy), landed as Walker._swing lands it;
+    returns how many are still in the air."""
+    su = walker.su
+    nxs = walker.nx
+    nys = walker.ny
+    rhos = walker.rho
+    fxs = walker.fx
+    fys = walker.fy
     a = walker._aim
     a0 = int(a[0])
     a1 = int(a[1])
-    t = walker._xy
-    t[0] = int(_mq(nx, a0)) - int(_mq(ny, a1)) + int(a[2])  # Walker.target
-    t[1] = int(_mq(nx, a1)) + int(_mq(ny, a0)) + int(a[3])
-    _clamp(t, nx, ny, r)
-    t0 = int(t[0])
-    t1 = int(t[1])
-    # trajectory.swing_shape's height fraction (its forward fraction is not used here).
-    tt = (u << 1) - w
-    h = int(_sin90(w - tt if tt >= 0 else w + tt, w))
-    lifted = int(_mq(h, h))
-    sx = int(walker.sx[i])
-    sy = int(walker.sy[i])
+    a2 = int(a[2])
+    a3 = int(a[3])
     k = walker._carry
     k0 = int(k[0])
     k1 = int(k[1])
     k2 = int(k[2])
-    # carry_at at lift-off (sx, sy) and at touch-down (t0, t1), into _cv as the plain code has them.
-    cv = walker._cv
-    cv[0] = k0 + (((sy >> 4) * k2) >> 11)
-    cv[1] = k1 - (((sx >> 4) * k2) >> 11)
-    cv[2] = k0 + (((t1 >> 4) * k2) >> 11)
-    cv[3] = k1 - (((t0 >> 4) * k2) >> 11)
-    # The plan at the last tick (u - 1), against where the foot is: nonzero when re-aimed.
-    xy = walker._plan
-    _plan_at(walker, i, u - 1, w)
-    rx = int(xy[0]) - int(walker.fx[i])
-    ry = int(xy[1]) - int(walker.fy[i])
-    st = int(_plan_at(walker, i, u, w))
-    if rx or ry:
-        # Walker._swing_step: the foot moves as the new plan does, plus at most _REPLAN a tick.
-        if 0 < st < 32768:
-            rx -= int(_bounded(rx))
-            ry -= int(_bounded(ry))
-        xy[0] = int(xy[0]) - rx
-        xy[1] = int(xy[1]) - ry
-        _clamp(xy, nx, ny, r)
-    walker.fx[i] = xy[0]
-    walker.fy[i] = xy[1]
-    walker.fz[i] = int(walker.ground) + int(_mq(int(walker.lift) << 4, lifted))
-    return u
+    tab = ptr32(_SIN_WORDS)  # noqa: F821 (a viper built-in)
+    airborne = 0
+    for i in range(lo, hi):
+        u = int(su[i])
+        if u < 0:
+            continue
+        u += 1
+        nx = int(nxs[i])
+        ny = int(nys[i])
+        r = int(rhos[i])
+        sx = int(walker.sx[i])
+        sy = int(walker.sy[i])
+        # Every mul_q15 below written out: a viper call costs ~5 us on the Pico, its body < 1 us.
+        m = nx if nx >= 0 else 0 - nx
+        xc = (m >> 15) * a0 + (((m & 32767) * a0 + 16384) >> 15)
+        xs = (m >> 15) * a1 + (((m & 32767) * a1 + 16384) >> 15)
+        if nx < 0:
+            xc = 0 - xc
+            xs = 0 - xs
+        m = ny if ny >= 0 else 0 - ny
+        yc = (m >> 15) * a0 + (((m & 32767) * a0 + 16384) >> 15)
+        ys = (m >> 15) * a1 + (((m & 32767) * a1 + 16384) >> 15)
+        if ny < 0:
+            yc = 0 - yc
+            ys = 0 - ys
+        x = xc - ys + a2  # Walker.target
+        y = xs + yc + a3
+        t0 = t1 = c0 = c1 = c2 = c3 = rx = ry = st = 0
+        # Four points go through the one reach clamp below: the touch-down point (stage 0), the
+        # plan at the last tick u - 1 (1) and at u (2), and the re-aimed foot (3). The plan is
+        # written once, for both ticks.
+        stage = 0
+        while True:
+            if stage == 1 or stage == 2:
+                uu = u - 2 + stage
+                # trajectory.swing_stroke: the stroke fraction st and uu / w, Q15.
+                n = w - 2 if w > 3 else w
+                kk = uu - 1 if w > 3 else uu
+                if kk >= n:
+                    st = 32768
+                elif kk <= 0:
+                    st = 0
+                else:
+                    # fixmath.sin of sin90(2 kk - n, n) (cdeg), written out.
+                    g = (((kk << 1) - n) * 18000 + n) // (n << 1)
+                    g -= (g // 36000) * 36000
+                    neg = g >= 18000
+                    if neg:
+                        g -= 18000
+                    if g > 9000:
+                        g = 18000 - g
+                    j = g // 25
+                    f = g - j * 25
+                    h = tab[j]
+                    if f:
+                        h += ((tab[j + 1] - h) * f + 12) // 25
+                    if neg:
+                        h = 0 - h
+                    st = (32768 + h + 1) >> 1
+                frac = (uu << 15) // w
+                # x = S + C uu / w + (T - S - C) st, the carry C turning from lift-off's to touch-down's.
+                d = c2 - c0
+                m = d if d >= 0 else 0 - d
+                e = (m >> 15) * st + (((m & 32767) * st + 16384) >> 15)
+                cx = c0 + (e if d >= 0 else 0 - e)
+                d = c3 - c1
+                m = d if d >= 0 else 0 - d
+                e = (m >> 15) * st + (((m & 32767) * st + 16384) >> 15)
+                cy = c1 + (e if d >= 0 else 0 - e)
+                m = cx if cx >= 0 else 0 - cx
+                e = (m >> 15) * frac + (((m & 32767) * frac + 16384) >> 15)
+                x = sx + (e if cx >= 0 else 0 - e)
+                d = t0 - sx - cx
+                m = d if d >= 0 else 0 - d
+                e = (m >> 15) * st + (((m & 32767) * st + 16384) >> 15)
+                x += e if d >= 0 else 0 - e
+                m = cy if cy >= 0 else 0 - cy
+                e = (m >> 15) * frac + (((m & 32767) * frac + 16384) >> 15)
+                y = sy + (e if cy >= 0 else 0 - e)
+                d = t1 - sy - cy
+                m = d if d >= 0 else 0 - d
+                e = (m >> 15) * st + (((m & 32767) * st + 16384) >> 15)
+                y += e if d >= 0 else 0 - e
+            # Walker._in_reach: onto the disc of radius r (0.1 mm) around neutral when outside it.
+            dx = (x - nx) >> 4
+            dy = (y - ny) >> 4
+            e2 = dx * dx + dy * dy
+            if e2 > r * r:
+                e = int(_isqrt(e2))
+                x = nx + ((dx * r // e) << 4)
+                y = ny + ((dy * r // e) << 4)
+            if stage == 0:
+                t0 = x
+                t1 = y
+                # Walker.carry_at at lift-off (sx, sy) and at touch-down (t0, t1).
+                c0 = k0 + (((sy >> 4) * k2) >> 11)
+                c1 = k1 - (((sx >> 4) * k2) >> 11)
+                c2 = k0 + (((t1 >> 4) * k2) >> 11)
+                c3 = k1 - (((t0 >> 4) * k2) >> 11)
+                stage = 1
+            elif stage == 1:
+                # How far the plan moved since the last tick, fine (0 when steady).
+                rx = x - int(fxs[i])
+                ry = y - int(fys[i])
+                stage = 2
+            elif stage == 2 and (rx or ry):
+                # The foot moves as the new plan does, plus at most _REPLAN a tick toward it.
+                if 0 < st < 32768:
+                    rx -= _REPLAN if rx > _REPLAN else (0 - _REPLAN if rx < 0 - _REPLAN else rx)
+                    ry -= _REPLAN if ry > _REPLAN else (0 - _REPLAN if ry < 0 - _REPLAN else ry)
+                x -= rx
+                y -= ry
+                stage = 3
+            else:
+                break
+        t = walker._xy
+        t[0] = t0
+        t[1] = t1
+        fxs[i] = x
+        fys[i] = y
+        if u < w:
+            # trajectory.swing_shape's height fraction (the arch squared) times the lift.
+            tt = (u << 1) - w
+            # fixmath.sin of sin90(w - |tt|, w) (cdeg), written out.
+            g = ((w - tt if tt >= 0 else w + tt) * 18000 + w) // (w << 1)
+            g -= (g // 36000) * 36000
+            neg = g >= 18000
+            if neg:
+                g -= 18000
+            if g > 9000:
+                g = 18000 - g
+            j = g // 25
+            f = g - j * 25
+            h = tab[j]
+            if f:
+                h += ((tab[j + 1] - h) * f + 12) // 25
+            if neg:
+                h = 0 - h
+            h = (h >> 15) * h + (((h & 32767) * h + 16384) >> 15)
+            m = int(walker.lift) << 4
+            walker.fz[i] = int(walker.ground) + (m >> 15) * h + (((m & 32767) * h + 16384) >> 15)
+            su[i] = u
+            airborne += 1
+            continue
+        # Landed (Walker._swing): pinned where it is, in the ground frame (Walker._to_ground).
+        su[i] = -1
+        walker.fz[i] = walker.ground
+        cd = (int(walker.psi) + 50) // 100
+        c = int(_sin(cd + 9000))
+        s = int(_sin(cd))
+        m = x if x >= 0 else 0 - x
+        xc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
+        xs = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
+        if x < 0:
+            xc = 0 - xc
+            xs = 0 - xs
+        m = y if y >= 0 else 0 - y
+        yc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
+        ys = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
+        if y < 0:
+            yc = 0 - yc
+            ys = 0 - ys
+        walker.px[i] = int(walker.bx) + xc - ys
+        walker.py[i] = int(walker.by) + xs + yc
+        if still and int(walker.state) == _STOPPING and x == nx and y == ny:
+            walker.done[i] = 1
+    return airborne
 
 
 @micropython.viper
@@ -229,6 +302,76 @@ def stance(walker, bx: int, by: int, cd: int) -> int:
 
 
 @micropython.viper
+def move(walker) -> int:
+    """hexapod.walk.Walker._move_body: the body's move this tick at walker.vel in the ground frame
+    (with its remainder carries), the stance feet read back (stance() below), or held."""
+    v = walker.vel
+    v0 = int(v[0])
+    v1 = int(v[1])
+    dpsi = int(v[2]) << 1  # cdeg/s over 20 ms, in ANGLE_UNIT (1e-4 degree)
+    psi = int(walker.psi)
+    cd = (psi + (dpsi >> 1) + 50) // 100
+    c = int(_sin(cd + 9000))
+    s = int(_sin(cd))
+    # The body's velocity in the ground frame (mul_q15 written out), then this tick's move (fine).
+    m = v0 if v0 >= 0 else 0 - v0
+    xc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
+    xs = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
+    if v0 < 0:
+        xc = 0 - xc
+        xs = 0 - xs
+    m = v1 if v1 >= 0 else 0 - v1
+    yc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
+    ys = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
+    if v1 < 0:
+        yc = 0 - yc
+        ys = 0 - ys
+    n = (xc - ys) * _FINE_TICK + int(walker.cx)
+    mx = n // 1000
+    cx = n - mx * 1000
+    n = (xs + yc) * _FINE_TICK + int(walker.cy)
+    my = n // 1000
+    cy = n - my * 1000
+    psi += dpsi
+    if psi >= _DEG360:
+        psi -= _DEG360
+    elif psi < 0:
+        psi += _DEG360
+    if not (mx or my or dpsi):
+        walker.cx = cx
+        walker.cy = cy
+        return 0
+    bx = int(walker.bx) + mx
+    by = int(walker.by) + my
+    if int(stance(walker, bx, by, (psi + 50) // 100)):
+        walker.held = int(walker.held) + 1
+        return 0
+    walker.cx = cx
+    walker.cy = cy
+    walker.psi = psi
+    su = walker.su
+    fx = walker.fx
+    fy = walker.fy
+    ax = walker.ax
+    ay = walker.ay
+    for i in range(6):
+        if int(su[i]) < 0:
+            fx[i] = ax[i]
+            fy[i] = ay[i]
+    if bx > _REANCHOR or bx < 0 - _REANCHOR or by > _REANCHOR or by < 0 - _REANCHOR:
+        px = walker.px
+        py = walker.py
+        for i in range(6):
+            px[i] = int(px[i]) - bx
+            py[i] = int(py[i]) - by
+        bx = 0
+        by = 0
+    walker.bx = bx
+    walker.by = by
+    return 0
+
+
+@micropython.viper
 def _posed(body, xyz) -> int:
     """Body.to_leg's pose part: the foot xyz[0:3] (fine) moved back through the body's pose, in place."""
     p = body.pose
@@ -257,24 +400,6 @@ def _posed(body, xyz) -> int:
     xyz[0] = x + cx
     xyz[1] = y + cy
     xyz[2] = z + cz
-    return 0
-
-
-@micropython.viper
-def _solved(leg, lx: int, ly: int, lz: int) -> int:
-    """Leg.ik's solve and limit check: 0 with the angles in leg._g's result slots, 1 when refused."""
-    gbuf = leg._g
-    if int(solve(lx, ly, lz, gbuf)):
-        return 1
-    # Read back as objects: a ptr32 load of a negative angle is unsigned on a 64-bit VM.
-    t1 = int(gbuf[_G_T1])
-    t2 = int(gbuf[_G_T2])
-    t3 = int(gbuf[_G_T3])
-    lim = leg.limits
-    if t1 < int(lim[0]) or t1 > int(lim[1]) or t2 < int(lim[2]) or t2 > int(lim[3]):
-        return 1
-    if t3 < int(lim[4]) or t3 > int(lim[5]):
-        return 1
     return 0
 
 
@@ -323,14 +448,24 @@ def output(robot) -> int:
         lx = (xc + ys + 8) >> 4
         ly = (yc - xs + 8) >> 4
         lz = (int(xyz[2]) + 8) >> 4
+        # Leg.ik's solve and limit check.
         leg = legs[i]
-        if int(_solved(leg, lx, ly, lz)):
-            return 1
         g = leg._g
+        if int(solve(lx, ly, lz, g)):
+            return 1
+        # Read back as objects: a ptr32 load of a negative angle is unsigned on a 64-bit VM.
+        t1 = int(g[_G_T1])
+        t2 = int(g[_G_T2])
+        t3 = int(g[_G_T3])
+        lim = leg.limits
+        if t1 < int(lim[0]) or t1 > int(lim[1]) or t2 < int(lim[2]) or t2 > int(lim[3]):
+            return 1
+        if t3 < int(lim[4]) or t3 > int(lim[5]):
+            return 1
         k = 3 * i
-        a[k] = g[_G_T1]
-        a[k + 1] = g[_G_T2]
-        a[k + 2] = g[_G_T3]
+        a[k] = t1
+        a[k + 1] = t2
+        a[k + 2] = t3
     p = robot._pulses
     servos = robot.servos
     for k in range(18):

@@ -385,7 +385,10 @@ class Walker:
         # Lift first: a foot leaving the ground this tick is not carried by the body's move,
         # so every stance lasts exactly stance_ticks moves (what the touch-down aim assumes).
         self._lift_all(still)
-        self._move_body()
+        if _move_fast is None:
+            self._move_body()
+        else:
+            _move_fast(self)
         self._aim_swings()
         airborne = self._swing_all(still)
         self.phase += 1
@@ -418,10 +421,16 @@ class Walker:
 
     def _swing_all(self, still):
         """Move every swing foot one tick; returns how many are still in the air."""
-        su = self.su
         w = self.clock.swing_ticks
+        if _swings_fast is not None:
+            return _swings_fast(self, 0, 6, w, still)
+        return self._swings(0, 6, w, still)
+
+    def _swings(self, lo, hi, w, still):
+        """_swing_all's plain code over legs lo..hi-1 (hexapod/_tickfast.py's swings is the same in viper)."""
+        su = self.su
         airborne = 0
-        for i in range(6):
+        for i in range(lo, hi):
             if su[i] >= 0:
                 self._swing(i, w, still)
                 if su[i] >= 0:
@@ -455,7 +464,7 @@ class Walker:
         self.sy[i] = self.fy[i]
 
     def _swing(self, i, w, still):
-        u = self._swing_step(i, w) if _swing_fast is None else _swing_fast(self, i, w)
+        u = self._swing_step(i, w)
         if u >= w:
             # Lands where the swing put it: on _xy unless a late re-aim left it short.
             self.su[i] = -1
@@ -593,7 +602,7 @@ class Walker:
         bx = self.bx + mx
         by = self.by + my
         cd = (psi + 50) // 100
-        if self._stance(bx, by, cd) if _stance_fast is None else _stance_fast(self, bx, by, cd):
+        if self._stance(bx, by, cd):
             self.held += 1  # this move would carry a stance foot out of reach: hold
             return
         self.bx = bx
@@ -613,16 +622,16 @@ class Walker:
             self.by = 0
 
 
-# The swing and the stance compiled by the viper emitter where MicroPython has one (hexapod/_tickfast.py,
-# proven equal to _swing_step and _stance by tests/test_tickfast.py); CPython and CircuitPython run the plain code.
-_swing_fast = None
-_stance_fast = None
+# The swings and the body's move compiled by the viper emitter where MicroPython has one (hexapod/_tickfast.py,
+# proven equal to _swings and _move_body by tests/test_tickfast.py); CPython and CircuitPython run the plain code.
+_swings_fast = None
+_move_fast = None
 if sys.implementation.name == "micropython":
     try:
-        from hexapod._tickfast import stance as _stance_fast
-        from hexapod._tickfast import swing as _swing_fast
+        from hexapod._tickfast import move as _move_fast
+        from hexapod._tickfast import swings as _swings_fast
     except Exception:  # no viper emitter on this build
-        _swing_fast = _stance_fast = None
+        _swings_fast = _move_fast = None
 
 
 def is_whole(v):
