@@ -407,30 +407,39 @@ def _posed(body, xyz) -> int:
 def output(robot) -> int:
     """The frame's angles and pulses, as Robot._output makes them: 0 when sent to robot.angles and
     robot.pulses, 1 when something was refused (nothing copied: the caller runs the plain code)."""
+    # ptr32 loads are unsigned on a 64-bit VM: (v ^ sb) - sb sign-extends there, and is v on a board.
+    sb = 1
+    sb <<= 31  # at run time: the folded constant 1 << 31 is no small int on a 32-bit port
     w = robot.walker
     fx = w.fx
     fy = w.fy
     fz = w.fz
     body = robot.body
     level = bool(body.level)
-    mx = body.mx
-    my = body.my
-    mc = body.mc
-    ms = body.ms
+    mx = ptr32(body.mx)  # noqa: F821 (a viper built-in; Body keeps the mounts in array("i"))
+    my = ptr32(body.my)  # noqa: F821
+    mc = ptr32(body.mc)  # noqa: F821
+    ms = ptr32(body.ms)  # noqa: F821
     legs = robot.geometry.legs
     xyz = robot._leg
-    a = robot._angles
+    a = ptr32(robot._angles)  # noqa: F821 (Robot's scratch, array("i"))
     for i in range(6):
         # Body.to_leg: the foot (fine, body frame) into leg i's frame (0.1 mm, rounded).
-        xyz[0] = fx[i]
-        xyz[1] = fy[i]
-        xyz[2] = fz[i]
+        x = int(fx[i])
+        y = int(fy[i])
+        z = int(fz[i])
         if not level:
+            xyz[0] = x
+            xyz[1] = y
+            xyz[2] = z
             _posed(body, xyz)
-        dx = int(xyz[0]) - int(mx[i])
-        dy = int(xyz[1]) - int(my[i])
-        c = int(mc[i])
-        s = int(ms[i])
+            x = int(xyz[0])
+            y = int(xyz[1])
+            z = int(xyz[2])
+        dx = x - ((mx[i] ^ sb) - sb)
+        dy = y - ((my[i] ^ sb) - sb)
+        c = (mc[i] ^ sb) - sb
+        s = (ms[i] ^ sb) - sb
         # _mq(dx, c) + _mq(dy, s) and _mq(dy, c) - _mq(dx, s), written out as in stance(): a call
         # costs ~5 us, and one shared helper made the tick 0.16 ms slower (measured on the Pico).
         m = dx if dx >= 0 else 0 - dx
@@ -447,16 +456,16 @@ def output(robot) -> int:
             ys = 0 - ys
         lx = (xc + ys + 8) >> 4
         ly = (yc - xs + 8) >> 4
-        lz = (int(xyz[2]) + 8) >> 4
+        lz = (z + 8) >> 4
         # Leg.ik's solve and limit check.
         leg = legs[i]
         g = leg._g
         if int(solve(lx, ly, lz, g)):
             return 1
-        # Read back as objects: a ptr32 load of a negative angle is unsigned on a 64-bit VM.
-        t1 = int(g[_G_T1])
-        t2 = int(g[_G_T2])
-        t3 = int(g[_G_T3])
+        gw = ptr32(g)  # noqa: F821 (Leg._g is an array("i"))
+        t1 = (gw[_G_T1] ^ sb) - sb
+        t2 = (gw[_G_T2] ^ sb) - sb
+        t3 = (gw[_G_T3] ^ sb) - sb
         lim = leg.limits
         if t1 < int(lim[0]) or t1 > int(lim[1]) or t2 < int(lim[2]) or t2 > int(lim[3]):
             return 1
@@ -466,19 +475,19 @@ def output(robot) -> int:
         a[k] = t1
         a[k + 1] = t2
         a[k + 2] = t3
-    p = robot._pulses
+    p = ptr32(robot._pulses)  # noqa: F821 (Robot's scratch, array("i"))
     servos = robot.servos
     for k in range(18):
         # hexapod.servo.ServoMap.pulse, read from the maps every frame (they may be swapped or
         # recalibrated between ticks); floor division as in the plain code (viper's // floors too).
         sm = servos[k]
-        us = int(sm.centre_us) + int(sm.direction) * ((int(a[k]) * int(sm.us_per_degree) + 5000) // 10000)
+        us = int(sm.centre_us) + int(sm.direction) * ((((a[k] ^ sb) - sb) * int(sm.us_per_degree) + 5000) // 10000)
         if us < int(sm.min_us) or us > int(sm.max_us):
             return 1
         p[k] = us
     angles = robot.angles
     pulses = robot.pulses
     for k in range(18):
-        angles[k] = a[k]
-        pulses[k] = p[k]
+        angles[k] = (a[k] ^ sb) - sb
+        pulses[k] = (p[k] ^ sb) - sb
     return 0

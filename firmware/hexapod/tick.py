@@ -17,6 +17,7 @@ frame, `faults` counts it and `reason` says why (the planner is built never to g
 """
 
 import sys
+from array import array
 
 from micropython import const
 
@@ -124,8 +125,8 @@ class Robot:
         self.rest_z = -(geometry.sit_height - geometry.foot_clearance) << FINE_SHIFT
         self.angles = [0] * 18  # last joint angles sent, cdeg
         self.pulses = [0] * 18 if pulses is None else pulses  # last pulses sent, us
-        self._angles = [0] * 18
-        self._pulses = [0] * 18
+        self._angles = array("i", [0] * 18)  # scratch, array("i"): _tickfast.output writes them as machine words
+        self._pulses = array("i", [0] * 18)
         self._leg = [0, 0, 0]
         self._rho = [0] * 6
         self.mode = RELAXED
