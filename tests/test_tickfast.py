@@ -297,6 +297,89 @@ def check_moves(result, cases):
     assert differ == 0, result
 
 
+STARTS = (
+    LCG
+    + """
+import robots.default as robot_file
+from hexapod import body, geometry, walk
+from hexapod._tickfast import aim, begin, settled
+
+g = geometry.load(robot_file)
+w = walk.Walker(g)
+b = body.Body(g)
+count = differ = still = lifted = made = level = 0
+FIELDS = ("vel", "su", "sx", "sy", "done", "_aim", "_aim_key", "_carry")
+
+
+def state():
+    return [list(getattr(w, f)) for f in FIELDS]
+
+
+for n in range(CASES):
+    # The ramp near and far from its command (each axis reaches it, or steps by its limit).
+    for k in range(3):
+        top = walk.YAW_RATE_MAX if k == 2 else walk.SPEED_MAX
+        w.cmd[k] = draw(15) % (2 * top + 1) - top if n % 5 else 0
+        w.vel[k] = w.cmd[k] + (draw(8) % 301 - 150 if n % 3 else 0) if n % 7 else 0
+    w.state = (walk.STARTING, walk.WALKING, walk.STOPPING)[draw(2) % 3]
+    w.pending = draw(3) == 0
+    w.clock.set(draw(2) % 4, 500 + draw(12) % 4000)  # the gaits' start phases, their stance and swing ticks
+    w.phase = w.clock.start[draw(3) % 6] if n % 2 else draw(8) % w.clock.cycle_ticks  # often a leg's start
+    for i in range(6):
+        w.su[i] = -1 if draw(1) else draw(4)
+        w.fx[i] = w.nx[i] if draw(2) == 0 else w.nx[i] + 16
+        w.fy[i] = w.ny[i]
+        w.done[i] = draw(1)
+    if n % 4 == 0:
+        w._aim_key[0] = w.cmd[0]  # the same command as the last tick, or another
+        w._aim_key[1] = w.cmd[1]
+        w._aim_key[2] = w.cmd[2]
+        w._aim_key[3] = w.clock.stance_ticks
+    key = list(w._aim_key)
+    before = state()
+    w._ramp()
+    v = w.vel
+    s1 = not (v[0] or v[1] or v[2])
+    w._lift_all(s1)
+    w._aim_swings()
+    plain = state()
+    for f, v in zip(FIELDS, before):
+        getattr(w, f)[:] = v
+    r = begin(w)
+    s2 = r & 1
+    if r > 1:
+        w._lift_due(r, s2)
+    aim(w)
+    fast = state()
+    still += s1
+    lifted += plain[1] != before[1]
+    made += plain[6] != key
+    same = plain == fast and bool(s2) == s1
+    # The pose check: settled or one value off.
+    for k in range(9):
+        b.pose[k] = b.target[k] = draw(10) % 401 - 200
+    if n % 2:
+        k = draw(4) % 9
+        b.pose[k] += 1 if draw(1) else -1
+    same = same and bool(settled(b)) == b.settled()
+    level += b.settled()
+    if not same:
+        differ += 1
+        if differ < 4:
+            print("differ", n, before, plain, fast, s1, s2)
+    count += 1
+print((count, still, lifted, made, level, differ))
+"""
+)
+
+
+def check_starts(result, cases):
+    count, still, lifted, made, level, differ = result
+    assert count == cases and cases // 20 < still < cases // 2 and lifted > cases // 20, result
+    assert cases // 10 < made < cases - cases // 10 and cases // 3 < level < cases - cases // 3, result
+    assert differ == 0, result
+
+
 def check_stances(result, cases):
     count, held, differ = result
     assert count == cases and cases // 10 < held < cases - cases // 10, result
@@ -339,8 +422,16 @@ def test_viper_body_move_equals_plain_move_on_the_vm(mp):
     check_moves(mp.value("CASES = %d\n" % cases + MOVES, heapsize="1m"), cases)
 
 
+def test_viper_ramp_lift_aim_and_pose_check_equal_plain_on_the_vm(mp):
+    cases = 10000
+    check_starts(mp.value("CASES = %d\n" % cases + STARTS, heapsize="1m"), cases)
+
+
 def test_robot_on_the_vm_uses_the_viper_frame_swing_and_stance(mp):
-    src = "from hexapod import tick, walk\nprint((tick._output_fast, walk._swings_fast, walk._move_fast))"
+    src = (
+        "from hexapod import tick, walk as w\n"
+        "print((tick._output_fast, tick._settled_fast, w._swings_fast, w._move_fast, w._begin_fast, w._aim_fast))"
+    )
     assert "None" not in mp.run(src)
 
 
@@ -360,3 +451,6 @@ def test_viper_frame_equals_plain_frame_on_the_emulated_pico():
         status, out, err, _ = pico.run_source("CASES = %d\n" % cases + MOVES, fs=fs, timeout=600)
         assert status == 0, out + err
         check_moves(ast.literal_eval(out.strip().splitlines()[-1]), cases)
+        status, out, err, _ = pico.run_source("CASES = %d\n" % cases + STARTS, fs=fs, timeout=600)
+        assert status == 0, out + err
+        check_starts(ast.literal_eval(out.strip().splitlines()[-1]), cases)

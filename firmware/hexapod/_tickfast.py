@@ -24,6 +24,9 @@ _G_T3 = const(12)
 _REPLAN = const(64)  # hexapod.walk.REPLAN_STEP
 _STOPPING = const(3)  # hexapod.walk.STOPPING
 _FINE_TICK = const(320)  # hexapod.body.FINE * gait.TICK_MS
+_TICK_MS = const(20)  # hexapod.gait.TICK_MS
+_SPEED_STEP = const(40)  # hexapod.walk.SPEED_STEP
+_YAW_STEP = const(100)  # hexapod.walk.YAW_STEP
 _DEG360 = const(3600000)  # hexapod.walk._DEG360
 _REANCHOR = const(4194304)  # hexapod.walk._REANCHOR
 
@@ -58,6 +61,71 @@ def _sin(cdeg: int) -> int:
     if neg:
         return 0 - s
     return s
+
+
+@micropython.viper
+def settled(body) -> int:
+    """hexapod.body.Body.settled: 1 when the pose has reached its target, else 0."""
+    p = body.pose
+    t = body.target
+    for k in range(9):
+        if int(p[k]) != int(t[k]):
+            return 0
+    return 1
+
+
+@micropython.viper
+def begin(walker) -> int:
+    """Walker.update's start: one tick of the velocity ramp (Walker._ramp); returns 1 when the
+    ramped velocity is zero, plus 2 << i for every leg i due to lift (Walker._lift_all's test:
+    in stance at its start phase)."""
+    c = walker.cmd
+    v = walker.vel
+    r = 1
+    for k in range(3):
+        step = _YAW_STEP if k == 2 else _SPEED_STEP
+        d = int(c[k]) - int(v[k])
+        if d > step:
+            d = step
+        elif d < 0 - step:
+            d = 0 - step
+        d += int(v[k])
+        v[k] = d
+        if d:
+            r = 0
+    su = walker.su
+    start = walker.clock.start
+    phase = int(walker.phase)
+    for i in range(6):
+        if int(su[i]) < 0 and phase == int(start[i]):
+            r |= 2 << i
+    return r
+
+
+@micropython.viper
+def aim(walker) -> int:
+    """Walker._aim_swings: _aim for the command (made again only when it changed, by Walker._aim_at)
+    and the ground's move over one swing into _carry (Walker._carry_for)."""
+    c = walker.cmd
+    vx = int(c[0])
+    vy = int(c[1])
+    w = int(c[2])
+    clock = walker.clock
+    key = walker._aim_key
+    st = int(clock.stance_ticks)
+    if int(key[0]) != vx or int(key[1]) != vy or int(key[2]) != w or int(key[3]) != st:
+        key[0] = vx
+        key[1] = vy
+        key[2] = w
+        key[3] = st
+        walker._aim_at(vx, vy, w)
+    ms = int(clock.swing_ticks) * _TICK_MS
+    k = walker._carry
+    k[0] = 0 - (vx * ms * 16 // 1000)
+    k[1] = 0 - (vy * ms * 16 // 1000)
+    # The turn in Q15 radians: cdeg * pi / 18000 * 2**15 = cdeg * 5.71935.
+    k[2] = (w * ms // 1000) * 5719 // 1000
+    return 0
 
 
 @micropython.viper

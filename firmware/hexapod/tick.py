@@ -53,14 +53,16 @@ _WRAP = const(0x3FFFFFFF)  # time.ticks_ms() wraps at 2**30
 RHO_MIN = const(50)  # a leg needs a reach disc this wide (0.1 mm) to walk
 
 
-# The frame compiled by the viper emitter where MicroPython has one (hexapod/_tickfast.py, proven
-# equal to the plain _output by tests/test_tickfast.py); CPython and CircuitPython run the plain code.
+# The frame and the pose check compiled by the viper emitter where MicroPython has one (hexapod/_tickfast.py, proven
+# equal to the plain _output and Body.settled by tests/test_tickfast.py); CPython and CircuitPython run the plain code.
 _output_fast = None
+_settled_fast = None
 if sys.implementation.name == "micropython":
     try:
         from hexapod._tickfast import output as _output_fast
+        from hexapod._tickfast import settled as _settled_fast
     except Exception:  # no viper emitter on this build
-        _output_fast = None
+        _output_fast = _settled_fast = None
 
 
 def describe(code):
@@ -181,7 +183,8 @@ class Robot:
             if not self.posture.step(self.walker):
                 self.mode = self.after
         elif m == STANDING or m == WALKING:  # noqa: SIM109 (a tuple test may allocate)
-            if not self.body.settled():  # a settled pose makes slew() a no-op (its frame is a heap one)
+            # A settled pose makes slew() a no-op (its frame is a heap one).
+            if not (self.body.settled() if _settled_fast is None else _settled_fast(self.body)):
                 self.body.slew()
             if m == WALKING and self.walker.update() == STOPPED:
                 self.mode = STANDING

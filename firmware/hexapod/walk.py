@@ -377,19 +377,26 @@ class Walker:
         """Advance one tick: ramp the velocity, move the body, move the swings, step the clock."""
         if self.state == STOPPED:
             return self.state
-        self._ramp()
+        if _begin_fast is None:
+            self._ramp()
+            due = -1
+        else:
+            due = _begin_fast(self)  # the ramp; 1 when still, 2 << i for each leg due to lift
         v = self.vel
         if self.state == STARTING and v[0] == self.cmd[0] and v[1] == self.cmd[1] and v[2] == self.cmd[2]:
             self.state = WALKING
         still = not (v[0] or v[1] or v[2])
         # Lift first: a foot leaving the ground this tick is not carried by the body's move,
         # so every stance lasts exactly stance_ticks moves (what the touch-down aim assumes).
-        self._lift_all(still)
-        if _move_fast is None:
+        if due < 0:
+            self._lift_all(still)
             self._move_body()
+            self._aim_swings()
         else:
+            if due > 1:
+                self._lift_due(due, still)
             _move_fast(self)
-        self._aim_swings()
+            _aim_fast(self)
         airborne = self._swing_all(still)
         self.phase += 1
         if self.phase >= self.clock.cycle_ticks:
@@ -411,6 +418,11 @@ class Walker:
         phase = self.phase
         for i in range(6):
             if su[i] < 0 and phase == start[i]:
+                self._maybe_lift(i, still)
+
+    def _lift_due(self, due, still):
+        for i in range(6):
+            if due >> (i + 1) & 1:
                 self._maybe_lift(i, still)
 
     def _aim_swings(self):
@@ -622,16 +634,21 @@ class Walker:
             self.by = 0
 
 
-# The swings and the body's move compiled by the viper emitter where MicroPython has one (hexapod/_tickfast.py,
-# proven equal to _swings and _move_body by tests/test_tickfast.py); CPython and CircuitPython run the plain code.
+# The tick's walker steps compiled by the viper emitter where MicroPython has one (hexapod/_tickfast.py,
+# proven equal to _ramp and _lift_all, _move_body, _aim_swings and _swings by tests/test_tickfast.py);
+# CPython and CircuitPython run the plain code.
 _swings_fast = None
 _move_fast = None
+_begin_fast = None
+_aim_fast = None
 if sys.implementation.name == "micropython":
     try:
+        from hexapod._tickfast import aim as _aim_fast
+        from hexapod._tickfast import begin as _begin_fast
         from hexapod._tickfast import move as _move_fast
         from hexapod._tickfast import swings as _swings_fast
     except Exception:  # no viper emitter on this build
-        _swings_fast = _move_fast = None
+        _swings_fast = _move_fast = _begin_fast = _aim_fast = None
 
 
 def is_whole(v):
