@@ -240,6 +240,11 @@ def state():
     return tuple(getattr(w, f) for f in FIELDS) + tuple(list(getattr(w, f)) for f in LISTS)
 
 
+def put(a, v):
+    for j in range(len(v)):  # the walker's state is array("i"): no slice assignment from a list
+        a[j] = v[j]
+
+
 for n in range(CASES):
     for i in range(6):
         w.su[i] = -1 if draw(2) else draw(4)
@@ -274,7 +279,7 @@ for n in range(CASES):
     for f, v in zip(FIELDS, before[: len(FIELDS)]):
         setattr(w, f, v)
     for f, v in zip(LISTS, before[len(FIELDS) :]):
-        getattr(w, f)[:] = v
+        put(getattr(w, f), v)
     move(w)
     fast = state()
     held += plain[0] != before[0]
@@ -315,6 +320,11 @@ def state():
     return [list(getattr(w, f)) for f in FIELDS]
 
 
+def put(a, v):
+    for j in range(len(v)):  # the walker's state is array("i"): no slice assignment from a list
+        a[j] = v[j]
+
+
 for n in range(CASES):
     # The ramp near and far from its command (each axis reaches it, or steps by its limit).
     for k in range(3):
@@ -344,7 +354,7 @@ for n in range(CASES):
     w._aim_swings()
     plain = state()
     for f, v in zip(FIELDS, before):
-        getattr(w, f)[:] = v
+        put(getattr(w, f), v)
     r = begin(w)
     s2 = r & 1
     if r > 1:

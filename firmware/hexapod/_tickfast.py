@@ -66,10 +66,10 @@ def _sin(cdeg: int) -> int:
 @micropython.viper
 def settled(body) -> int:
     """hexapod.body.Body.settled: 1 when the pose has reached its target, else 0."""
-    p = body.pose
-    t = body.target
+    p = ptr32(body.pose)  # noqa: F821 (a viper built-in; the pose is array("i"))
+    t = ptr32(body.target)  # noqa: F821
     for k in range(9):
-        if int(p[k]) != int(t[k]):
+        if p[k] != t[k]:
             return 0
     return 1
 
@@ -79,25 +79,28 @@ def begin(walker) -> int:
     """Walker.update's start: one tick of the velocity ramp (Walker._ramp); returns 1 when the
     ramped velocity is zero, plus 2 << i for every leg i due to lift (Walker._lift_all's test:
     in stance at its start phase)."""
-    c = walker.cmd
-    v = walker.vel
+    sb = 1
+    sb <<= 31  # (v ^ sb) - sb sign-extends a ptr32 load (unsigned on a 64-bit VM); on a board it is v
+    c = ptr32(walker.cmd)  # noqa: F821
+    v = ptr32(walker.vel)  # noqa: F821
     r = 1
     for k in range(3):
         step = _YAW_STEP if k == 2 else _SPEED_STEP
-        d = int(c[k]) - int(v[k])
+        vk = (v[k] ^ sb) - sb
+        d = ((c[k] ^ sb) - sb) - vk
         if d > step:
             d = step
         elif d < 0 - step:
             d = 0 - step
-        d += int(v[k])
-        v[k] = d
-        if d:
+        vk += d
+        v[k] = vk
+        if vk:
             r = 0
-    su = walker.su
-    start = walker.clock.start
+    su = ptr32(walker.su)  # noqa: F821
+    start = ptr32(walker.clock.start)  # noqa: F821
     phase = int(walker.phase)
     for i in range(6):
-        if int(su[i]) < 0 and phase == int(start[i]):
+        if ((su[i] ^ sb) - sb) < 0 and phase == start[i]:
             r |= 2 << i
     return r
 
@@ -106,21 +109,23 @@ def begin(walker) -> int:
 def aim(walker) -> int:
     """Walker._aim_swings: _aim for the command (made again only when it changed, by Walker._aim_at)
     and the ground's move over one swing into _carry (Walker._carry_for)."""
-    c = walker.cmd
-    vx = int(c[0])
-    vy = int(c[1])
-    w = int(c[2])
+    sb = 1
+    sb <<= 31  # (v ^ sb) - sb sign-extends a ptr32 load (unsigned on a 64-bit VM); on a board it is v
+    c = ptr32(walker.cmd)  # noqa: F821
+    vx = (c[0] ^ sb) - sb
+    vy = (c[1] ^ sb) - sb
+    w = (c[2] ^ sb) - sb
     clock = walker.clock
-    key = walker._aim_key
+    key = ptr32(walker._aim_key)  # noqa: F821
     st = int(clock.stance_ticks)
-    if int(key[0]) != vx or int(key[1]) != vy or int(key[2]) != w or int(key[3]) != st:
+    if key[0] != c[0] or key[1] != c[1] or key[2] != c[2] or ((key[3] ^ sb) - sb) != st:
         key[0] = vx
         key[1] = vy
         key[2] = w
         key[3] = st
         walker._aim_at(vx, vy, w)
     ms = int(clock.swing_ticks) * _TICK_MS
-    k = walker._carry
+    k = ptr32(walker._carry)  # noqa: F821
     k[0] = 0 - (vx * ms * 16 // 1000)
     k[1] = 0 - (vy * ms * 16 // 1000)
     # The turn in Q15 radians: cdeg * pi / 18000 * 2**15 = cdeg * 5.71935.
@@ -133,33 +138,37 @@ def swings(walker, lo: int, hi: int, w: int, still: int) -> int:
     """hexapod.walk.Walker._swing_all over legs lo..hi-1: each swing foot (su >= 0) one tick on
     (Walker._swing_step, the touch-down point into walker._xy), landed as Walker._swing lands it;
     returns how many are still in the air."""
-    su = walker.su
-    nxs = walker.nx
-    nys = walker.ny
-    rhos = walker.rho
-    fxs = walker.fx
-    fys = walker.fy
-    a = walker._aim
-    a0 = int(a[0])
-    a1 = int(a[1])
-    a2 = int(a[2])
-    a3 = int(a[3])
-    k = walker._carry
-    k0 = int(k[0])
-    k1 = int(k[1])
-    k2 = int(k[2])
-    tab = ptr32(_SIN_WORDS)  # noqa: F821 (a viper built-in)
+    sb = 1
+    sb <<= 31  # (v ^ sb) - sb sign-extends a ptr32 load (unsigned on a 64-bit VM); on a board it is v
+    su = ptr32(walker.su)  # noqa: F821 (a viper built-in; the walker's state is array("i"))
+    nxs = ptr32(walker.nx)  # noqa: F821
+    nys = ptr32(walker.ny)  # noqa: F821
+    rhos = ptr32(walker.rho)  # noqa: F821
+    fxs = ptr32(walker.fx)  # noqa: F821
+    fys = ptr32(walker.fy)  # noqa: F821
+    sxs = ptr32(walker.sx)  # noqa: F821
+    sys_ = ptr32(walker.sy)  # noqa: F821
+    a = ptr32(walker._aim)  # noqa: F821
+    a0 = (a[0] ^ sb) - sb
+    a1 = (a[1] ^ sb) - sb
+    a2 = (a[2] ^ sb) - sb
+    a3 = (a[3] ^ sb) - sb
+    k = ptr32(walker._carry)  # noqa: F821
+    k0 = (k[0] ^ sb) - sb
+    k1 = (k[1] ^ sb) - sb
+    k2 = (k[2] ^ sb) - sb
+    tab = ptr32(_SIN_WORDS)  # noqa: F821
     airborne = 0
     for i in range(lo, hi):
-        u = int(su[i])
+        u = (su[i] ^ sb) - sb
         if u < 0:
             continue
         u += 1
-        nx = int(nxs[i])
-        ny = int(nys[i])
-        r = int(rhos[i])
-        sx = int(walker.sx[i])
-        sy = int(walker.sy[i])
+        nx = (nxs[i] ^ sb) - sb
+        ny = (nys[i] ^ sb) - sb
+        r = rhos[i]
+        sx = (sxs[i] ^ sb) - sb
+        sy = (sys_[i] ^ sb) - sb
         # Every mul_q15 below written out: a viper call costs ~5 us on the Pico, its body < 1 us.
         m = nx if nx >= 0 else 0 - nx
         xc = (m >> 15) * a0 + (((m & 32767) * a0 + 16384) >> 15)
@@ -250,8 +259,8 @@ def swings(walker, lo: int, hi: int, w: int, still: int) -> int:
                 stage = 1
             elif stage == 1:
                 # How far the plan moved since the last tick, fine (0 when steady).
-                rx = x - int(fxs[i])
-                ry = y - int(fys[i])
+                rx = x - ((fxs[i] ^ sb) - sb)
+                ry = y - ((fys[i] ^ sb) - sb)
                 stage = 2
             elif stage == 2 and (rx or ry):
                 # The foot moves as the new plan does, plus at most _REPLAN a tick toward it.
@@ -263,7 +272,7 @@ def swings(walker, lo: int, hi: int, w: int, still: int) -> int:
                 stage = 3
             else:
                 break
-        t = walker._xy
+        t = ptr32(walker._xy)  # noqa: F821
         t[0] = t0
         t[1] = t1
         fxs[i] = x
@@ -288,13 +297,15 @@ def swings(walker, lo: int, hi: int, w: int, still: int) -> int:
                 h = 0 - h
             h = (h >> 15) * h + (((h & 32767) * h + 16384) >> 15)
             m = int(walker.lift) << 4
-            walker.fz[i] = int(walker.ground) + (m >> 15) * h + (((m & 32767) * h + 16384) >> 15)
+            fz = ptr32(walker.fz)  # noqa: F821
+            fz[i] = int(walker.ground) + (m >> 15) * h + (((m & 32767) * h + 16384) >> 15)
             su[i] = u
             airborne += 1
             continue
         # Landed (Walker._swing): pinned where it is, in the ground frame (Walker._to_ground).
         su[i] = -1
-        walker.fz[i] = walker.ground
+        fz = ptr32(walker.fz)  # noqa: F821
+        fz[i] = int(walker.ground)
         cd = (int(walker.psi) + 50) // 100
         c = int(_sin(cd + 9000))
         s = int(_sin(cd))
@@ -310,10 +321,13 @@ def swings(walker, lo: int, hi: int, w: int, still: int) -> int:
         if y < 0:
             yc = 0 - yc
             ys = 0 - ys
-        walker.px[i] = int(walker.bx) + xc - ys
-        walker.py[i] = int(walker.by) + xs + yc
+        px = ptr32(walker.px)  # noqa: F821
+        py = ptr32(walker.py)  # noqa: F821
+        px[i] = int(walker.bx) + xc - ys
+        py[i] = int(walker.by) + xs + yc
         if still and int(walker.state) == _STOPPING and x == nx and y == ny:
-            walker.done[i] = 1
+            done = ptr32(walker.done)  # noqa: F821
+            done[i] = 1
     return airborne
 
 
@@ -323,21 +337,23 @@ def stance(walker, bx: int, by: int, cd: int) -> int:
     ax, ay; 1 when a foot would leave its stance_rho disc (and move away from neutral), else 0."""
     c = int(_sin(cd + 9000))  # fixmath.cos
     s = int(_sin(cd))
-    su = walker.su
-    px = walker.px
-    py = walker.py
-    nx = walker.nx
-    ny = walker.ny
-    fx = walker.fx
-    fy = walker.fy
-    rho = walker.stance_rho
-    out_x = walker.ax
-    out_y = walker.ay
+    sb = 1
+    sb <<= 31  # (v ^ sb) - sb sign-extends a ptr32 load (unsigned on a 64-bit VM); on a board it is v
+    su = ptr32(walker.su)  # noqa: F821
+    px = ptr32(walker.px)  # noqa: F821
+    py = ptr32(walker.py)  # noqa: F821
+    nx = ptr32(walker.nx)  # noqa: F821
+    ny = ptr32(walker.ny)  # noqa: F821
+    fx = ptr32(walker.fx)  # noqa: F821
+    fy = ptr32(walker.fy)  # noqa: F821
+    rho = ptr32(walker.stance_rho)  # noqa: F821
+    out_x = ptr32(walker.ax)  # noqa: F821
+    out_y = ptr32(walker.ay)  # noqa: F821
     for i in range(6):
-        if int(su[i]) >= 0:
+        if ((su[i] ^ sb) - sb) >= 0:
             continue
-        x = int(px[i]) - bx
-        y = int(py[i]) - by
+        x = ((px[i] ^ sb) - sb) - bx
+        y = ((py[i] ^ sb) - sb) - by
         # _mq(x, c) + _mq(y, s) and _mq(y, c) - _mq(x, s), written out as in output(): a call costs
         # ~5 us, and one shared helper made the tick 0.16 ms slower (measured on the Pico).
         m = x if x >= 0 else 0 - x
@@ -354,14 +370,14 @@ def stance(walker, bx: int, by: int, cd: int) -> int:
             ys = 0 - ys
         ax = xc + ys
         ay = yc - xs
-        n0 = int(nx[i])
-        n1 = int(ny[i])
+        n0 = (nx[i] ^ sb) - sb
+        n1 = (ny[i] ^ sb) - sb
         dx = (ax - n0) >> 4
         dy = (ay - n1) >> 4
-        r = int(rho[i])
+        r = rho[i]
         if dx * dx + dy * dy > r * r:
-            ox = (int(fx[i]) - n0) >> 4
-            oy = (int(fy[i]) - n1) >> 4
+            ox = (((fx[i] ^ sb) - sb) - n0) >> 4
+            oy = (((fy[i] ^ sb) - sb) - n1) >> 4
             if dx * dx + dy * dy > ox * ox + oy * oy:
                 return 1
         out_x[i] = ax
@@ -373,10 +389,12 @@ def stance(walker, bx: int, by: int, cd: int) -> int:
 def move(walker) -> int:
     """hexapod.walk.Walker._move_body: the body's move this tick at walker.vel in the ground frame
     (with its remainder carries), the stance feet read back (stance() below), or held."""
-    v = walker.vel
-    v0 = int(v[0])
-    v1 = int(v[1])
-    dpsi = int(v[2]) << 1  # cdeg/s over 20 ms, in ANGLE_UNIT (1e-4 degree)
+    sb = 1
+    sb <<= 31  # (v ^ sb) - sb sign-extends a ptr32 load (unsigned on a 64-bit VM); on a board it is v
+    v = ptr32(walker.vel)  # noqa: F821
+    v0 = (v[0] ^ sb) - sb
+    v1 = (v[1] ^ sb) - sb
+    dpsi = ((v[2] ^ sb) - sb) << 1  # cdeg/s over 20 ms, in ANGLE_UNIT (1e-4 degree)
     psi = int(walker.psi)
     cd = (psi + (dpsi >> 1) + 50) // 100
     c = int(_sin(cd + 9000))
@@ -417,21 +435,21 @@ def move(walker) -> int:
     walker.cx = cx
     walker.cy = cy
     walker.psi = psi
-    su = walker.su
-    fx = walker.fx
-    fy = walker.fy
-    ax = walker.ax
-    ay = walker.ay
+    su = ptr32(walker.su)  # noqa: F821
+    fx = ptr32(walker.fx)  # noqa: F821
+    fy = ptr32(walker.fy)  # noqa: F821
+    ax = ptr32(walker.ax)  # noqa: F821
+    ay = ptr32(walker.ay)  # noqa: F821
     for i in range(6):
-        if int(su[i]) < 0:
+        if ((su[i] ^ sb) - sb) < 0:
             fx[i] = ax[i]
             fy[i] = ay[i]
     if bx > _REANCHOR or bx < 0 - _REANCHOR or by > _REANCHOR or by < 0 - _REANCHOR:
-        px = walker.px
-        py = walker.py
+        px = ptr32(walker.px)  # noqa: F821
+        py = ptr32(walker.py)  # noqa: F821
         for i in range(6):
-            px[i] = int(px[i]) - bx
-            py[i] = int(py[i]) - by
+            px[i] = ((px[i] ^ sb) - sb) - bx
+            py[i] = ((py[i] ^ sb) - sb) - by
         bx = 0
         by = 0
     walker.bx = bx
@@ -442,26 +460,28 @@ def move(walker) -> int:
 @micropython.viper
 def _posed(body, xyz) -> int:
     """Body.to_leg's pose part: the foot xyz[0:3] (fine) moved back through the body's pose, in place."""
-    p = body.pose
-    tr = body.trig
-    cx = int(p[6]) << 4
-    cy = int(p[7]) << 4
-    cz = int(p[8]) << 4
-    x = int(xyz[0]) - (cx + (int(p[0]) << 4))
-    y = int(xyz[1]) - (cy + (int(p[1]) << 4))
-    z = int(xyz[2]) - (cz + (int(p[2]) << 4))
-    c = int(tr[4])
-    s = int(tr[5])
+    sb = 1
+    sb <<= 31  # (v ^ sb) - sb sign-extends a ptr32 load (unsigned on a 64-bit VM); on a board it is v
+    p = ptr32(body.pose)  # noqa: F821
+    tr = ptr32(body.trig)  # noqa: F821
+    cx = ((p[6] ^ sb) - sb) << 4
+    cy = ((p[7] ^ sb) - sb) << 4
+    cz = ((p[8] ^ sb) - sb) << 4
+    x = int(xyz[0]) - (cx + (((p[0] ^ sb) - sb) << 4))
+    y = int(xyz[1]) - (cy + (((p[1] ^ sb) - sb) << 4))
+    z = int(xyz[2]) - (cz + (((p[2] ^ sb) - sb) << 4))
+    c = (tr[4] ^ sb) - sb
+    s = (tr[5] ^ sb) - sb
     a = int(_mq(x, c)) + int(_mq(y, s))
     y = int(_mq(y, c)) - int(_mq(x, s))
     x = a
-    c = int(tr[2])
-    s = int(tr[3])
+    c = (tr[2] ^ sb) - sb
+    s = (tr[3] ^ sb) - sb
     a = int(_mq(x, c)) - int(_mq(z, s))
     z = int(_mq(x, s)) + int(_mq(z, c))
     x = a
-    c = int(tr[0])
-    s = int(tr[1])
+    c = (tr[0] ^ sb) - sb
+    s = (tr[1] ^ sb) - sb
     a = int(_mq(y, c)) + int(_mq(z, s))
     z = int(_mq(z, c)) - int(_mq(y, s))
     y = a
@@ -479,9 +499,9 @@ def output(robot) -> int:
     sb = 1
     sb <<= 31  # at run time: the folded constant 1 << 31 is no small int on a 32-bit port
     w = robot.walker
-    fx = w.fx
-    fy = w.fy
-    fz = w.fz
+    fx = ptr32(w.fx)  # noqa: F821 (the walker's feet are array("i"))
+    fy = ptr32(w.fy)  # noqa: F821
+    fz = ptr32(w.fz)  # noqa: F821
     body = robot.body
     level = bool(body.level)
     mx = ptr32(body.mx)  # noqa: F821 (a viper built-in; Body keeps the mounts in array("i"))
@@ -493,9 +513,9 @@ def output(robot) -> int:
     a = ptr32(robot._angles)  # noqa: F821 (Robot's scratch, array("i"))
     for i in range(6):
         # Body.to_leg: the foot (fine, body frame) into leg i's frame (0.1 mm, rounded).
-        x = int(fx[i])
-        y = int(fy[i])
-        z = int(fz[i])
+        x = (fx[i] ^ sb) - sb
+        y = (fy[i] ^ sb) - sb
+        z = (fz[i] ^ sb) - sb
         if not level:
             xyz[0] = x
             xyz[1] = y
@@ -548,9 +568,9 @@ def output(robot) -> int:
     for k in range(18):
         # hexapod.servo.ServoMap.pulse, read from the maps every frame (they may be swapped or
         # recalibrated between ticks); floor division as in the plain code (viper's // floors too).
-        sm = servos[k]
-        us = int(sm.centre_us) + int(sm.direction) * ((((a[k] ^ sb) - sb) * int(sm.us_per_degree) + 5000) // 10000)
-        if us < int(sm.min_us) or us > int(sm.max_us):
+        cal = ptr32(servos[k].cal)  # noqa: F821 (centre_us, direction, us_per_degree, min_us, max_us)
+        us = cal[0] + ((cal[1] ^ sb) - sb) * ((((a[k] ^ sb) - sb) * cal[2] + 5000) // 10000)
+        if us < cal[3] or us > cal[4]:
             return 1
         p[k] = us
     angles = robot.angles

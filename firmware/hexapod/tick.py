@@ -100,8 +100,9 @@ class FrameBuffer:
         self.frames = 0
 
     def write_frame(self, pulses):
+        out = self.pulses
         for k in range(18):
-            self.pulses[k] = pulses[k]
+            out[k] = pulses[k]
         self.frames += 1
 
 
