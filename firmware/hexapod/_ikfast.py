@@ -59,65 +59,6 @@ def _isqrt(n: int) -> int:
 
 
 @micropython.viper
-def _atan2(y: int, x: int) -> int:
-    if x == 0 and y == 0:
-        return 0
-    ax = x if x >= 0 else 0 - x
-    ay = y if y >= 0 else 0 - y
-    steep = 0
-    if ay > ax:
-        steep = 1
-        t = ax
-        ax = ay
-        ay = t
-    if ay >= 32768:
-        k = 1
-        while (ay >> k) >= 32767:
-            k += 1
-        ay = (ay >> k) + ((ay >> (k - 1)) & 1)
-        ax = (ax >> k) + ((ax >> (k - 1)) & 1)
-    num = ay << 15
-    t = num // ax
-    if num - t * ax >= ax - (num - t * ax):
-        t += 1
-    table = ptr32(_ATAN_WORDS)  # noqa: F821 (a viper built-in)
-    i = t >> 7
-    if i >= 256:
-        a = table[256]
-    else:
-        lo = table[i]
-        a = lo + (((table[i + 1] - lo) * (t & 127) + 64) >> 7)
-    if steep:
-        a = 900000 - a
-    if x < 0:
-        a = 1800000 - a
-    if y < 0 and a != 1800000:
-        return 0 - a
-    return a
-
-
-@micropython.viper
-def _sqrt12(vi: int, vf: int) -> int:
-    s = 16
-    lim = 8192
-    while vi >= lim:
-        s -= 2
-        lim <<= 2
-    n = (vi << s) + (vf >> (16 - s))
-    r = int(_isqrt(n))
-    k = 12 - (s >> 1)
-    return (r << k) + (((n - r * r) << k) // ((r << 1) + 1))
-
-
-@micropython.viper
-def _bits_over_15(v: int) -> int:
-    e = 0
-    while (v >> e) >= 32768:
-        e += 1
-    return e
-
-
-@micropython.viper
 def solve(x: int, y: int, z: int, gbuf) -> int:
     g = ptr32(gbuf)  # noqa: F821 (a viper built-in)
     if x > _COORD_MAX or x < 0 - _COORD_MAX or y > _COORD_MAX or y < 0 - _COORD_MAX:

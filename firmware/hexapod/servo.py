@@ -29,9 +29,9 @@ def _put(words, k, v):
     words[k] = v
 
 
-def _word(k, doc):
-    """A property reading and writing word k of a ServoMap's cal (doc: what it holds)."""
-    return property(lambda self: self.cal[k], lambda self, v: _put(self.cal, k, v), None, doc)
+def _word(k):
+    """A property reading and writing word k of a ServoMap's cal."""
+    return property(lambda self: self.cal[k], lambda self, v: _put(self.cal, k, v))
 
 
 class ServoMap:
@@ -53,11 +53,11 @@ class ServoMap:
         self.excess = 0  # microseconds past the range on the last refusal
 
     # The five as properties over cal (each one attribute, as before, for every other user).
-    centre_us = _word(_CENTRE, "pulse width at angle 0, us")
-    direction = _word(_DIRECTION, "1, or -1 for a servo mounted the other way round")
-    us_per_degree = _word(_PER_DEGREE, "pulse change per degree, 0.01 us")
-    min_us = _word(_MIN, "shortest pulse this servo may get, us")
-    max_us = _word(_MAX, "longest pulse this servo may get, us")
+    centre_us = _word(_CENTRE)  # pulse width at angle 0, us
+    direction = _word(_DIRECTION)  # 1, or -1 for a servo mounted the other way round
+    us_per_degree = _word(_PER_DEGREE)  # pulse change per degree, 0.01 us
+    min_us = _word(_MIN)  # shortest pulse this servo may get, us
+    max_us = _word(_MAX)  # longest pulse this servo may get, us
 
     def raw(self, cdeg):
         """Unclamped pulse width in us for an angle in cdeg (rounded half up)."""
