@@ -217,29 +217,33 @@ def swings(walker, lo: int, hi: int, w: int, still: int) -> int:
                         h = 0 - h
                     st = (32768 + h + 1) >> 1
                 frac = (uu << 15) // w
-                # x = S + C uu / w + (T - S - C) st, the carry C turning from lift-off's to touch-down's.
-                d = c2 - c0
-                m = d if d >= 0 else 0 - d
-                e = (m >> 15) * st + (((m & 32767) * st + 16384) >> 15)
-                cx = c0 + (e if d >= 0 else 0 - e)
-                d = c3 - c1
-                m = d if d >= 0 else 0 - d
-                e = (m >> 15) * st + (((m & 32767) * st + 16384) >> 15)
-                cy = c1 + (e if d >= 0 else 0 - e)
-                m = cx if cx >= 0 else 0 - cx
-                e = (m >> 15) * frac + (((m & 32767) * frac + 16384) >> 15)
-                x = sx + (e if cx >= 0 else 0 - e)
-                d = t0 - sx - cx
-                m = d if d >= 0 else 0 - d
-                e = (m >> 15) * st + (((m & 32767) * st + 16384) >> 15)
-                x += e if d >= 0 else 0 - e
-                m = cy if cy >= 0 else 0 - cy
-                e = (m >> 15) * frac + (((m & 32767) * frac + 16384) >> 15)
-                y = sy + (e if cy >= 0 else 0 - e)
-                d = t1 - sy - cy
-                m = d if d >= 0 else 0 - d
-                e = (m >> 15) * st + (((m & 32767) * st + 16384) >> 15)
-                y += e if d >= 0 else 0 - e
+                # x = S + C uu / w + (T - S - C) st, the carry C turning from lift-off's to touch-down's;
+                # then y (one loop: the code once, for a smaller module).
+                for axis in range(2):
+                    if axis == 0:
+                        lo = c0
+                        d = c2 - c0
+                        s0 = sx
+                        tn = t0
+                    else:
+                        lo = c1
+                        d = c3 - c1
+                        s0 = sy
+                        tn = t1
+                    m = d if d >= 0 else 0 - d
+                    e = (m >> 15) * st + (((m & 32767) * st + 16384) >> 15)
+                    cc = lo + (e if d >= 0 else 0 - e)
+                    m = cc if cc >= 0 else 0 - cc
+                    e = (m >> 15) * frac + (((m & 32767) * frac + 16384) >> 15)
+                    v = s0 + (e if cc >= 0 else 0 - e)
+                    d = tn - s0 - cc
+                    m = d if d >= 0 else 0 - d
+                    e = (m >> 15) * st + (((m & 32767) * st + 16384) >> 15)
+                    v += e if d >= 0 else 0 - e
+                    if axis == 0:
+                        x = v
+                    else:
+                        y = v
             # Walker._in_reach: onto the disc of radius r (0.1 mm) around neutral when outside it.
             dx = (x - nx) >> 4
             dy = (y - ny) >> 4
