@@ -412,29 +412,21 @@ def check(result, cases):
     assert differ == 0, result
 
 
-def test_viper_frame_equals_plain_frame_on_the_vm(mp):
-    cases = 4000
-    check(mp.value("CASES = %d\n" % cases + CASES, heapsize="1m"), cases)
+# Each viper path against its plain code: the script, its checks, the cases on the host VM and on
+# the emulated Pico (~1 min there).
+PATHS = {
+    "frame": (CASES, check, 4000, 1000),
+    "swings": (SWINGS, check_swings, 20000, 2000),
+    "stance": (STANCES, check_stances, 10000, 1000),
+    "move": (MOVES, check_moves, 10000, 1000),
+    "ramp_lift_aim_pose": (STARTS, check_starts, 10000, 1000),
+}
 
 
-def test_viper_swing_equals_plain_swing_on_the_vm(mp):
-    cases = 20000
-    check_swings(mp.value("CASES = %d\n" % cases + SWINGS, heapsize="1m"), cases)
-
-
-def test_viper_stance_equals_plain_stance_on_the_vm(mp):
-    cases = 10000
-    check_stances(mp.value("CASES = %d\n" % cases + STANCES, heapsize="1m"), cases)
-
-
-def test_viper_body_move_equals_plain_move_on_the_vm(mp):
-    cases = 10000
-    check_moves(mp.value("CASES = %d\n" % cases + MOVES, heapsize="1m"), cases)
-
-
-def test_viper_ramp_lift_aim_and_pose_check_equal_plain_on_the_vm(mp):
-    cases = 10000
-    check_starts(mp.value("CASES = %d\n" % cases + STARTS, heapsize="1m"), cases)
+@pytest.mark.parametrize("path", sorted(PATHS))
+def test_viper_path_equals_plain_code_on_the_vm(mp, path):
+    script, checks, cases, _ = PATHS[path]
+    checks(mp.value("CASES = %d\n" % cases + script, heapsize="1m"), cases)
 
 
 def test_robot_on_the_vm_uses_the_viper_frame_swing_and_stance(mp):
@@ -446,21 +438,11 @@ def test_robot_on_the_vm_uses_the_viper_frame_swing_and_stance(mp):
 
 
 @pytest.mark.skipif(pico.missing() is not None, reason=pico.missing() or "")
-def test_viper_frame_equals_plain_frame_on_the_emulated_pico():
-    cases = 1000  # 1,000 frames (6,000 leg solves, 18,000 pulses), 2,000 swings, 1,000 stances: ~1 min
+def test_viper_paths_equal_plain_code_on_the_emulated_pico():
+    # 1,000 frames (6,000 leg solves, 18,000 pulses), 2,000 swings, 1,000 stances, moves and starts.
     with pico.flashed() as fs:
-        status, out, err, _ = pico.run_source("CASES = %d\n" % cases + CASES, fs=fs, timeout=600)
-        assert status == 0, out + err
-        check(ast.literal_eval(out.strip().splitlines()[-1]), cases)
-        status, out, err, _ = pico.run_source("CASES = %d\n" % (cases * 2) + SWINGS, fs=fs, timeout=600)
-        assert status == 0, out + err
-        check_swings(ast.literal_eval(out.strip().splitlines()[-1]), cases * 2)
-        status, out, err, _ = pico.run_source("CASES = %d\n" % cases + STANCES, fs=fs, timeout=600)
-        assert status == 0, out + err
-        check_stances(ast.literal_eval(out.strip().splitlines()[-1]), cases)
-        status, out, err, _ = pico.run_source("CASES = %d\n" % cases + MOVES, fs=fs, timeout=600)
-        assert status == 0, out + err
-        check_moves(ast.literal_eval(out.strip().splitlines()[-1]), cases)
-        status, out, err, _ = pico.run_source("CASES = %d\n" % cases + STARTS, fs=fs, timeout=600)
-        assert status == 0, out + err
-        check_starts(ast.literal_eval(out.strip().splitlines()[-1]), cases)
+        for path in sorted(PATHS):
+            script, checks, _, cases = PATHS[path]
+            status, out, err, _ = pico.run_source("CASES = %d\n" % cases + script, fs=fs, timeout=600)
+            assert status == 0, (path, out + err)
+            checks(ast.literal_eval(out.strip().splitlines()[-1]), cases)
