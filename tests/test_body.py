@@ -111,7 +111,7 @@ while b.slew():
         j = 1 if 3 <= k < 6 else 0
         worst[j] = max(worst[j], d)
     prev = list(b.pose)
-print([n, worst, POSE_STEP, ANGLE_STEP, b.settled(), b.pose])
+print([n, worst, POSE_STEP, ANGLE_STEP, b.settled(), list(b.pose)])
 """
     )
     n, worst, pose_step, angle_step, settled, pose = steps
@@ -145,4 +145,4 @@ def test_bad_pose_is_refused_and_changes_nothing(pose, message):
     b.set_target([10, 0, 0, 0, 0, 0, 0, 0, 0])
     with pytest.raises(ValueError, match=message):
         b.set_target(pose)
-    assert b.target == [10, 0, 0, 0, 0, 0, 0, 0, 0]
+    assert list(b.target) == [10, 0, 0, 0, 0, 0, 0, 0, 0]

@@ -105,19 +105,26 @@ SWINGS = (
 import robots.default as robot_file
 from hexapod import geometry, walk
 from hexapod.fixmath import cos, sin
-from hexapod._tickfast import swing
+from hexapod._tickfast import swings
 
 w = walk.Walker(geometry.load(robot_file))
-count = differ = clamped = landed = 0
+count = differ = clamped = landed = done = 0
+
+
+def state(i):
+    return (w.su[i], w.fx[i], w.fy[i], w.fz[i], list(w._xy), w.px[i], w.py[i], w.done[i])
+
+
 for n in range(CASES):
     i = draw(8) % 6
     wt = 2 + draw(8) % 40  # swing ticks: the short swings (<= 3) take the stroke's other branch
     w.su[i] = draw(8) % wt
-    turn = draw(14) % 18001 - 9000
+    home = n % 8 == 0  # no turn, no shift: the swing lands on neutral (the STOPPING branch)
+    turn = 0 if home else draw(14) % 18001 - 9000
     w._aim[0] = cos(turn)
     w._aim[1] = sin(turn)
-    w._aim[2] = draw(14) % 19201 - 9600
-    w._aim[3] = draw(14) % 19201 - 9600
+    w._aim[2] = 0 if home else draw(14) % 19201 - 9600
+    w._aim[3] = 0 if n % 16 == 0 else draw(14) % 19201 - 9600  # half the homes land beside neutral
     w._carry[0] = draw(14) % 19201 - 9600
     w._carry[1] = draw(14) % 19201 - 9600
     w._carry[2] = draw(12) % 6001 - 3000
@@ -126,28 +133,51 @@ for n in range(CASES):
     w.rho[i] = 50 + draw(10) % 700  # small discs: both reach clamps bind often
     w.lift = 100 + draw(9) % 501
     w.ground = -(draw(12) % 1500 + 300) << 4
-    # Where the foot was last tick: near lift-off, off the plan by less or more than the
-    # re-aim allows a tick (walk.REPLAN_STEP, 64 fine), so every branch runs.
-    spread = 100 if n % 2 else 6000
-    fx = w.fx[i] = w.sx[i] + draw(14) % (2 * spread + 1) - spread
-    fy = w.fy[i] = w.sy[i] + draw(14) % (2 * spread + 1) - spread
+    # The landing's ground frame: heading anywhere, the body anywhere (< walk._REANCHOR).
+    w.psi = draw(22) % 3600000
+    w.bx = draw(22) % 4000001 - 2000000
+    w.by = draw(22) % 4000001 - 2000000
+    w.state = walk.STOPPING if draw(1) else walk.WALKING
+    still = draw(1)
+    w.done[i] = 0
+    if home:
+        w.rho[i] = 800
+        if n % 32 == 0:  # its last tick, walking home (the STOPPING landing's test)
+            w.su[i] = wt - 1
+            w.state = walk.STOPPING
+            still = 1
+        # The foot exactly on its plan of the last tick (as the plain swing works it out): no re-aim.
+        w.target(i, w._xy)
+        w._in_reach(i, w._xy)
+        w.carry_at(w.sx[i], w.sy[i], w._cv, 0)
+        w.carry_at(w._xy[0], w._xy[1], w._cv, 2)
+        w._swing_at(i, w.su[i], wt, w._plan)
+        fx = w.fx[i] = w._plan[0]
+        fy = w.fy[i] = w._plan[1]
+    else:
+        # Where the foot was last tick: near lift-off, off the plan by less or more than the
+        # re-aim allows a tick (walk.REPLAN_STEP, 64 fine), so every branch runs.
+        spread = 100 if n % 2 else 6000
+        fx = w.fx[i] = w.sx[i] + draw(14) % (2 * spread + 1) - spread
+        fy = w.fy[i] = w.sy[i] + draw(14) % (2 * spread + 1) - spread
     su = w.su[i]
-    u1 = w._swing_step(i, wt)
-    plain = (u1, w.fx[i], w.fy[i], w.fz[i], list(w._xy))
+    w.px[i] = w.py[i] = 0
+    plain = (w._swings(i, i + 1, wt, still),) + state(i)
     w.su[i] = su
     w.fx[i] = fx
     w.fy[i] = fy
-    w.fz[i] = 0
-    u2 = swing(w, i, wt)
-    fast = (u2, w.fx[i], w.fy[i], w.fz[i], list(w._xy))
-    clamped += (plain[4][0] - w.nx[i]) ** 2 + (plain[4][1] - w.ny[i]) ** 2 >= (w.rho[i] << 4) ** 2 - (64 * w.rho[i])
-    landed += u1 >= wt
+    w.fz[i] = w.px[i] = w.py[i] = w.done[i] = 0
+    w._xy[0] = w._xy[1] = 0
+    fast = (swings(w, i, i + 1, wt, still),) + state(i)
+    clamped += (plain[5][0] - w.nx[i]) ** 2 + (plain[5][1] - w.ny[i]) ** 2 >= (w.rho[i] << 4) ** 2 - (64 * w.rho[i])
+    landed += plain[1] < 0
+    done += plain[8]
     if plain != fast:
         differ += 1
         if differ < 4:
             print("differ", n, plain, fast)
     count += 1
-print((count, clamped, landed, differ))
+print((count, clamped, landed, done, differ))
 """
 )
 
@@ -192,6 +222,174 @@ print((count, held, differ))
 )
 
 
+MOVES = (
+    LCG
+    + """
+import robots.default as robot_file
+from hexapod import geometry, walk
+from hexapod.fixmath import cos, mul_q15, sin
+from hexapod._tickfast import move
+
+w = walk.Walker(geometry.load(robot_file))
+count = differ = held = still = anchored = 0
+FIELDS = ("held", "bx", "by", "cx", "cy", "psi")
+LISTS = ("fx", "fy", "px", "py", "ax", "ay")
+
+
+def state():
+    return tuple(getattr(w, f) for f in FIELDS) + tuple(list(getattr(w, f)) for f in LISTS)
+
+
+def put(a, v):
+    for j in range(len(v)):  # the walker's state is array("i"): no slice assignment from a list
+        a[j] = v[j]
+
+
+for n in range(CASES):
+    for i in range(6):
+        w.su[i] = -1 if draw(2) else draw(4)
+        w.fx[i] = w.nx[i] + draw(14) % 16001 - 8000
+        w.fy[i] = w.ny[i] + draw(14) % 16001 - 8000
+        w.stance_rho[i] = 400 + draw(10) % 800
+        w.ax[i] = w.ay[i] = 0
+    # Walking at anything accepted, or not moving at all (the carries alone change).
+    quiet = n % 8 == 0
+    w.vel[0] = 0 if quiet else draw(13) % 6001 - 3000
+    w.vel[1] = 0 if quiet else draw(13) % 6001 - 3000
+    w.vel[2] = 0 if quiet else draw(15) % 18001 - 9000
+    w.psi = draw(22) % 3600000 if n % 4 else (draw(1) * (3600000 - 20000) + draw(14) % 20000)  # or near the wrap
+    w.cx = draw(10) % 1000
+    w.cy = draw(10) % 1000
+    w.held = draw(4)
+    # The ground frame's origin near the body, or just inside or past the re-anchoring bound.
+    far = 4194304 - 4000 if n % 3 == 0 else 0  # walk._REANCHOR, 2**22
+    w.bx = (far + draw(13) % 8001) * (1 if draw(1) else -1)
+    w.by = draw(16) % 200001 - 100000
+    # Stance feet near neutral seen from the body at its heading (the others anywhere: held).
+    c = cos((w.psi + 50) // 100)
+    s = sin((w.psi + 50) // 100)
+    for i in range(6):
+        x = w.nx[i] + draw(14) % 14001 - 7000
+        y = w.ny[i] + draw(14) % 14001 - 7000
+        w.px[i] = w.bx + mul_q15(x, c) - mul_q15(y, s)
+        w.py[i] = w.by + mul_q15(x, s) + mul_q15(y, c)
+    before = state()
+    w._move_body()
+    plain = state()
+    for f, v in zip(FIELDS, before[: len(FIELDS)]):
+        setattr(w, f, v)
+    for f, v in zip(LISTS, before[len(FIELDS) :]):
+        put(getattr(w, f), v)
+    move(w)
+    fast = state()
+    held += plain[0] != before[0]
+    still += plain[1:3] == before[1:3] and plain[0] == before[0]
+    anchored += plain[1] == 0 and before[1] != 0
+    if plain != fast:
+        differ += 1
+        if differ < 4:
+            print("differ", n, before, plain, fast)
+    count += 1
+print((count, held, still, anchored, differ))
+"""
+)
+
+
+def check_moves(result, cases):
+    count, held, still, anchored, differ = result
+    assert count == cases and held > cases // 10 and still > cases // 20 and anchored > cases // 50, result
+    assert count - held - still > cases // 5, result  # moved
+    assert differ == 0, result
+
+
+STARTS = (
+    LCG
+    + """
+import robots.default as robot_file
+from hexapod import body, geometry, walk
+from hexapod._tickfast import aim, begin, settled
+
+g = geometry.load(robot_file)
+w = walk.Walker(g)
+b = body.Body(g)
+count = differ = still = lifted = made = level = 0
+FIELDS = ("vel", "su", "sx", "sy", "done", "_aim", "_aim_key", "_carry")
+
+
+def state():
+    return [list(getattr(w, f)) for f in FIELDS]
+
+
+def put(a, v):
+    for j in range(len(v)):  # the walker's state is array("i"): no slice assignment from a list
+        a[j] = v[j]
+
+
+for n in range(CASES):
+    # The ramp near and far from its command (each axis reaches it, or steps by its limit).
+    for k in range(3):
+        top = walk.YAW_RATE_MAX if k == 2 else walk.SPEED_MAX
+        w.cmd[k] = draw(15) % (2 * top + 1) - top if n % 5 else 0
+        w.vel[k] = w.cmd[k] + (draw(8) % 301 - 150 if n % 3 else 0) if n % 7 else 0
+    w.state = (walk.STARTING, walk.WALKING, walk.STOPPING)[draw(2) % 3]
+    w.pending = draw(3) == 0
+    w.clock.set(draw(2) % 4, 500 + draw(12) % 4000)  # the gaits' start phases, their stance and swing ticks
+    w.phase = w.clock.start[draw(3) % 6] if n % 2 else draw(8) % w.clock.cycle_ticks  # often a leg's start
+    for i in range(6):
+        w.su[i] = -1 if draw(1) else draw(4)
+        w.fx[i] = w.nx[i] if draw(2) == 0 else w.nx[i] + 16
+        w.fy[i] = w.ny[i]
+        w.done[i] = draw(1)
+    if n % 4 == 0:
+        w._aim_key[0] = w.cmd[0]  # the same command as the last tick, or another
+        w._aim_key[1] = w.cmd[1]
+        w._aim_key[2] = w.cmd[2]
+        w._aim_key[3] = w.clock.stance_ticks
+    key = list(w._aim_key)
+    before = state()
+    w._ramp()
+    v = w.vel
+    s1 = not (v[0] or v[1] or v[2])
+    w._lift_all(s1)
+    w._aim_swings()
+    plain = state()
+    for f, v in zip(FIELDS, before):
+        put(getattr(w, f), v)
+    r = begin(w)
+    s2 = r & 1
+    if r > 1:
+        w._lift_due(r, s2)
+    aim(w)
+    fast = state()
+    still += s1
+    lifted += plain[1] != before[1]
+    made += plain[6] != key
+    same = plain == fast and bool(s2) == s1
+    # The pose check: settled or one value off.
+    for k in range(9):
+        b.pose[k] = b.target[k] = draw(10) % 401 - 200
+    if n % 2:
+        k = draw(4) % 9
+        b.pose[k] += 1 if draw(1) else -1
+    same = same and bool(settled(b)) == b.settled()
+    level += b.settled()
+    if not same:
+        differ += 1
+        if differ < 4:
+            print("differ", n, before, plain, fast, s1, s2)
+    count += 1
+print((count, still, lifted, made, level, differ))
+"""
+)
+
+
+def check_starts(result, cases):
+    count, still, lifted, made, level, differ = result
+    assert count == cases and cases // 20 < still < cases // 2 and lifted > cases // 20, result
+    assert cases // 10 < made < cases - cases // 10 and cases // 3 < level < cases - cases // 3, result
+    assert differ == 0, result
+
+
 def check_stances(result, cases):
     count, held, differ = result
     assert count == cases and cases // 10 < held < cases - cases // 10, result
@@ -199,8 +397,8 @@ def check_stances(result, cases):
 
 
 def check_swings(result, cases):
-    count, clamped, landed, differ = result
-    assert count == cases and clamped > cases // 10 and landed > cases // 50, result
+    count, clamped, landed, done, differ = result
+    assert count == cases and clamped > cases // 10 and landed > cases // 50 and done > cases // 100, result
     assert differ == 0, result
 
 
@@ -214,36 +412,37 @@ def check(result, cases):
     assert differ == 0, result
 
 
-def test_viper_frame_equals_plain_frame_on_the_vm(mp):
-    cases = 4000
-    check(mp.value("CASES = %d\n" % cases + CASES, heapsize="1m"), cases)
+# Each viper path against its plain code: the script, its checks, the cases on the host VM and on
+# the emulated Pico (~1 min there).
+PATHS = {
+    "frame": (CASES, check, 4000, 1000),
+    "swings": (SWINGS, check_swings, 20000, 2000),
+    "stance": (STANCES, check_stances, 10000, 1000),
+    "move": (MOVES, check_moves, 10000, 1000),
+    "ramp_lift_aim_pose": (STARTS, check_starts, 10000, 1000),
+}
 
 
-def test_viper_swing_equals_plain_swing_on_the_vm(mp):
-    cases = 20000
-    check_swings(mp.value("CASES = %d\n" % cases + SWINGS, heapsize="1m"), cases)
-
-
-def test_viper_stance_equals_plain_stance_on_the_vm(mp):
-    cases = 10000
-    check_stances(mp.value("CASES = %d\n" % cases + STANCES, heapsize="1m"), cases)
+@pytest.mark.parametrize("path", sorted(PATHS))
+def test_viper_path_equals_plain_code_on_the_vm(mp, path):
+    script, checks, cases, _ = PATHS[path]
+    checks(mp.value("CASES = %d\n" % cases + script, heapsize="1m"), cases)
 
 
 def test_robot_on_the_vm_uses_the_viper_frame_swing_and_stance(mp):
-    src = "from hexapod import tick, walk\nprint((tick._output_fast, walk._swing_fast, walk._stance_fast))"
+    src = (
+        "from hexapod import tick, walk as w\n"
+        "print((tick._output_fast, tick._settled_fast, w._swings_fast, w._move_fast, w._begin_fast, w._aim_fast))"
+    )
     assert "None" not in mp.run(src)
 
 
 @pytest.mark.skipif(pico.missing() is not None, reason=pico.missing() or "")
-def test_viper_frame_equals_plain_frame_on_the_emulated_pico():
-    cases = 1000  # 1,000 frames (6,000 leg solves, 18,000 pulses), 2,000 swings, 1,000 stances: ~1 min
+def test_viper_paths_equal_plain_code_on_the_emulated_pico():
+    # 1,000 frames (6,000 leg solves, 18,000 pulses), 2,000 swings, 1,000 stances, moves and starts.
     with pico.flashed() as fs:
-        status, out, err, _ = pico.run_source("CASES = %d\n" % cases + CASES, fs=fs, timeout=600)
-        assert status == 0, out + err
-        check(ast.literal_eval(out.strip().splitlines()[-1]), cases)
-        status, out, err, _ = pico.run_source("CASES = %d\n" % (cases * 2) + SWINGS, fs=fs, timeout=600)
-        assert status == 0, out + err
-        check_swings(ast.literal_eval(out.strip().splitlines()[-1]), cases * 2)
-        status, out, err, _ = pico.run_source("CASES = %d\n" % cases + STANCES, fs=fs, timeout=600)
-        assert status == 0, out + err
-        check_stances(ast.literal_eval(out.strip().splitlines()[-1]), cases)
+        for path in sorted(PATHS):
+            script, checks, _, cases = PATHS[path]
+            status, out, err, _ = pico.run_source("CASES = %d\n" % cases + script, fs=fs, timeout=600)
+            assert status == 0, (path, out + err)
+            checks(ast.literal_eval(out.strip().splitlines()[-1]), cases)

@@ -59,65 +59,6 @@ def _isqrt(n: int) -> int:
 
 
 @micropython.viper
-def _atan2(y: int, x: int) -> int:
-    if x == 0 and y == 0:
-        return 0
-    ax = x if x >= 0 else 0 - x
-    ay = y if y >= 0 else 0 - y
-    steep = 0
-    if ay > ax:
-        steep = 1
-        t = ax
-        ax = ay
-        ay = t
-    if ay >= 32768:
-        k = 1
-        while (ay >> k) >= 32767:
-            k += 1
-        ay = (ay >> k) + ((ay >> (k - 1)) & 1)
-        ax = (ax >> k) + ((ax >> (k - 1)) & 1)
-    num = ay << 15
-    t = num // ax
-    if num - t * ax >= ax - (num - t * ax):
-        t += 1
-    table = ptr32(_ATAN_WORDS)  # noqa: F821 (a viper built-in)
-    i = t >> 7
-    if i >= 256:
-        a = table[256]
-    else:
-        lo = table[i]
-        a = lo + (((table[i + 1] - lo) * (t & 127) + 64) >> 7)
-    if steep:
-        a = 900000 - a
-    if x < 0:
-        a = 1800000 - a
-    if y < 0 and a != 1800000:
-        return 0 - a
-    return a
-
-
-@micropython.viper
-def _sqrt12(vi: int, vf: int) -> int:
-    s = 16
-    lim = 8192
-    while vi >= lim:
-        s -= 2
-        lim <<= 2
-    n = (vi << s) + (vf >> (16 - s))
-    r = int(_isqrt(n))
-    k = 12 - (s >> 1)
-    return (r << k) + (((n - r * r) << k) // ((r << 1) + 1))
-
-
-@micropython.viper
-def _bits_over_15(v: int) -> int:
-    e = 0
-    while (v >> e) >= 32768:
-        e += 1
-    return e
-
-
-@micropython.viper
 def solve(x: int, y: int, z: int, gbuf) -> int:
     g = ptr32(gbuf)  # noqa: F821 (a viper built-in)
     if x > _COORD_MAX or x < 0 - _COORD_MAX or y > _COORD_MAX or y < 0 - _COORD_MAX:
@@ -138,53 +79,153 @@ def solve(x: int, y: int, z: int, gbuf) -> int:
         return _TOO_FAR
     r2 = x * x + y * y
     j = 0
-    rj = 0
-    fk = 0
+    n = 0
     if r2:
         n = r2
         while n < 268435456:
             n <<= 2
             j += 1
-        rj = int(_isqrt(n))
-        rem = n - rj * rj
-        d = rj << 1
-        d4 = (d << 4) + (rem << 4) // d
-        num = rem << 12
-        q = num // d4
-        fk = (q << 8) + (((num - q * d4) << 8) // d4)
-    mm = (a1 * rj) << 1
-    ti = mm >> j
-    tf = ((mm - (ti << j)) << (16 - j)) + (((a1 * fk) << 1) >> j)
-    ti += tf >> 16
-    tf &= 65535
-    ci = r2 + a1 * a1 + v * v - ti
-    pi = g[_G_SUM2] - ci
-    if pi < 0:
-        g[_G_EXCESS] = int(_isqrt(ci - 1)) + 1 - reach
-        return _TOO_FAR
-    qi = ci - g[_G_DIF2]
-    qf = 0
-    if tf:
-        qi -= 1
-        qf = 65536 - tf
-    if qi < 0:
-        g[_G_EXCESS] = g[_G_MIN_REACH] - int(_isqrt(ci))
-        return _TOO_CLOSE
-    sp = int(_sqrt12(pi, tf))
-    sq = int(_sqrt12(qi, qf))
-    t3 = (int(_atan2(sq, sp)) << 1) - 1800000
-    e1 = int(_bits_over_15(sp))
-    e2 = int(_bits_over_15(sq))
+    # _isqrt, _sqrt12 and _atan2 written out (a viper call costs ~5 us on the Pico, more than most
+    # of their bodies): one floor root serves three jobs, one arctangent four, in loops.
+    rj = fk = ti = tf = ci = pi = qi = qf = sp = sq = sh = 0
+    job = 0
+    while True:
+        # _isqrt(n): the floor square root.
+        r = 0
+        if n > 0:
+            r = 32768
+            if n < 67108864:
+                r = 8192
+                if n < 4194304:
+                    r = 2048
+                    if n < 262144:
+                        r = 512
+                        if n < 16384:
+                            r = 128
+                            if n < 1024:
+                                r = 32
+            q = (r + n // r) >> 1
+            while q < r:
+                r = q
+                q = (r + n // r) >> 1
+        if job == 0:
+            if r2:
+                rj = r
+                rem = n - rj * rj
+                d = rj << 1
+                d4 = (d << 4) + (rem << 4) // d
+                num = rem << 12
+                q = num // d4
+                fk = (q << 8) + (((num - q * d4) << 8) // d4)
+            mm = (a1 * rj) << 1
+            ti = mm >> j
+            tf = ((mm - (ti << j)) << (16 - j)) + (((a1 * fk) << 1) >> j)
+            ti += tf >> 16
+            tf &= 65535
+            ci = r2 + a1 * a1 + v * v - ti
+            pi = g[_G_SUM2] - ci
+            if pi < 0:
+                g[_G_EXCESS] = int(_isqrt(ci - 1)) + 1 - reach
+                return _TOO_FAR
+            qi = ci - g[_G_DIF2]
+            if tf:
+                qi -= 1
+                qf = 65536 - tf
+            if qi < 0:
+                g[_G_EXCESS] = g[_G_MIN_REACH] - int(_isqrt(ci))
+                return _TOO_CLOSE
+            vi = pi
+            vf = tf
+        elif job == 1:
+            sp = (r << sh) + (((n - r * r) << sh) // ((r << 1) + 1))
+            vi = qi
+            vf = qf
+        else:
+            sq = (r << sh) + (((n - r * r) << sh) // ((r << 1) + 1))
+            break
+        # _sqrt12(vi, vf): the root of vi + vf / 2**16 in 12 fraction bits, through the root above.
+        job += 1
+        sv = 16
+        lim = 8192
+        while vi >= lim:
+            sv -= 2
+            lim <<= 2
+        n = (vi << sv) + (vf >> (16 - sv))
+        sh = 12 - (sv >> 1)
+    e1 = 0
+    while (sp >> e1) >= 32768:
+        e1 += 1
+    e2 = 0
+    while (sq >> e2) >= 32768:
+        e2 += 1
     e = 20 - e1 - e2
     yb = (sp >> e1) * (sq >> e2)
     if e > 0:
         yb = (yb + (1 << (e - 1))) >> e
     xb = ((g[_G_FEMUR2] - g[_G_TIBIA2] + ci) << 4) - (tf >> 12)
     h = ((rj - (a1 << j)) << (16 - j)) + (fk >> j)
-    t2 = int(_atan2(v << 16, h)) + int(_atan2(yb, xb))
+    table = ptr32(_ATAN_WORDS)  # noqa: F821 (a viper built-in)
+    t2 = t3 = 0
+    for k in range(4):
+        # _atan2(ay, ax) of the tibia's (sq, sp), the femur's (v << 16, h) and (yb, xb), the coxa's (y, x).
+        if k == 0:
+            ay = sq
+            ax = sp
+        elif k == 1:
+            ay = v << 16
+            ax = h
+        elif k == 2:
+            ay = yb
+            ax = xb
+        else:
+            ay = y
+            ax = x
+        yy = ay
+        xx = ax
+        a = 0
+        if xx != 0 or yy != 0:
+            if ax < 0:
+                ax = 0 - ax
+            if ay < 0:
+                ay = 0 - ay
+            steep = 0
+            if ay > ax:
+                steep = 1
+                t = ax
+                ax = ay
+                ay = t
+            if ay >= 32768:
+                sk = 1
+                while (ay >> sk) >= 32767:
+                    sk += 1
+                ay = (ay >> sk) + ((ay >> (sk - 1)) & 1)
+                ax = (ax >> sk) + ((ax >> (sk - 1)) & 1)
+            num = ay << 15
+            t = num // ax
+            if num - t * ax >= ax - (num - t * ax):
+                t += 1
+            ti = t >> 7
+            if ti >= 256:
+                a = table[256]
+            else:
+                lo = table[ti]
+                a = lo + (((table[ti + 1] - lo) * (t & 127) + 64) >> 7)
+            if steep:
+                a = 900000 - a
+            if xx < 0:
+                a = 1800000 - a
+            if yy < 0 and a != 1800000:
+                a = 0 - a
+        if k == 0:
+            t3 = (a << 1) - 1800000
+        elif k == 1:
+            t2 = a
+        elif k == 2:
+            t2 += a
+        else:
+            g[_G_T1] = (a + 50) // 100
     if t2 > 1800000:
         t2 -= 3600000
-    g[_G_T1] = (int(_atan2(y, x)) + 50) // 100
     g[_G_T2] = (t2 + 50) // 100
     g[_G_T3] = (t3 + 50) // 100
     return _OK

@@ -22,6 +22,13 @@ _G_T1 = const(10)  # hexapod.leg's result slots (viper folds only local consts)
 _G_T2 = const(11)
 _G_T3 = const(12)
 _REPLAN = const(64)  # hexapod.walk.REPLAN_STEP
+_STOPPING = const(3)  # hexapod.walk.STOPPING
+_FINE_TICK = const(320)  # hexapod.body.FINE * gait.TICK_MS
+_TICK_MS = const(20)  # hexapod.gait.TICK_MS
+_SPEED_STEP = const(40)  # hexapod.walk.SPEED_STEP
+_YAW_STEP = const(100)  # hexapod.walk.YAW_STEP
+_DEG360 = const(3600000)  # hexapod.walk._DEG360
+_REANCHOR = const(4194304)  # hexapod.walk._REANCHOR
 
 _SIN_WORDS = array("i", _SIN)  # Q15, 0..90 degrees: no negative word (viper's ptr32 loads are unsigned)
 
@@ -57,123 +64,275 @@ def _sin(cdeg: int) -> int:
 
 
 @micropython.viper
-def _sin90(t: int, s: int) -> int:
-    """hexapod.trajectory.sin90: sin(t 90 / s degrees) in Q15."""
-    return int(_sin((t * 18000 + s) // (s << 1)))
+def settled(body) -> int:
+    """hexapod.body.Body.settled: 1 when the pose has reached its target, else 0."""
+    p = ptr32(body.pose)  # noqa: F821 (a viper built-in; the pose is array("i"))
+    t = ptr32(body.target)  # noqa: F821
+    for k in range(9):
+        if p[k] != t[k]:
+            return 0
+    return 1
 
 
 @micropython.viper
-def _clamp(xy, nx: int, ny: int, r: int) -> int:
-    """Walker._swing_step's reach clamp: the point xy[0:2] (fine) pulled onto the disc of radius
-    r (0.1 mm) around (nx, ny) when outside it, in place."""
-    x = int(xy[0])
-    y = int(xy[1])
-    dx = (x - nx) >> 4
-    dy = (y - ny) >> 4
-    e2 = dx * dx + dy * dy
-    if e2 > r * r:
-        e = int(_isqrt(e2))
-        x = nx + ((dx * r // e) << 4)
-        y = ny + ((dy * r // e) << 4)
-    xy[0] = x
-    xy[1] = y
+def begin(walker) -> int:
+    """Walker.update's start: one tick of the velocity ramp (Walker._ramp); returns 1 when the
+    ramped velocity is zero, plus 2 << i for every leg i due to lift (Walker._lift_all's test:
+    in stance at its start phase)."""
+    sb = 1
+    sb <<= 31  # (v ^ sb) - sb sign-extends a ptr32 load (unsigned on a 64-bit VM); on a board it is v
+    c = ptr32(walker.cmd)  # noqa: F821
+    v = ptr32(walker.vel)  # noqa: F821
+    r = 1
+    for k in range(3):
+        step = _YAW_STEP if k == 2 else _SPEED_STEP
+        vk = (v[k] ^ sb) - sb
+        d = ((c[k] ^ sb) - sb) - vk
+        if d > step:
+            d = step
+        elif d < 0 - step:
+            d = 0 - step
+        vk += d
+        v[k] = vk
+        if vk:
+            r = 0
+    su = ptr32(walker.su)  # noqa: F821
+    start = ptr32(walker.clock.start)  # noqa: F821
+    phase = int(walker.phase)
+    for i in range(6):
+        if ((su[i] ^ sb) - sb) < 0 and phase == start[i]:
+            r |= 2 << i
+    return r
+
+
+@micropython.viper
+def aim(walker) -> int:
+    """Walker._aim_swings: _aim for the command (made again only when it changed, by Walker._aim_at)
+    and the ground's move over one swing into _carry (Walker._carry_for)."""
+    sb = 1
+    sb <<= 31  # (v ^ sb) - sb sign-extends a ptr32 load (unsigned on a 64-bit VM); on a board it is v
+    c = ptr32(walker.cmd)  # noqa: F821
+    vx = (c[0] ^ sb) - sb
+    vy = (c[1] ^ sb) - sb
+    w = (c[2] ^ sb) - sb
+    clock = walker.clock
+    key = ptr32(walker._aim_key)  # noqa: F821
+    st = int(clock.stance_ticks)
+    if key[0] != c[0] or key[1] != c[1] or key[2] != c[2] or ((key[3] ^ sb) - sb) != st:
+        key[0] = vx
+        key[1] = vy
+        key[2] = w
+        key[3] = st
+        walker._aim_at(vx, vy, w)
+    ms = int(clock.swing_ticks) * _TICK_MS
+    k = ptr32(walker._carry)  # noqa: F821
+    k[0] = 0 - (vx * ms * 16 // 1000)
+    k[1] = 0 - (vy * ms * 16 // 1000)
+    # The turn in Q15 radians: cdeg * pi / 18000 * 2**15 = cdeg * 5.71935.
+    k[2] = (w * ms // 1000) * 5719 // 1000
     return 0
 
 
 @micropython.viper
-def _stroke(u: int, w: int) -> int:
-    """hexapod.trajectory.swing_stroke's stroke fraction at tick u of w, Q15."""
-    n = w - 2 if w > 3 else w
-    k = u - 1 if w > 3 else u
-    if k >= n:
-        return 32768
-    if k <= 0:
-        return 0
-    return (32768 + int(_sin90((k << 1) - n, n)) + 1) >> 1
-
-
-@micropython.viper
-def _bounded(d: int) -> int:
-    """d limited to -_REPLAN.._REPLAN."""
-    if d > _REPLAN:
-        return _REPLAN
-    if d < 0 - _REPLAN:
-        return 0 - _REPLAN
-    return d
-
-
-@micropython.viper
-def _plan_at(walker, i: int, u: int, w: int) -> int:
-    """Walker._swing_at: the swing planned from leg i's lift-off to walker._xy (carries in
-    walker._cv) at tick u of w, inside the reach disc, into walker._plan; returns the stroke (Q15)."""
-    cv = walker._cv
-    c0 = int(cv[0])
-    c1 = int(cv[1])
-    t = walker._xy
-    sx = int(walker.sx[i])
-    sy = int(walker.sy[i])
-    st = int(_stroke(u, w))
-    frac = (u << 15) // w
-    cx = c0 + int(_mq(int(cv[2]) - c0, st))
-    cy = c1 + int(_mq(int(cv[3]) - c1, st))
-    xy = walker._plan
-    xy[0] = sx + int(_mq(cx, frac)) + int(_mq(int(t[0]) - sx - cx, st))
-    xy[1] = sy + int(_mq(cy, frac)) + int(_mq(int(t[1]) - sy - cy, st))
-    _clamp(xy, int(walker.nx[i]), int(walker.ny[i]), int(walker.rho[i]))
-    return st
-
-
-@micropython.viper
-def swing(walker, i: int, w: int) -> int:
-    """hexapod.walk.Walker._swing_step: leg i's swing foot at its next tick u of w into
-    fx, fy, fz[i], the touch-down point into walker._xy; returns u."""
-    u = int(walker.su[i]) + 1
-    nx = int(walker.nx[i])
-    ny = int(walker.ny[i])
-    r = int(walker.rho[i])
-    a = walker._aim
-    a0 = int(a[0])
-    a1 = int(a[1])
-    t = walker._xy
-    t[0] = int(_mq(nx, a0)) - int(_mq(ny, a1)) + int(a[2])  # Walker.target
-    t[1] = int(_mq(nx, a1)) + int(_mq(ny, a0)) + int(a[3])
-    _clamp(t, nx, ny, r)
-    t0 = int(t[0])
-    t1 = int(t[1])
-    # trajectory.swing_shape's height fraction (its forward fraction is not used here).
-    tt = (u << 1) - w
-    h = int(_sin90(w - tt if tt >= 0 else w + tt, w))
-    lifted = int(_mq(h, h))
-    sx = int(walker.sx[i])
-    sy = int(walker.sy[i])
-    k = walker._carry
-    k0 = int(k[0])
-    k1 = int(k[1])
-    k2 = int(k[2])
-    # carry_at at lift-off (sx, sy) and at touch-down (t0, t1), into _cv as the plain code has them.
-    cv = walker._cv
-    cv[0] = k0 + (((sy >> 4) * k2) >> 11)
-    cv[1] = k1 - (((sx >> 4) * k2) >> 11)
-    cv[2] = k0 + (((t1 >> 4) * k2) >> 11)
-    cv[3] = k1 - (((t0 >> 4) * k2) >> 11)
-    # The plan at the last tick (u - 1), against where the foot is: nonzero when re-aimed.
-    xy = walker._plan
-    _plan_at(walker, i, u - 1, w)
-    rx = int(xy[0]) - int(walker.fx[i])
-    ry = int(xy[1]) - int(walker.fy[i])
-    st = int(_plan_at(walker, i, u, w))
-    if rx or ry:
-        # Walker._swing_step: the foot moves as the new plan does, plus at most _REPLAN a tick.
-        if 0 < st < 32768:
-            rx -= int(_bounded(rx))
-            ry -= int(_bounded(ry))
-        xy[0] = int(xy[0]) - rx
-        xy[1] = int(xy[1]) - ry
-        _clamp(xy, nx, ny, r)
-    walker.fx[i] = xy[0]
-    walker.fy[i] = xy[1]
-    walker.fz[i] = int(walker.ground) + int(_mq(int(walker.lift) << 4, lifted))
-    return u
+def swings(walker, lo: int, hi: int, w: int, still: int) -> int:
+    """hexapod.walk.Walker._swing_all over legs lo..hi-1: each swing foot (su >= 0) one tick on
+    (Walker._swing_step, the touch-down point into walker._xy), landed as Walker._swing lands it;
+    returns how many are still in the air."""
+    sb = 1
+    sb <<= 31  # (v ^ sb) - sb sign-extends a ptr32 load (unsigned on a 64-bit VM); on a board it is v
+    su = ptr32(walker.su)  # noqa: F821 (a viper built-in; the walker's state is array("i"))
+    nxs = ptr32(walker.nx)  # noqa: F821
+    nys = ptr32(walker.ny)  # noqa: F821
+    rhos = ptr32(walker.rho)  # noqa: F821
+    fxs = ptr32(walker.fx)  # noqa: F821
+    fys = ptr32(walker.fy)  # noqa: F821
+    sxs = ptr32(walker.sx)  # noqa: F821
+    sys_ = ptr32(walker.sy)  # noqa: F821
+    a = ptr32(walker._aim)  # noqa: F821
+    a0 = (a[0] ^ sb) - sb
+    a1 = (a[1] ^ sb) - sb
+    a2 = (a[2] ^ sb) - sb
+    a3 = (a[3] ^ sb) - sb
+    k = ptr32(walker._carry)  # noqa: F821
+    k0 = (k[0] ^ sb) - sb
+    k1 = (k[1] ^ sb) - sb
+    k2 = (k[2] ^ sb) - sb
+    tab = ptr32(_SIN_WORDS)  # noqa: F821
+    airborne = 0
+    for i in range(lo, hi):
+        u = (su[i] ^ sb) - sb
+        if u < 0:
+            continue
+        u += 1
+        nx = (nxs[i] ^ sb) - sb
+        ny = (nys[i] ^ sb) - sb
+        r = rhos[i]
+        sx = (sxs[i] ^ sb) - sb
+        sy = (sys_[i] ^ sb) - sb
+        # Every mul_q15 below written out: a viper call costs ~5 us on the Pico, its body < 1 us.
+        m = nx if nx >= 0 else 0 - nx
+        xc = (m >> 15) * a0 + (((m & 32767) * a0 + 16384) >> 15)
+        xs = (m >> 15) * a1 + (((m & 32767) * a1 + 16384) >> 15)
+        if nx < 0:
+            xc = 0 - xc
+            xs = 0 - xs
+        m = ny if ny >= 0 else 0 - ny
+        yc = (m >> 15) * a0 + (((m & 32767) * a0 + 16384) >> 15)
+        ys = (m >> 15) * a1 + (((m & 32767) * a1 + 16384) >> 15)
+        if ny < 0:
+            yc = 0 - yc
+            ys = 0 - ys
+        x = xc - ys + a2  # Walker.target
+        y = xs + yc + a3
+        t0 = t1 = c0 = c1 = c2 = c3 = rx = ry = st = 0
+        # Four points go through the one reach clamp below: the touch-down point (stage 0), the
+        # plan at the last tick u - 1 (1) and at u (2), and the re-aimed foot (3). The plan is
+        # written once, for both ticks.
+        stage = 0
+        while True:
+            if stage == 1 or stage == 2:
+                uu = u - 2 + stage
+                # trajectory.swing_stroke: the stroke fraction st and uu / w, Q15.
+                n = w - 2 if w > 3 else w
+                kk = uu - 1 if w > 3 else uu
+                if kk >= n:
+                    st = 32768
+                elif kk <= 0:
+                    st = 0
+                else:
+                    # fixmath.sin of sin90(2 kk - n, n) (cdeg), written out.
+                    g = (((kk << 1) - n) * 18000 + n) // (n << 1)
+                    g -= (g // 36000) * 36000
+                    neg = g >= 18000
+                    if neg:
+                        g -= 18000
+                    if g > 9000:
+                        g = 18000 - g
+                    j = g // 25
+                    f = g - j * 25
+                    h = tab[j]
+                    if f:
+                        h += ((tab[j + 1] - h) * f + 12) // 25
+                    if neg:
+                        h = 0 - h
+                    st = (32768 + h + 1) >> 1
+                frac = (uu << 15) // w
+                # x = S + C uu / w + (T - S - C) st, the carry C turning from lift-off's to touch-down's;
+                # then y (one loop: the code once, for a smaller module).
+                for axis in range(2):
+                    if axis == 0:
+                        lo = c0
+                        d = c2 - c0
+                        s0 = sx
+                        tn = t0
+                    else:
+                        lo = c1
+                        d = c3 - c1
+                        s0 = sy
+                        tn = t1
+                    m = d if d >= 0 else 0 - d
+                    e = (m >> 15) * st + (((m & 32767) * st + 16384) >> 15)
+                    cc = lo + (e if d >= 0 else 0 - e)
+                    m = cc if cc >= 0 else 0 - cc
+                    e = (m >> 15) * frac + (((m & 32767) * frac + 16384) >> 15)
+                    v = s0 + (e if cc >= 0 else 0 - e)
+                    d = tn - s0 - cc
+                    m = d if d >= 0 else 0 - d
+                    e = (m >> 15) * st + (((m & 32767) * st + 16384) >> 15)
+                    v += e if d >= 0 else 0 - e
+                    if axis == 0:
+                        x = v
+                    else:
+                        y = v
+            # Walker._in_reach: onto the disc of radius r (0.1 mm) around neutral when outside it.
+            dx = (x - nx) >> 4
+            dy = (y - ny) >> 4
+            e2 = dx * dx + dy * dy
+            if e2 > r * r:
+                e = int(_isqrt(e2))
+                x = nx + ((dx * r // e) << 4)
+                y = ny + ((dy * r // e) << 4)
+            if stage == 0:
+                t0 = x
+                t1 = y
+                # Walker.carry_at at lift-off (sx, sy) and at touch-down (t0, t1).
+                c0 = k0 + (((sy >> 4) * k2) >> 11)
+                c1 = k1 - (((sx >> 4) * k2) >> 11)
+                c2 = k0 + (((t1 >> 4) * k2) >> 11)
+                c3 = k1 - (((t0 >> 4) * k2) >> 11)
+                stage = 1
+            elif stage == 1:
+                # How far the plan moved since the last tick, fine (0 when steady).
+                rx = x - ((fxs[i] ^ sb) - sb)
+                ry = y - ((fys[i] ^ sb) - sb)
+                stage = 2
+            elif stage == 2 and (rx or ry):
+                # The foot moves as the new plan does, plus at most _REPLAN a tick toward it.
+                if 0 < st < 32768:
+                    rx -= _REPLAN if rx > _REPLAN else (0 - _REPLAN if rx < 0 - _REPLAN else rx)
+                    ry -= _REPLAN if ry > _REPLAN else (0 - _REPLAN if ry < 0 - _REPLAN else ry)
+                x -= rx
+                y -= ry
+                stage = 3
+            else:
+                break
+        t = ptr32(walker._xy)  # noqa: F821
+        t[0] = t0
+        t[1] = t1
+        fxs[i] = x
+        fys[i] = y
+        if u < w:
+            # trajectory.swing_shape's height fraction (the arch squared) times the lift.
+            tt = (u << 1) - w
+            # fixmath.sin of sin90(w - |tt|, w) (cdeg), written out.
+            g = ((w - tt if tt >= 0 else w + tt) * 18000 + w) // (w << 1)
+            g -= (g // 36000) * 36000
+            neg = g >= 18000
+            if neg:
+                g -= 18000
+            if g > 9000:
+                g = 18000 - g
+            j = g // 25
+            f = g - j * 25
+            h = tab[j]
+            if f:
+                h += ((tab[j + 1] - h) * f + 12) // 25
+            if neg:
+                h = 0 - h
+            h = (h >> 15) * h + (((h & 32767) * h + 16384) >> 15)
+            m = int(walker.lift) << 4
+            fz = ptr32(walker.fz)  # noqa: F821
+            fz[i] = int(walker.ground) + (m >> 15) * h + (((m & 32767) * h + 16384) >> 15)
+            su[i] = u
+            airborne += 1
+            continue
+        # Landed (Walker._swing): pinned where it is, in the ground frame (Walker._to_ground).
+        su[i] = -1
+        fz = ptr32(walker.fz)  # noqa: F821
+        fz[i] = int(walker.ground)
+        cd = (int(walker.psi) + 50) // 100
+        c = int(_sin(cd + 9000))
+        s = int(_sin(cd))
+        m = x if x >= 0 else 0 - x
+        xc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
+        xs = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
+        if x < 0:
+            xc = 0 - xc
+            xs = 0 - xs
+        m = y if y >= 0 else 0 - y
+        yc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
+        ys = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
+        if y < 0:
+            yc = 0 - yc
+            ys = 0 - ys
+        px = ptr32(walker.px)  # noqa: F821
+        py = ptr32(walker.py)  # noqa: F821
+        px[i] = int(walker.bx) + xc - ys
+        py[i] = int(walker.by) + xs + yc
+        if still and int(walker.state) == _STOPPING and x == nx and y == ny:
+            done = ptr32(walker.done)  # noqa: F821
+            done[i] = 1
+    return airborne
 
 
 @micropython.viper
@@ -182,21 +341,23 @@ def stance(walker, bx: int, by: int, cd: int) -> int:
     ax, ay; 1 when a foot would leave its stance_rho disc (and move away from neutral), else 0."""
     c = int(_sin(cd + 9000))  # fixmath.cos
     s = int(_sin(cd))
-    su = walker.su
-    px = walker.px
-    py = walker.py
-    nx = walker.nx
-    ny = walker.ny
-    fx = walker.fx
-    fy = walker.fy
-    rho = walker.stance_rho
-    out_x = walker.ax
-    out_y = walker.ay
+    sb = 1
+    sb <<= 31  # (v ^ sb) - sb sign-extends a ptr32 load (unsigned on a 64-bit VM); on a board it is v
+    su = ptr32(walker.su)  # noqa: F821
+    px = ptr32(walker.px)  # noqa: F821
+    py = ptr32(walker.py)  # noqa: F821
+    nx = ptr32(walker.nx)  # noqa: F821
+    ny = ptr32(walker.ny)  # noqa: F821
+    fx = ptr32(walker.fx)  # noqa: F821
+    fy = ptr32(walker.fy)  # noqa: F821
+    rho = ptr32(walker.stance_rho)  # noqa: F821
+    out_x = ptr32(walker.ax)  # noqa: F821
+    out_y = ptr32(walker.ay)  # noqa: F821
     for i in range(6):
-        if int(su[i]) >= 0:
+        if ((su[i] ^ sb) - sb) >= 0:
             continue
-        x = int(px[i]) - bx
-        y = int(py[i]) - by
+        x = ((px[i] ^ sb) - sb) - bx
+        y = ((py[i] ^ sb) - sb) - by
         # _mq(x, c) + _mq(y, s) and _mq(y, c) - _mq(x, s), written out as in output(): a call costs
         # ~5 us, and one shared helper made the tick 0.16 ms slower (measured on the Pico).
         m = x if x >= 0 else 0 - x
@@ -213,14 +374,14 @@ def stance(walker, bx: int, by: int, cd: int) -> int:
             ys = 0 - ys
         ax = xc + ys
         ay = yc - xs
-        n0 = int(nx[i])
-        n1 = int(ny[i])
+        n0 = (nx[i] ^ sb) - sb
+        n1 = (ny[i] ^ sb) - sb
         dx = (ax - n0) >> 4
         dy = (ay - n1) >> 4
-        r = int(rho[i])
+        r = rho[i]
         if dx * dx + dy * dy > r * r:
-            ox = (int(fx[i]) - n0) >> 4
-            oy = (int(fy[i]) - n1) >> 4
+            ox = (((fx[i] ^ sb) - sb) - n0) >> 4
+            oy = (((fy[i] ^ sb) - sb) - n1) >> 4
             if dx * dx + dy * dy > ox * ox + oy * oy:
                 return 1
         out_x[i] = ax
@@ -229,28 +390,102 @@ def stance(walker, bx: int, by: int, cd: int) -> int:
 
 
 @micropython.viper
+def move(walker) -> int:
+    """hexapod.walk.Walker._move_body: the body's move this tick at walker.vel in the ground frame
+    (with its remainder carries), the stance feet read back (stance() below), or held."""
+    sb = 1
+    sb <<= 31  # (v ^ sb) - sb sign-extends a ptr32 load (unsigned on a 64-bit VM); on a board it is v
+    v = ptr32(walker.vel)  # noqa: F821
+    v0 = (v[0] ^ sb) - sb
+    v1 = (v[1] ^ sb) - sb
+    dpsi = ((v[2] ^ sb) - sb) << 1  # cdeg/s over 20 ms, in ANGLE_UNIT (1e-4 degree)
+    psi = int(walker.psi)
+    cd = (psi + (dpsi >> 1) + 50) // 100
+    c = int(_sin(cd + 9000))
+    s = int(_sin(cd))
+    # The body's velocity in the ground frame (mul_q15 written out), then this tick's move (fine).
+    m = v0 if v0 >= 0 else 0 - v0
+    xc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
+    xs = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
+    if v0 < 0:
+        xc = 0 - xc
+        xs = 0 - xs
+    m = v1 if v1 >= 0 else 0 - v1
+    yc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
+    ys = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
+    if v1 < 0:
+        yc = 0 - yc
+        ys = 0 - ys
+    n = (xc - ys) * _FINE_TICK + int(walker.cx)
+    mx = n // 1000
+    cx = n - mx * 1000
+    n = (xs + yc) * _FINE_TICK + int(walker.cy)
+    my = n // 1000
+    cy = n - my * 1000
+    psi += dpsi
+    if psi >= _DEG360:
+        psi -= _DEG360
+    elif psi < 0:
+        psi += _DEG360
+    if not (mx or my or dpsi):
+        walker.cx = cx
+        walker.cy = cy
+        return 0
+    bx = int(walker.bx) + mx
+    by = int(walker.by) + my
+    if int(stance(walker, bx, by, (psi + 50) // 100)):
+        walker.held = int(walker.held) + 1
+        return 0
+    walker.cx = cx
+    walker.cy = cy
+    walker.psi = psi
+    su = ptr32(walker.su)  # noqa: F821
+    fx = ptr32(walker.fx)  # noqa: F821
+    fy = ptr32(walker.fy)  # noqa: F821
+    ax = ptr32(walker.ax)  # noqa: F821
+    ay = ptr32(walker.ay)  # noqa: F821
+    for i in range(6):
+        if ((su[i] ^ sb) - sb) < 0:
+            fx[i] = ax[i]
+            fy[i] = ay[i]
+    if bx > _REANCHOR or bx < 0 - _REANCHOR or by > _REANCHOR or by < 0 - _REANCHOR:
+        px = ptr32(walker.px)  # noqa: F821
+        py = ptr32(walker.py)  # noqa: F821
+        for i in range(6):
+            px[i] = ((px[i] ^ sb) - sb) - bx
+            py[i] = ((py[i] ^ sb) - sb) - by
+        bx = 0
+        by = 0
+    walker.bx = bx
+    walker.by = by
+    return 0
+
+
+@micropython.viper
 def _posed(body, xyz) -> int:
     """Body.to_leg's pose part: the foot xyz[0:3] (fine) moved back through the body's pose, in place."""
-    p = body.pose
-    tr = body.trig
-    cx = int(p[6]) << 4
-    cy = int(p[7]) << 4
-    cz = int(p[8]) << 4
-    x = int(xyz[0]) - (cx + (int(p[0]) << 4))
-    y = int(xyz[1]) - (cy + (int(p[1]) << 4))
-    z = int(xyz[2]) - (cz + (int(p[2]) << 4))
-    c = int(tr[4])
-    s = int(tr[5])
+    sb = 1
+    sb <<= 31  # (v ^ sb) - sb sign-extends a ptr32 load (unsigned on a 64-bit VM); on a board it is v
+    p = ptr32(body.pose)  # noqa: F821
+    tr = ptr32(body.trig)  # noqa: F821
+    cx = ((p[6] ^ sb) - sb) << 4
+    cy = ((p[7] ^ sb) - sb) << 4
+    cz = ((p[8] ^ sb) - sb) << 4
+    x = int(xyz[0]) - (cx + (((p[0] ^ sb) - sb) << 4))
+    y = int(xyz[1]) - (cy + (((p[1] ^ sb) - sb) << 4))
+    z = int(xyz[2]) - (cz + (((p[2] ^ sb) - sb) << 4))
+    c = (tr[4] ^ sb) - sb
+    s = (tr[5] ^ sb) - sb
     a = int(_mq(x, c)) + int(_mq(y, s))
     y = int(_mq(y, c)) - int(_mq(x, s))
     x = a
-    c = int(tr[2])
-    s = int(tr[3])
+    c = (tr[2] ^ sb) - sb
+    s = (tr[3] ^ sb) - sb
     a = int(_mq(x, c)) - int(_mq(z, s))
     z = int(_mq(x, s)) + int(_mq(z, c))
     x = a
-    c = int(tr[0])
-    s = int(tr[1])
+    c = (tr[0] ^ sb) - sb
+    s = (tr[1] ^ sb) - sb
     a = int(_mq(y, c)) + int(_mq(z, s))
     z = int(_mq(z, c)) - int(_mq(y, s))
     y = a
@@ -261,51 +496,42 @@ def _posed(body, xyz) -> int:
 
 
 @micropython.viper
-def _solved(leg, lx: int, ly: int, lz: int) -> int:
-    """Leg.ik's solve and limit check: 0 with the angles in leg._g's result slots, 1 when refused."""
-    gbuf = leg._g
-    if int(solve(lx, ly, lz, gbuf)):
-        return 1
-    # Read back as objects: a ptr32 load of a negative angle is unsigned on a 64-bit VM.
-    t1 = int(gbuf[_G_T1])
-    t2 = int(gbuf[_G_T2])
-    t3 = int(gbuf[_G_T3])
-    lim = leg.limits
-    if t1 < int(lim[0]) or t1 > int(lim[1]) or t2 < int(lim[2]) or t2 > int(lim[3]):
-        return 1
-    if t3 < int(lim[4]) or t3 > int(lim[5]):
-        return 1
-    return 0
-
-
-@micropython.viper
 def output(robot) -> int:
     """The frame's angles and pulses, as Robot._output makes them: 0 when sent to robot.angles and
     robot.pulses, 1 when something was refused (nothing copied: the caller runs the plain code)."""
+    # ptr32 loads are unsigned on a 64-bit VM: (v ^ sb) - sb sign-extends there, and is v on a board.
+    sb = 1
+    sb <<= 31  # at run time: the folded constant 1 << 31 is no small int on a 32-bit port
     w = robot.walker
-    fx = w.fx
-    fy = w.fy
-    fz = w.fz
+    fx = ptr32(w.fx)  # noqa: F821 (the walker's feet are array("i"))
+    fy = ptr32(w.fy)  # noqa: F821
+    fz = ptr32(w.fz)  # noqa: F821
     body = robot.body
     level = bool(body.level)
-    mx = body.mx
-    my = body.my
-    mc = body.mc
-    ms = body.ms
+    mx = ptr32(body.mx)  # noqa: F821 (a viper built-in; Body keeps the mounts in array("i"))
+    my = ptr32(body.my)  # noqa: F821
+    mc = ptr32(body.mc)  # noqa: F821
+    ms = ptr32(body.ms)  # noqa: F821
     legs = robot.geometry.legs
     xyz = robot._leg
-    a = robot._angles
+    a = ptr32(robot._angles)  # noqa: F821 (Robot's scratch, array("i"))
     for i in range(6):
         # Body.to_leg: the foot (fine, body frame) into leg i's frame (0.1 mm, rounded).
-        xyz[0] = fx[i]
-        xyz[1] = fy[i]
-        xyz[2] = fz[i]
+        x = (fx[i] ^ sb) - sb
+        y = (fy[i] ^ sb) - sb
+        z = (fz[i] ^ sb) - sb
         if not level:
+            xyz[0] = x
+            xyz[1] = y
+            xyz[2] = z
             _posed(body, xyz)
-        dx = int(xyz[0]) - int(mx[i])
-        dy = int(xyz[1]) - int(my[i])
-        c = int(mc[i])
-        s = int(ms[i])
+            x = int(xyz[0])
+            y = int(xyz[1])
+            z = int(xyz[2])
+        dx = x - ((mx[i] ^ sb) - sb)
+        dy = y - ((my[i] ^ sb) - sb)
+        c = (mc[i] ^ sb) - sb
+        s = (ms[i] ^ sb) - sb
         # _mq(dx, c) + _mq(dy, s) and _mq(dy, c) - _mq(dx, s), written out as in stance(): a call
         # costs ~5 us, and one shared helper made the tick 0.16 ms slower (measured on the Pico).
         m = dx if dx >= 0 else 0 - dx
@@ -322,28 +548,38 @@ def output(robot) -> int:
             ys = 0 - ys
         lx = (xc + ys + 8) >> 4
         ly = (yc - xs + 8) >> 4
-        lz = (int(xyz[2]) + 8) >> 4
+        lz = (z + 8) >> 4
+        # Leg.ik's solve and limit check.
         leg = legs[i]
-        if int(_solved(leg, lx, ly, lz)):
-            return 1
         g = leg._g
+        if int(solve(lx, ly, lz, g)):
+            return 1
+        gw = ptr32(g)  # noqa: F821 (Leg._g is an array("i"))
+        t1 = (gw[_G_T1] ^ sb) - sb
+        t2 = (gw[_G_T2] ^ sb) - sb
+        t3 = (gw[_G_T3] ^ sb) - sb
+        lim = leg.limits
+        if t1 < int(lim[0]) or t1 > int(lim[1]) or t2 < int(lim[2]) or t2 > int(lim[3]):
+            return 1
+        if t3 < int(lim[4]) or t3 > int(lim[5]):
+            return 1
         k = 3 * i
-        a[k] = g[_G_T1]
-        a[k + 1] = g[_G_T2]
-        a[k + 2] = g[_G_T3]
-    p = robot._pulses
+        a[k] = t1
+        a[k + 1] = t2
+        a[k + 2] = t3
+    p = ptr32(robot._pulses)  # noqa: F821 (Robot's scratch, array("i"))
     servos = robot.servos
     for k in range(18):
         # hexapod.servo.ServoMap.pulse, read from the maps every frame (they may be swapped or
         # recalibrated between ticks); floor division as in the plain code (viper's // floors too).
-        sm = servos[k]
-        us = int(sm.centre_us) + int(sm.direction) * ((int(a[k]) * int(sm.us_per_degree) + 5000) // 10000)
-        if us < int(sm.min_us) or us > int(sm.max_us):
+        cal = ptr32(servos[k].cal)  # noqa: F821 (centre_us, direction, us_per_degree, min_us, max_us)
+        us = cal[0] + ((cal[1] ^ sb) - sb) * ((((a[k] ^ sb) - sb) * cal[2] + 5000) // 10000)
+        if us < cal[3] or us > cal[4]:
             return 1
         p[k] = us
     angles = robot.angles
     pulses = robot.pulses
     for k in range(18):
-        angles[k] = a[k]
-        pulses[k] = p[k]
+        angles[k] = (a[k] ^ sb) - sb
+        pulses[k] = (p[k] ^ sb) - sb
     return 0

@@ -12,6 +12,8 @@ set_pose only records a target; slew() walks the pose there by at most POSE_STEP
 and ANGLE_STEP (cdeg) per tick, so no servo jumps.
 """
 
+from array import array
+
 from micropython import const
 
 from hexapod.fixmath import ONE, cos, mul_q15, sin
@@ -34,13 +36,14 @@ class Body:
 
     def __init__(self, geometry):
         self.geometry = geometry
-        self.mx = [v << FINE_SHIFT for v in geometry.mount_x]
-        self.my = [v << FINE_SHIFT for v in geometry.mount_y]
-        self.mc = list(geometry.mount_cos)
-        self.ms = list(geometry.mount_sin)
-        self.pose = [0] * 9  # x, y, z, roll, pitch, yaw, centre x, y, z (0.1 mm, cdeg)
-        self.target = [0] * 9
-        self.trig = [ONE, 0, ONE, 0, ONE, 0]  # cos, sin of roll, pitch, yaw (Q15)
+        # array("i") here and below: hexapod/_tickfast.py reads them as machine words (ptr32).
+        self.mx = array("i", [v << FINE_SHIFT for v in geometry.mount_x])
+        self.my = array("i", [v << FINE_SHIFT for v in geometry.mount_y])
+        self.mc = array("i", geometry.mount_cos)
+        self.ms = array("i", geometry.mount_sin)
+        self.pose = array("i", [0] * 9)  # x, y, z, roll, pitch, yaw, centre x, y, z (0.1 mm, cdeg)
+        self.target = array("i", [0] * 9)
+        self.trig = array("i", [ONE, 0, ONE, 0, ONE, 0])  # cos, sin of roll, pitch, yaw (Q15)
         self.level = True  # no pose at all: the transform skips the pose maths
 
     def check_pose(self, pose):

@@ -14,6 +14,8 @@ Seed 001's four phases of a leg map onto a cycle as: power = stance; lift, swing
 contact = the first, middle and last third of the swing (the foot rises, travels, lands).
 """
 
+from array import array
+
 from micropython import const
 
 TRIPOD = const(0)
@@ -88,7 +90,7 @@ class GaitClock:
     """Tick timing of one gait at one cycle time: slot, swing and stance lengths in ticks."""
 
     def __init__(self, gait=TRIPOD, cycle_ms=1000):
-        self.start = [0] * 6  # each leg's first swing tick in the cycle
+        self.start = array("i", [0] * 6)  # each leg's first swing tick in the cycle (hexapod/_tickfast.py reads words)
         self.set(gait, cycle_ms)
 
     def set(self, gait, cycle_ms):

@@ -6,6 +6,8 @@ about the centre). The calibrated min/max clamp is the last line of defence: a c
 would need it is refused first by `pulse`, which says by how much it missed.
 """
 
+from array import array
+
 from micropython import const
 
 OK = const(0)
@@ -14,6 +16,22 @@ ABOVE_MAX = const(2)
 
 PULSE_MIN_US = const(500)  # widest range any servo may be calibrated to
 PULSE_MAX_US = const(2500)
+
+# ServoMap.cal's words.
+_CENTRE = const(0)
+_DIRECTION = const(1)
+_PER_DEGREE = const(2)
+_MIN = const(3)
+_MAX = const(4)
+
+
+def _put(words, k, v):
+    words[k] = v
+
+
+def _word(k):
+    """A property reading and writing word k of a ServoMap's cal."""
+    return property(lambda self: self.cal[k], lambda self, v: _put(self.cal, k, v))
 
 
 class ServoMap:
@@ -29,38 +47,47 @@ class ServoMap:
             raise ValueError("direction: %r, allowed 1 or -1" % (direction,))
         if not isinstance(us_per_degree, int) or us_per_degree < 100 or us_per_degree > 5000:
             raise ValueError("us_per_degree: %r is outside 100..5000 (0.01 us per degree)" % (us_per_degree,))
-        self.centre_us = centre_us
-        self.direction = direction
-        self.us_per_degree = us_per_degree
-        self.min_us = min_us
-        self.max_us = max_us
+        # centre_us, direction, us_per_degree, min_us, max_us as machine words (array("i")): the
+        # tick's viper frame (hexapod/_tickfast.py) reads all five for one attribute lookup.
+        self.cal = array("i", [centre_us, direction, us_per_degree, min_us, max_us])
         self.excess = 0  # microseconds past the range on the last refusal
+
+    # The five as properties over cal (each one attribute, as before, for every other user).
+    centre_us = _word(_CENTRE)  # pulse width at angle 0, us
+    direction = _word(_DIRECTION)  # 1, or -1 for a servo mounted the other way round
+    us_per_degree = _word(_PER_DEGREE)  # pulse change per degree, 0.01 us
+    min_us = _word(_MIN)  # shortest pulse this servo may get, us
+    max_us = _word(_MAX)  # longest pulse this servo may get, us
 
     def raw(self, cdeg):
         """Unclamped pulse width in us for an angle in cdeg (rounded half up)."""
+        c = self.cal
         # cdeg * 0.01 us/deg-units / 100 cdeg/deg / 100 -> us; |cdeg| < 2**16 keeps this small.
-        return self.centre_us + self.direction * ((cdeg * self.us_per_degree + 5000) // 10000)
+        return c[_CENTRE] + c[_DIRECTION] * ((cdeg * c[_PER_DEGREE] + 5000) // 10000)
 
     def pulse(self, cdeg, out, i):
         """Store the pulse for cdeg into out[i] when inside min..max; else a code and `excess`."""
         p = self.raw(cdeg)
-        if p < self.min_us:
-            self.excess = self.min_us - p
+        c = self.cal
+        if p < c[_MIN]:
+            self.excess = c[_MIN] - p
             return BELOW_MIN
-        if p > self.max_us:
-            self.excess = p - self.max_us
+        if p > c[_MAX]:
+            self.excess = p - c[_MAX]
             return ABOVE_MAX
         out[i] = p
         return OK
 
     def clamp(self, pulse_us):
         """The last line of defence: pulse_us forced into min..max."""
-        if pulse_us < self.min_us:
-            return self.min_us
-        if pulse_us > self.max_us:
-            return self.max_us
+        c = self.cal
+        if pulse_us < c[_MIN]:
+            return c[_MIN]
+        if pulse_us > c[_MAX]:
+            return c[_MAX]
         return pulse_us
 
     def angle(self, pulse_us):
         """Inverse map: centidegrees for a pulse width in us (for calibration tools)."""
-        return (self.direction * (pulse_us - self.centre_us) * 10000) // self.us_per_degree
+        c = self.cal
+        return (c[_DIRECTION] * (pulse_us - c[_CENTRE]) * 10000) // c[_PER_DEGREE]

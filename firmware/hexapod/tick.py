@@ -17,6 +17,7 @@ frame, `faults` counts it and `reason` says why (the planner is built never to g
 """
 
 import sys
+from array import array
 
 from micropython import const
 
@@ -52,14 +53,16 @@ _WRAP = const(0x3FFFFFFF)  # time.ticks_ms() wraps at 2**30
 RHO_MIN = const(50)  # a leg needs a reach disc this wide (0.1 mm) to walk
 
 
-# The frame compiled by the viper emitter where MicroPython has one (hexapod/_tickfast.py, proven
-# equal to the plain _output by tests/test_tickfast.py); CPython and CircuitPython run the plain code.
+# The frame and the pose check compiled by the viper emitter where MicroPython has one (hexapod/_tickfast.py, proven
+# equal to the plain _output and Body.settled by tests/test_tickfast.py); CPython and CircuitPython run the plain code.
 _output_fast = None
+_settled_fast = None
 if sys.implementation.name == "micropython":
     try:
         from hexapod._tickfast import output as _output_fast
+        from hexapod._tickfast import settled as _settled_fast
     except Exception:  # no viper emitter on this build
-        _output_fast = None
+        _output_fast = _settled_fast = None
 
 
 def describe(code):
@@ -97,8 +100,9 @@ class FrameBuffer:
         self.frames = 0
 
     def write_frame(self, pulses):
+        out = self.pulses
         for k in range(18):
-            self.pulses[k] = pulses[k]
+            out[k] = pulses[k]
         self.frames += 1
 
 
@@ -124,8 +128,8 @@ class Robot:
         self.rest_z = -(geometry.sit_height - geometry.foot_clearance) << FINE_SHIFT
         self.angles = [0] * 18  # last joint angles sent, cdeg
         self.pulses = [0] * 18 if pulses is None else pulses  # last pulses sent, us
-        self._angles = [0] * 18
-        self._pulses = [0] * 18
+        self._angles = array("i", [0] * 18)  # scratch, array("i"): _tickfast.output writes them as machine words
+        self._pulses = array("i", [0] * 18)
         self._leg = [0, 0, 0]
         self._rho = [0] * 6
         self.mode = RELAXED
@@ -180,7 +184,8 @@ class Robot:
             if not self.posture.step(self.walker):
                 self.mode = self.after
         elif m == STANDING or m == WALKING:  # noqa: SIM109 (a tuple test may allocate)
-            if not self.body.settled():  # a settled pose makes slew() a no-op (its frame is a heap one)
+            # A settled pose makes slew() a no-op (its frame is a heap one).
+            if not (self.body.settled() if _settled_fast is None else _settled_fast(self.body)):
                 self.body.slew()
             if m == WALKING and self.walker.update() == STOPPED:
                 self.mode = STANDING

@@ -25,6 +25,7 @@ no foot is in the air (new swings are held back until then).
 """
 
 import sys
+from array import array
 
 from micropython import const
 
@@ -62,34 +63,36 @@ class Walker:
     """Gait engine and walk state machine for one Geometry (feet in the body frame)."""
 
     def __init__(self, geometry):
+        # The per-leg state and the tick's small vectors are array("i"): hexapod/_tickfast.py reads
+        # and writes them as machine words (ptr32); the plain code indexes them as lists.
         self.geometry = geometry
         self.clock = GaitClock(TRIPOD, 1000)
         self.step = 300
         self.lift = 300
         self.ground = -geometry.body_height << FINE_SHIFT  # foot z on the ground, fine
-        self.nx = [0] * 6  # neutral feet, body frame, fine
-        self.ny = [0] * 6
-        self.rho = [0] * 6  # reach disc radius around each neutral foot, 0.1 mm
+        self.nx = _words(6)  # neutral feet, body frame, fine
+        self.ny = _words(6)
+        self.rho = _words(6)  # reach disc radius around each neutral foot, 0.1 mm
         self.srho = [STEP_MAX] * 6  # largest half stance the servos' speed allows, 0.1 mm
         self.next_srho = [STEP_MAX] * 6
         # How far from neutral the body may carry a stance foot, 0.1 mm: the step the command is
         # scaled to (reach, step, servo speed), not just the reach disc. A stance that began at
         # another command's touch-down would otherwise end past it, and the next swing would
         # turn the joints faster than the servo budget (docs/physics.md, 2026-11-23 reversals).
-        self.stance_rho = [0] * 6
+        self.stance_rho = _words(6)
         self.servo_peak = 0  # largest joint change (cdeg/tick) of a swing without a step, last configure
         self.pose_body = None  # the Body whose pose the servo-speed check uses (else level)
-        self.fx = [0] * 6  # current feet, body frame, fine
-        self.fy = [0] * 6
-        self.fz = [0] * 6
-        self.px = [0] * 6  # stance feet in the ground frame, fine
-        self.py = [0] * 6
-        self.sx = [0] * 6  # where each swing left the ground, body frame, fine
-        self.sy = [0] * 6
-        self.su = [-1] * 6  # ticks into the swing, -1 in stance
-        self.done = [0] * 6  # STOPPING: leg has landed at neutral since the command hit zero
-        self.ax = [0] * 6  # this tick's stance feet, before the reach check
-        self.ay = [0] * 6
+        self.fx = _words(6)  # current feet, body frame, fine
+        self.fy = _words(6)
+        self.fz = _words(6)
+        self.px = _words(6)  # stance feet in the ground frame, fine
+        self.py = _words(6)
+        self.sx = _words(6)  # where each swing left the ground, body frame, fine
+        self.sy = _words(6)
+        self.su = _words(6, -1)  # ticks into the swing, -1 in stance
+        self.done = _words(6)  # STOPPING: leg has landed at neutral since the command hit zero
+        self.ax = _words(6)  # this tick's stance feet, before the reach check
+        self.ay = _words(6)
         self.bx = 0  # body in the ground frame, fine, plus remainder carries
         self.by = 0
         self.cx = 0
@@ -98,8 +101,8 @@ class Walker:
         self.req_vx = 0  # the command as asked, before scaling
         self.req_vy = 0
         self.req_yaw = 0
-        self.cmd = [0, 0, 0]  # scaled target (vx, vy, yaw rate)
-        self.vel = [0, 0, 0]  # ramped velocity actually walked
+        self.cmd = _words(3)  # scaled target (vx, vy, yaw rate)
+        self.vel = _words(3)  # ramped velocity actually walked
         self.scale_permille = 1000  # how much of the last command the reach allowed
         self.state = STOPPED
         self.phase = 0
@@ -113,11 +116,11 @@ class Walker:
         self._stroke = [0, 0]  # swing_stroke's (stroke, carry) fractions
         self._plan = [0, 0]  # where the swing's plan puts a foot, fine
         # The stance's ground motion over one swing at the command: x, y shift (fine), turn (Q15 rad).
-        self._carry = [0, 0, 0]
+        self._carry = _words(3)
         self._cv = [0, 0, 0, 0]  # this swing's carries at lift-off (x, y) and touch-down (x, y), fine
-        self._aim = [0, 0, 0, 0, 0, 0]  # cos, sin of half the stance turn, half-stance shift x, y
-        self._aim_key = [0, 0, 0, -1]  # the (vx, vy, w, stance ticks) _aim was made for
-        self._xy = [0, 0]
+        self._aim = _words(6)  # cos, sin of half the stance turn, half-stance shift x, y
+        self._aim_key = array("i", [0, 0, 0, -1])  # the (vx, vy, w, stance ticks) _aim was made for
+        self._xy = _words(2)
         for i in range(6):
             geometry.neutral_xy(i, self._xy)
             self.nx[i] = self._xy[0] << FINE_SHIFT
@@ -377,16 +380,26 @@ class Walker:
         """Advance one tick: ramp the velocity, move the body, move the swings, step the clock."""
         if self.state == STOPPED:
             return self.state
-        self._ramp()
+        if _begin_fast is None:
+            self._ramp()
+            due = -1
+        else:
+            due = _begin_fast(self)  # the ramp; 1 when still, 2 << i for each leg due to lift
         v = self.vel
         if self.state == STARTING and v[0] == self.cmd[0] and v[1] == self.cmd[1] and v[2] == self.cmd[2]:
             self.state = WALKING
         still = not (v[0] or v[1] or v[2])
         # Lift first: a foot leaving the ground this tick is not carried by the body's move,
         # so every stance lasts exactly stance_ticks moves (what the touch-down aim assumes).
-        self._lift_all(still)
-        self._move_body()
-        self._aim_swings()
+        if due < 0:
+            self._lift_all(still)
+            self._move_body()
+            self._aim_swings()
+        else:
+            if due > 1:
+                self._lift_due(due, still)
+            _move_fast(self)
+            _aim_fast(self)
         airborne = self._swing_all(still)
         self.phase += 1
         if self.phase >= self.clock.cycle_ticks:
@@ -410,6 +423,11 @@ class Walker:
             if su[i] < 0 and phase == start[i]:
                 self._maybe_lift(i, still)
 
+    def _lift_due(self, due, still):
+        for i in range(6):
+            if due >> (i + 1) & 1:
+                self._maybe_lift(i, still)
+
     def _aim_swings(self):
         # Swings aim for the commanded velocity, not the ramp's: the feet land ready for it.
         c = self.cmd
@@ -418,10 +436,16 @@ class Walker:
 
     def _swing_all(self, still):
         """Move every swing foot one tick; returns how many are still in the air."""
-        su = self.su
         w = self.clock.swing_ticks
+        if _swings_fast is not None:
+            return _swings_fast(self, 0, 6, w, still)
+        return self._swings(0, 6, w, still)
+
+    def _swings(self, lo, hi, w, still):
+        """_swing_all's plain code over legs lo..hi-1 (hexapod/_tickfast.py's swings is the same in viper)."""
+        su = self.su
         airborne = 0
-        for i in range(6):
+        for i in range(lo, hi):
             if su[i] >= 0:
                 self._swing(i, w, still)
                 if su[i] >= 0:
@@ -455,7 +479,7 @@ class Walker:
         self.sy[i] = self.fy[i]
 
     def _swing(self, i, w, still):
-        u = self._swing_step(i, w) if _swing_fast is None else _swing_fast(self, i, w)
+        u = self._swing_step(i, w)
         if u >= w:
             # Lands where the swing put it: on _xy unless a late re-aim left it short.
             self.su[i] = -1
@@ -593,7 +617,7 @@ class Walker:
         bx = self.bx + mx
         by = self.by + my
         cd = (psi + 50) // 100
-        if self._stance(bx, by, cd) if _stance_fast is None else _stance_fast(self, bx, by, cd):
+        if self._stance(bx, by, cd):
             self.held += 1  # this move would carry a stance foot out of reach: hold
             return
         self.bx = bx
@@ -613,16 +637,26 @@ class Walker:
             self.by = 0
 
 
-# The swing and the stance compiled by the viper emitter where MicroPython has one (hexapod/_tickfast.py,
-# proven equal to _swing_step and _stance by tests/test_tickfast.py); CPython and CircuitPython run the plain code.
-_swing_fast = None
-_stance_fast = None
+# The tick's walker steps compiled by the viper emitter where MicroPython has one (hexapod/_tickfast.py,
+# proven equal to _ramp and _lift_all, _move_body, _aim_swings and _swings by tests/test_tickfast.py);
+# CPython and CircuitPython run the plain code.
+_swings_fast = None
+_move_fast = None
+_begin_fast = None
+_aim_fast = None
 if sys.implementation.name == "micropython":
     try:
-        from hexapod._tickfast import stance as _stance_fast
-        from hexapod._tickfast import swing as _swing_fast
+        from hexapod._tickfast import aim as _aim_fast
+        from hexapod._tickfast import begin as _begin_fast
+        from hexapod._tickfast import move as _move_fast
+        from hexapod._tickfast import swings as _swings_fast
     except Exception:  # no viper emitter on this build
-        _swing_fast = _stance_fast = None
+        _swings_fast = _move_fast = _begin_fast = _aim_fast = None
+
+
+def _words(n, v=0):
+    """n machine words (array("i")), each v."""
+    return array("i", [v] * n)
 
 
 def is_whole(v):
