@@ -49,9 +49,9 @@ def stage_all(pulses, maps, tab, bufs) -> int:
             x = pulses[k]
             if x is _TRUE or x is _FALSE:  # int() took them as 1 or 0
                 return -1
-        m = maps[k]
-        lo = int(m.min_us)
-        hi = int(m.max_us)
+        cal = ptr32(maps[k].cal)  # noqa: F821 (hexapod.servo.ServoMap's words: one lookup, not two properties)
+        lo = cal[3]
+        hi = cal[4]
         if lo < 500 or hi > 2500:
             return -1
         t[3 * k] = p
