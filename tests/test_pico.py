@@ -154,8 +154,11 @@ for name in %r:
         assert path.endswith(".mpy") and path.replace("/", ".")[:-4].removesuffix(".__init__") == name, (name, path)
     left = int(rows[-1][2])
     print("heap: %d bytes free at start, %d after importing all %d modules" % (free0, left, len(names)))
-    # A Pico has ~240 KB of heap: the whole firmware must leave most of it for the loop.
-    assert free0 > 200000 and left > 100000, (free0, left)
+    # A Pico has ~240 KB of heap. The loop allocates nothing a frame, so what it needs is room for
+    # the console's replies and a calibration save: 3/8 of the heap (90 KB) stays free. (The floor
+    # was 100 KB until 2026-11-24, when the viper tick paths and the background I2C sender took
+    # ~12 KB of it for a 3x faster frame on the emulated Pico: docs/pico.md.)
+    assert free0 > 200000 and left > 90000, (free0, left)
 
 
 # Stand up, then walk: forward, crab, ... (0.1 mm/s, cdeg/s), a new command every 40 ticks from tick 60.
