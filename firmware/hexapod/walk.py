@@ -253,72 +253,101 @@ class Walker:
             self.done[i] = 0
 
     def _rescale(self):
+        # The command is scaled by k/1000 until every leg's half stance (its touch-down point's
+        # distance from neutral) fits its disc and, on three feet, no stance foot reaches too far
+        # out; each try sets the next k from the worst shortfall. One function on purpose: calls
+        # are costly on a board, and a root is taken only for a foot that is over (compared as
+        # squares: isqrt(d2) > lim when d2 > lim * (lim + 2)). tests/test_rescale.py proves it
+        # equal to the plain one-helper-per-leg form on many random commands and reach discs.
         vx = self.req_vx
         vy = self.req_vy
         w = self.req_yaw
-        half_ms = self.clock.stance_ticks * TICK_MS >> 1
+        clock = self.clock
+        half_ms = clock.stance_ticks * TICK_MS >> 1
         # Half a stance may not turn past 90 degrees (the disc test needs a monotone turn).
         turn = w * half_ms // 1000
         k = 1000
         if turn > _HALF_TURN or turn < -_HALF_TURN:
             k = _HALF_TURN * 1000 // (turn if turn > 0 else -turn)
         g = self.geometry
-        three = self.clock.stance_ticks * 2 <= self.clock.cycle_ticks  # a tripod: three feet hold the body
+        # On three feet (a tripod), a foot far out loads its femur (a longer lever): the excess
+        # over stance_out_max from the coxa axis scales the command back too.
+        out_max = g.stance_out_max if clock.stance_ticks * 2 <= clock.cycle_ticks else 0
+        reach = g.neutral_reach
+        far = (out_max + reach + 1) * (out_max + reach + 1)
+        nx = self.nx
+        ny = self.ny
+        rho = self.rho
+        srho = self.srho
+        step = self.step
+        a = self._aim
+        xy = self._xy  # scratch: left as the plain form leaves it (the last leg's touch-down point)
+        tx = xy[0]
+        ty = xy[1]
         while k > 0:
+            self.aim_for(vx * k // 1000, vy * k // 1000, w * k // 1000)
+            c = a[0]
+            s = a[1]
             worst = -1
             for i in range(6):
-                e = self.half_stance(i, vx * k // 1000, vy * k // 1000, w * k // 1000)
-                lim = self.rho[i] if self.rho[i] < self.step else self.step
-                if self.srho[i] < lim:
-                    lim = self.srho[i]  # the servos' speed: a longer step needs a faster swing
-                if e > lim:
+                # target(i): the touch-down point, fine (mul_q15 written out)
+                x = nx[i]
+                m = x if x >= 0 else -x
+                xc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
+                xs = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
+                if x < 0:
+                    xc = -xc
+                    xs = -xs
+                y = ny[i]
+                m = y if y >= 0 else -y
+                yc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
+                ys = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
+                if y < 0:
+                    yc = -yc
+                    ys = -ys
+                tx = xc - ys + a[2]
+                ty = xs + yc + a[3]
+                dx = (tx - x) >> FINE_SHIFT
+                dy = (ty - y) >> FINE_SHIFT
+                d2 = dx * dx + dy * dy
+                lim = rho[i] if rho[i] < step else step
+                if srho[i] < lim:
+                    lim = srho[i]  # the servos' speed: a longer step needs a faster swing
+                if lim < 0 or d2 > lim * (lim + 2):
                     # The shortfall sets the next try; rounding can leave it a hair short.
-                    kk = k * lim // e
-                    if worst < 0 or kk < worst:
-                        worst = kk
-                out = self._outward(i) if three else 0
-                if out > g.stance_out_max > 0:
-                    # On three feet, a foot far out loads its femur (a longer lever): scale the excess back.
-                    kk = k * g.stance_out_max // out
-                    if worst < 0 or kk < worst:
-                        worst = kk
+                    m = k * lim // isqrt(d2)
+                    if worst < 0 or m < worst:
+                        worst = m
+                if out_max > 0:
+                    # The touch-down point or its mirror through neutral (lift-off), from the coxa axis.
+                    dx = (tx >> FINE_SHIFT) - g.mount_x[i]
+                    dy = (ty >> FINE_SHIFT) - g.mount_y[i]
+                    d2 = dx * dx + dy * dy
+                    dx = (x >> FINE_SHIFT << 1) - (tx >> FINE_SHIFT) - g.mount_x[i]
+                    dy = (y >> FINE_SHIFT << 1) - (ty >> FINE_SHIFT) - g.mount_y[i]
+                    if dx * dx + dy * dy > d2:
+                        d2 = dx * dx + dy * dy
+                    if d2 >= far:
+                        m = k * out_max // (isqrt(d2) - reach)
+                        if worst < 0 or m < worst:
+                            worst = m
             if worst < 0:
                 break
             k = worst - 1 if worst >= k else worst
+        xy[0] = tx
+        xy[1] = ty
         if k < 0:
             k = 0
         for i in range(6):
-            lim = self.rho[i] if self.rho[i] < self.step else self.step
-            if 0 < self.srho[i] < lim:
-                lim = self.srho[i]  # (no room to step at all: walking is refused, keep the reach)
+            lim = rho[i] if rho[i] < step else step
+            if 0 < srho[i] < lim:
+                lim = srho[i]  # (no room to step at all: walking is refused, keep the reach)
             lim += STANCE_SLACK
-            self.stance_rho[i] = lim if lim < self.rho[i] else self.rho[i]
+            self.stance_rho[i] = lim if lim < rho[i] else rho[i]
         self.scale_permille = k
         self.cmd[0] = vx * k // 1000
         self.cmd[1] = vy * k // 1000
         self.cmd[2] = w * k // 1000
-
-    def half_stance(self, i, vx, vy, w):
-        """How far (0.1 mm) leg i's touch-down point lies from neutral at this command."""
-        self.aim_for(vx, vy, w)
-        self.target(i, self._xy)
-        dx = (self._xy[0] - self.nx[i]) >> FINE_SHIFT
-        dy = (self._xy[1] - self.ny[i]) >> FINE_SHIFT
-        return isqrt(dx * dx + dy * dy)
-
-    def _outward(self, i):
-        """How much farther (0.1 mm) than neutral from leg i's coxa axis its stance reaches, at
-        touch-down (_xy, just aimed by half_stance) or at lift-off (its mirror through neutral)."""
-        g = self.geometry
-        mx = g.mount_x[i]
-        my = g.mount_y[i]
-        tx = self._xy[0] >> FINE_SHIFT
-        ty = self._xy[1] >> FINE_SHIFT
-        sx = (self.nx[i] >> FINE_SHIFT << 1) - tx
-        sy = (self.ny[i] >> FINE_SHIFT << 1) - ty
-        a = isqrt((tx - mx) * (tx - mx) + (ty - my) * (ty - my))
-        b = isqrt((sx - mx) * (sx - mx) + (sy - my) * (sy - my))
-        return (a if a > b else b) - g.neutral_reach
 
     def aim_for(self, vx, vy, w):
         """Half a stance of body motion at (vx, vy, w): the turn and the shift, into _aim."""
