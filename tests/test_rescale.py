@@ -95,6 +95,8 @@ from hexapod import geometry, walk
 G = geometry.load(robot_file)
 w = walk.Walker(G)
 count = differ = slowed = far = turned = many = zero = 0
+NX = list(w.nx)
+NY = list(w.ny)
 
 
 def state():
@@ -104,6 +106,10 @@ def state():
 for n in range(CASES):
     w.clock.set(draw(2) % 4, 500 + draw(12) % 4000)
     w.step = 50 + draw(10) % 551
+    # One case in four: feet farther than 2**15 fine units (204.8 mm) from the body's centre.
+    for i in range(6):
+        w.nx[i] = NX[i] * (3 if n % 4 == 1 else 1) + draw(8) - 128
+        w.ny[i] = NY[i] * (3 if n % 4 == 1 else 1) + draw(8) - 128
     for i in range(6):
         # Mostly discs as a pose gives them (10..80 mm), now and then none or a tiny one.
         w.rho[i] = draw(10) % (8, 30, 1024)[draw(2) % 3] if draw(6) == 0 else 100 + draw(10) % 700

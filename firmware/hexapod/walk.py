@@ -277,9 +277,15 @@ class Walker:
         far = (out_max + reach + 1) * (out_max + reach + 1)
         nx = self.nx
         ny = self.ny
+        mx = g.mount_x
+        my = g.mount_y
         rho = self.rho
-        srho = self.srho
-        step = self.step
+        lims = self.stance_rho  # first each leg's limit on a half stance, at the end its stance disc
+        for i in range(6):
+            lim = rho[i] if rho[i] < self.step else self.step
+            if self.srho[i] < lim:
+                lim = self.srho[i]  # the servos' speed: a longer step needs a faster swing
+            lims[i] = lim
         a = self._aim
         xy = self._xy  # scratch: left as the plain form leaves it (the last leg's touch-down point)
         tx = xy[0]
@@ -288,31 +294,41 @@ class Walker:
             self.aim_for(vx * k // 1000, vy * k // 1000, w * k // 1000)
             c = a[0]
             s = a[1]
+            ox = a[2]
+            oy = a[3]
             worst = -1
             for i in range(6):
-                # target(i): the touch-down point, fine (mul_q15 written out)
+                # target(i): the touch-down point, fine (mul_q15 written out; one product for a
+                # factor below 2**15, the feet of any robot within 204 mm of the body's centre)
                 x = nx[i]
                 m = x if x >= 0 else -x
-                xc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
-                xs = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
+                if m < 32768:
+                    xc = (m * c + 16384) >> 15
+                    xs = (m * s + 16384) >> 15
+                else:
+                    xc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
+                    xs = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
                 if x < 0:
                     xc = -xc
                     xs = -xs
                 y = ny[i]
                 m = y if y >= 0 else -y
-                yc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
-                ys = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
+                if m < 32768:
+                    yc = (m * c + 16384) >> 15
+                    ys = (m * s + 16384) >> 15
+                else:
+                    yc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
+                    ys = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
                 if y < 0:
                     yc = -yc
                     ys = -ys
-                tx = xc - ys + a[2]
-                ty = xs + yc + a[3]
-                dx = (tx - x) >> FINE_SHIFT
-                dy = (ty - y) >> FINE_SHIFT
-                d2 = dx * dx + dy * dy
-                lim = rho[i] if rho[i] < step else step
-                if srho[i] < lim:
-                    lim = srho[i]  # the servos' speed: a longer step needs a faster swing
+                tx = xc - ys + ox
+                ty = xs + yc + oy
+                m = (tx - x) >> FINE_SHIFT
+                d2 = m * m
+                m = (ty - y) >> FINE_SHIFT
+                d2 += m * m
+                lim = lims[i]
                 if lim < 0 or d2 > lim * (lim + 2):
                     # The shortfall sets the next try; rounding can leave it a hair short.
                     m = k * lim // isqrt(d2)
@@ -320,13 +336,15 @@ class Walker:
                         worst = m
                 if out_max > 0:
                     # The touch-down point or its mirror through neutral (lift-off), from the coxa axis.
-                    dx = (tx >> FINE_SHIFT) - g.mount_x[i]
-                    dy = (ty >> FINE_SHIFT) - g.mount_y[i]
-                    d2 = dx * dx + dy * dy
-                    dx = (x >> FINE_SHIFT << 1) - (tx >> FINE_SHIFT) - g.mount_x[i]
-                    dy = (y >> FINE_SHIFT << 1) - (ty >> FINE_SHIFT) - g.mount_y[i]
-                    if dx * dx + dy * dy > d2:
-                        d2 = dx * dx + dy * dy
+                    x = (x >> FINE_SHIFT << 1) - mx[i]
+                    y = (y >> FINE_SHIFT << 1) - my[i]
+                    xc = (tx >> FINE_SHIFT) - mx[i]
+                    yc = (ty >> FINE_SHIFT) - my[i]
+                    d2 = xc * xc + yc * yc
+                    xc = x - xc - mx[i]
+                    yc = y - yc - my[i]
+                    if xc * xc + yc * yc > d2:
+                        d2 = xc * xc + yc * yc
                     if d2 >= far:
                         m = k * out_max // (isqrt(d2) - reach)
                         if worst < 0 or m < worst:
@@ -339,11 +357,11 @@ class Walker:
         if k < 0:
             k = 0
         for i in range(6):
-            lim = rho[i] if rho[i] < step else step
-            if 0 < srho[i] < lim:
-                lim = srho[i]  # (no room to step at all: walking is refused, keep the reach)
+            lim = rho[i] if rho[i] < self.step else self.step
+            if 0 < self.srho[i] < lim:
+                lim = self.srho[i]  # (no room to step at all: walking is refused, keep the reach)
             lim += STANCE_SLACK
-            self.stance_rho[i] = lim if lim < rho[i] else rho[i]
+            lims[i] = lim if lim < rho[i] else rho[i]
         self.scale_permille = k
         self.cmd[0] = vx * k // 1000
         self.cmd[1] = vy * k // 1000
