@@ -182,3 +182,42 @@ def test_rescale_equals_the_plain_form_on_the_emulated_pico():
         status, out, err, _ = pico.run_source("CASES = 300\n" + CASES, fs=fs, timeout=600)
         assert status == 0, out + err
         check(ast.literal_eval(out.strip().splitlines()[-1]), 300)
+        status, out, err, _ = pico.run_source("CASES = 1000\n" + AIMS, fs=fs, timeout=600)
+        assert status == 0, out + err
+        count, odd, differ = ast.literal_eval(out.strip().splitlines()[-1])
+        assert count == 1000 and odd > 100 and differ == 0, (count, odd, differ)
+
+
+# hexapod/_tickfast.py's aim_at (Walker.aim_for's on a MicroPython with viper) against Walker._aim_at.
+AIMS = (
+    LCG
+    + """
+import robots.default as robot_file
+from hexapod import geometry, walk
+from hexapod._tickfast import aim_at
+
+w = walk.Walker(geometry.load(robot_file))
+count = differ = odd = 0
+for n in range(CASES):
+    w.clock.set(draw(2) % 4, 500 + draw(12) % 4000)
+    vx = (draw(13) % 6001 - 3000) >> (draw(4) % 8)
+    vy = (draw(13) % 6001 - 3000) >> (draw(4) % 8)
+    yaw = (draw(15) % 18001 - 9000) >> (draw(4) % 14)
+    w._aim_at(vx, vy, yaw)
+    want = list(w._aim)
+    for j in range(6):
+        w._aim[j] = draw(16)
+    w._aim[4] = want[4]
+    w._aim[5] = want[5]
+    aim_at(w, vx, vy, yaw)
+    differ += list(w._aim) != want
+    odd += (yaw * w.clock.stance_ticks * 10 // 1000) % 2 == 1 and yaw < 0
+    count += 1
+print((count, odd, differ))
+"""
+)
+
+
+def test_viper_aim_equals_the_plain_aim_on_the_vm(mp):
+    count, odd, differ = mp.value("CASES = 5000\n" + AIMS, heapsize="1m")
+    assert count == 5000 and odd > 500 and differ == 0, (count, odd, differ)
