@@ -106,24 +106,6 @@ def begin(walker) -> int:
 
 
 @micropython.viper
-def aim_at(walker, vx: int, vy: int, w: int) -> int:
-    """hexapod.walk.Walker._aim_at: half a stance of body motion at (vx, vy, w), the turn's cosine
-    and sine and the chord (fine), into walker._aim."""
-    half_ms = int(walker.clock.stance_ticks) * _TICK_MS >> 1
-    turn = w * half_ms // 1000  # cdeg
-    a = ptr32(walker._aim)  # noqa: F821
-    a[0] = int(_sin(turn + 9000))
-    a[1] = int(_sin(turn))
-    sx = vx * half_ms * 16 // 1000
-    sy = vy * half_ms * 16 // 1000
-    c = int(_sin((turn >> 1) + 9000))
-    s = int(_sin(turn >> 1))
-    a[2] = int(_mq(sx, c)) - int(_mq(sy, s))
-    a[3] = int(_mq(sx, s)) + int(_mq(sy, c))
-    return 0
-
-
-@micropython.viper
 def aim(walker) -> int:
     """Walker._aim_swings: _aim for the command (made again only when it changed, by Walker._aim_at)
     and the ground's move over one swing into _carry (Walker._carry_for)."""
@@ -141,7 +123,7 @@ def aim(walker) -> int:
         key[1] = vy
         key[2] = w
         key[3] = st
-        aim_at(walker, vx, vy, w)
+        walker._aim_at(vx, vy, w)
     ms = int(clock.swing_ticks) * _TICK_MS
     k = ptr32(walker._carry)  # noqa: F821
     k[0] = 0 - (vx * ms * 16 // 1000)

@@ -379,10 +379,7 @@ class Walker:
             key[1] = vy
             key[2] = w
             key[3] = st
-            if _aim_at_fast is None:
-                self._aim_at(vx, vy, w)
-            else:
-                _aim_at_fast(self, vx, vy, w)
+            self._aim_at(vx, vy, w)
 
     def _aim_at(self, vx, vy, w):
         half_ms = self.clock.stance_ticks * TICK_MS >> 1
@@ -694,16 +691,14 @@ _swings_fast = None
 _move_fast = None
 _begin_fast = None
 _aim_fast = None
-_aim_at_fast = None
 if sys.implementation.name == "micropython":
     try:
         from hexapod._tickfast import aim as _aim_fast
-        from hexapod._tickfast import aim_at as _aim_at_fast
         from hexapod._tickfast import begin as _begin_fast
         from hexapod._tickfast import move as _move_fast
         from hexapod._tickfast import swings as _swings_fast
     except Exception:  # no viper emitter on this build
-        _swings_fast = _move_fast = _begin_fast = _aim_fast = _aim_at_fast = None
+        _swings_fast = _move_fast = _begin_fast = _aim_fast = None
 
 
 def _words(n, v=0):
