@@ -182,3 +182,58 @@ def test_rescale_equals_the_plain_form_on_the_emulated_pico():
         status, out, err, _ = pico.run_source("CASES = 300\n" + CASES, fs=fs, timeout=600)
         assert status == 0, out + err
         check(ast.literal_eval(out.strip().splitlines()[-1]), 300)
+        status, out, err, _ = pico.run_source("CASES = 1000\n" + AIMS, fs=fs, timeout=600)
+        assert status == 0, out + err
+        count, odd, differ = ast.literal_eval(out.strip().splitlines()[-1])
+        assert count == 1000 and odd > 100 and differ == 0, (count, odd, differ)
+
+
+# Walker._aim_at (few names: its frame off the heap; sin(t + 9000) for cos(t)) against the form it
+# replaced, kept here as the reference.
+AIMS = (
+    LCG
+    + """
+import robots.default as robot_file
+from hexapod import geometry, walk
+from hexapod.fixmath import cos, mul_q15, sin
+
+
+def plain_aim_at(self, vx, vy, w):
+    half_ms = self.clock.stance_ticks * 20 >> 1
+    turn = w * half_ms // 1000
+    a = self._aim
+    a[0] = cos(turn)
+    a[1] = sin(turn)
+    sx = vx * half_ms * 16 // 1000
+    sy = vy * half_ms * 16 // 1000
+    c = cos(turn >> 1)
+    s = sin(turn >> 1)
+    a[2] = mul_q15(sx, c) - mul_q15(sy, s)
+    a[3] = mul_q15(sx, s) + mul_q15(sy, c)
+
+
+w = walk.Walker(geometry.load(robot_file))
+count = differ = odd = 0
+for n in range(CASES):
+    w.clock.set(draw(2) % 4, 500 + draw(12) % 4000)
+    vx = (draw(13) % 6001 - 3000) >> (draw(4) % 8)
+    vy = (draw(13) % 6001 - 3000) >> (draw(4) % 8)
+    yaw = (draw(15) % 18001 - 9000) >> (draw(4) % 14)
+    plain_aim_at(w, vx, vy, yaw)
+    want = list(w._aim)
+    for j in range(4):
+        w._aim[j] = draw(16)
+    w._aim_at(vx, vy, yaw)
+    differ += list(w._aim) != want
+    odd += (yaw * w.clock.stance_ticks * 10 // 1000) % 2 == 1 and yaw < 0
+    count += 1
+print((count, odd, differ))
+"""
+)
+
+
+def test_aim_equals_the_plain_form_in_both_runtimes(both_runtimes):
+    cp, mp = both_runtimes("CASES = 5000\n" + AIMS)
+    assert cp == mp
+    count, odd, differ = ast.literal_eval(cp.strip().splitlines()[-1])
+    assert count == 5000 and odd > 500 and differ == 0, (count, odd, differ)

@@ -219,9 +219,11 @@ class Walker:
         if not is_whole(yaw_rate) or yaw_rate < -YAW_RATE_MAX or yaw_rate > YAW_RATE_MAX:
             _bad("yaw_rate", yaw_rate, YAW_RATE_MAX, "cdeg/s")
 
-    def command(self, vx, vy, yaw_rate):
-        """Walk at (vx, vy, yaw rate), scaled down to what the reach and step length allow."""
-        self.check_command(vx, vy, yaw_rate)
+    def command(self, vx, vy, yaw_rate, checked=False):
+        """Walk at (vx, vy, yaw rate), scaled down to what the reach and step length allow
+        (checked: the caller has just passed them through check_command)."""
+        if not checked:
+            self.check_command(vx, vy, yaw_rate)
         self.req_vx = vx
         self.req_vy = vy
         self.req_yaw = yaw_rate
@@ -382,18 +384,20 @@ class Walker:
             self._aim_at(vx, vy, w)
 
     def _aim_at(self, vx, vy, w):
-        half_ms = self.clock.stance_ticks * TICK_MS >> 1
-        turn = w * half_ms // 1000  # cdeg
+        # Few names on purpose (h: half a stance, ms; t: its turn, cdeg; then the cosine and sine
+        # of half the turn): within 11 locals + stack slots the frame stays off the heap.
+        h = self.clock.stance_ticks * TICK_MS >> 1
+        t = w * h // 1000
         a = self._aim
-        a[0] = cos(turn)
-        a[1] = sin(turn)
+        a[0] = sin(t + 9000)  # cos(t)
+        a[1] = sin(t)
         # The shift is the chord of the arc: the straight move turned by half the turn.
-        sx = vx * half_ms * FINE // 1000
-        sy = vy * half_ms * FINE // 1000
-        c = cos(turn >> 1)
-        s = sin(turn >> 1)
-        a[2] = mul_q15(sx, c) - mul_q15(sy, s)
-        a[3] = mul_q15(sx, s) + mul_q15(sy, c)
+        vx = vx * h * FINE // 1000
+        vy = vy * h * FINE // 1000
+        h = sin((t >> 1) + 9000)
+        t = sin(t >> 1)
+        a[2] = mul_q15(vx, h) - mul_q15(vy, t)
+        a[3] = mul_q15(vx, t) + mul_q15(vy, h)
 
     def target(self, i, out):
         """Leg i's touch-down point (body frame, fine) for the motion in _aim, into out[0:2]."""
