@@ -186,6 +186,9 @@ def test_rescale_equals_the_plain_form_on_the_emulated_pico():
         assert status == 0, out + err
         count, odd, differ = ast.literal_eval(out.strip().splitlines()[-1])
         assert count == 1000 and odd > 100 and differ == 0, (count, odd, differ)
+        status, out, err, _ = pico.run_source("CASES = 3000\n" + SINES, fs=fs, timeout=600)
+        assert status == 0, out + err
+        assert ast.literal_eval(out.strip().splitlines()[-1]) == (3000, 0, True)
 
 
 # Walker._aim_at (few names: its frame off the heap; sin(t + 9000) for cos(t)) against the form it
@@ -237,3 +240,25 @@ def test_aim_equals_the_plain_form_in_both_runtimes(both_runtimes):
     assert cp == mp
     count, odd, differ = ast.literal_eval(cp.strip().splitlines()[-1])
     assert count == 5000 and odd > 500 and differ == 0, (count, odd, differ)
+
+
+# hexapod/_tickfast.py's _sin (walk's sine on a MicroPython with viper) against fixmath.sin, over
+# every table step and its edges, both signs, whole turns away, up to the 2**29 the docstrings allow.
+SINES = (
+    LCG
+    + """
+from hexapod import fixmath, walk
+from hexapod._tickfast import _sin
+
+count = differ = 0
+for n in range(CASES):
+    c = (draw(30) - (1 << 29)) >> (n % 30) if n % 3 else n * 25 - 45000 + (n >> 1) % 3 - 1
+    differ += _sin(c) != fixmath.sin(c)
+    count += 1
+print((count, differ, walk.sin is _sin))
+"""
+)
+
+
+def test_viper_sine_equals_fixmath_on_the_vm(mp):
+    assert mp.value("CASES = 20000\n" + SINES, heapsize="1m") == (20000, 0, True)

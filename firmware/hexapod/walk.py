@@ -697,6 +697,8 @@ _begin_fast = None
 _aim_fast = None
 if sys.implementation.name == "micropython":
     try:
+        # The same sine as machine code (tests/test_rescale.py): a new command's aims are four sines.
+        from hexapod._tickfast import _sin as sin  # noqa: F811
         from hexapod._tickfast import aim as _aim_fast
         from hexapod._tickfast import begin as _begin_fast
         from hexapod._tickfast import move as _move_fast
