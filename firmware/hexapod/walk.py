@@ -288,11 +288,13 @@ class Walker:
         mx = g.mount_x
         my = g.mount_y
         rho = self.rho
+        srho = self.srho
+        step = self.step
         lims = self.stance_rho  # first each leg's limit on a half stance, at the end its stance disc
         for i in range(6):
-            lim = rho[i] if rho[i] < self.step else self.step
-            if self.srho[i] < lim:
-                lim = self.srho[i]  # the servos' speed: a longer step needs a faster swing
+            lim = rho[i] if rho[i] < step else step
+            if srho[i] < lim:
+                lim = srho[i]  # the servos' speed: a longer step needs a faster swing
             lims[i] = lim
         a = self._aim
         xy = self._xy  # scratch: left as the plain form leaves it (the last leg's touch-down point)
@@ -365,9 +367,9 @@ class Walker:
         if k < 0:
             k = 0
         for i in range(6):
-            lim = rho[i] if rho[i] < self.step else self.step
-            if 0 < self.srho[i] < lim:
-                lim = self.srho[i]  # (no room to step at all: walking is refused, keep the reach)
+            lim = rho[i] if rho[i] < step else step
+            if 0 < srho[i] < lim:
+                lim = srho[i]  # (no room to step at all: walking is refused, keep the reach)
             lim += STANCE_SLACK
             lims[i] = lim if lim < rho[i] else rho[i]
         self.scale_permille = k
