@@ -262,3 +262,30 @@ print((count, differ, walk.sin is _sin))
 
 def test_viper_sine_equals_fixmath_on_the_vm(mp):
     assert mp.value("CASES = 20000\n" + SINES, heapsize="1m") == (20000, 0, True)
+
+
+# Walker.command checks its own input unless told its caller just did (Robot.walk, which checks
+# first so that a bad command raises whatever the robot's mode): bad input raises and changes nothing.
+BAD = """
+import robots.default as robot_file
+from hexapod import geometry, walk
+
+w = walk.Walker(geometry.load(robot_file))
+for i in range(6):
+    w.rho[i] = 500
+w.command(800, 0, 300)
+before = (w.state, list(w.cmd), w.scale_permille, w.req_vx, w.req_vy, w.req_yaw)
+for args in ((True, 0, 0), (1.5, 0, 0), (3001, 0, 0), (0, -3001, 0), (0, "1", 0), (0, 0, 9001), (0, 0, None)):
+    try:
+        w.command(*args)
+        print("ACCEPTED")
+    except ValueError as e:
+        print(str(e).split(":")[0])
+print((w.state, list(w.cmd), w.scale_permille, w.req_vx, w.req_vy, w.req_yaw) == before)
+"""
+
+
+def test_walker_command_refuses_bad_input_and_changes_nothing(both_runtimes):
+    cp, mp = both_runtimes(BAD)
+    assert cp == mp
+    assert cp.split() == ["vx", "vx", "vx", "vy", "vy", "yaw_rate", "yaw_rate", "True"]
