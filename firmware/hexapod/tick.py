@@ -390,13 +390,13 @@ class Robot:
         self.walker.check_command(vx, vy, yaw_rate)
         if self.mode != STANDING and self.mode != WALKING:
             return BUSY if self.mode == MOVING else NOT_STANDING
-        if not self.body.settled():
+        if not (self.body.settled() if _settled_fast is None else _settled_fast(self.body)):
             return BUSY
         if (vx or vy or yaw_rate) and not self._roomy(self.walker.rho):
             return UNREACHABLE  # this pose or lift leaves a leg no room to step
         if (vx or vy or yaw_rate) and not self._roomy(self.walker.srho):
             return SERVO_SPEED  # this pose or height makes the swing too fast for the servos
-        self.walker.command(vx, vy, yaw_rate)
+        self.walker.command(vx, vy, yaw_rate, True)
         if self.walker.state != STOPPED:
             self.mode = WALKING
         return OK

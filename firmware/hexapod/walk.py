@@ -211,17 +211,25 @@ class Walker:
 
     def check_command(self, vx, vy, yaw_rate):
         """ValueError naming the first of vx, vy (0.1 mm/s), yaw_rate (cdeg/s) out of range."""
-        # Written out (no loop over a tuple) so that a valid command allocates nothing.
-        if not is_whole(vx) or vx < -SPEED_MAX or vx > SPEED_MAX:
+        # Written out (no loop over a tuple, is_whole inlined) so that a valid command allocates
+        # nothing and costs few calls.
+        if not isinstance(vx, int) or isinstance(vx, bool) or vx < -SPEED_MAX or vx > SPEED_MAX:
             _bad("vx", vx, SPEED_MAX, "0.1 mm/s")
-        if not is_whole(vy) or vy < -SPEED_MAX or vy > SPEED_MAX:
+        if not isinstance(vy, int) or isinstance(vy, bool) or vy < -SPEED_MAX or vy > SPEED_MAX:
             _bad("vy", vy, SPEED_MAX, "0.1 mm/s")
-        if not is_whole(yaw_rate) or yaw_rate < -YAW_RATE_MAX or yaw_rate > YAW_RATE_MAX:
+        if (
+            not isinstance(yaw_rate, int)
+            or isinstance(yaw_rate, bool)
+            or yaw_rate < -YAW_RATE_MAX
+            or yaw_rate > YAW_RATE_MAX
+        ):
             _bad("yaw_rate", yaw_rate, YAW_RATE_MAX, "cdeg/s")
 
-    def command(self, vx, vy, yaw_rate):
-        """Walk at (vx, vy, yaw rate), scaled down to what the reach and step length allow."""
-        self.check_command(vx, vy, yaw_rate)
+    def command(self, vx, vy, yaw_rate, checked=False):
+        """Walk at (vx, vy, yaw rate), scaled down to what the reach and step length allow
+        (checked: the caller has just passed them through check_command)."""
+        if not checked:
+            self.check_command(vx, vy, yaw_rate)
         self.req_vx = vx
         self.req_vy = vy
         self.req_yaw = yaw_rate
@@ -253,72 +261,121 @@ class Walker:
             self.done[i] = 0
 
     def _rescale(self):
+        # The command is scaled by k/1000 until every leg's half stance (its touch-down point's
+        # distance from neutral) fits its disc and, on three feet, no stance foot reaches too far
+        # out; each try sets the next k from the worst shortfall. One function on purpose: calls
+        # are costly on a board, and a root is taken only for a foot that is over (compared as
+        # squares: isqrt(d2) > lim when d2 > lim * (lim + 2)). tests/test_rescale.py proves it
+        # equal to the plain one-helper-per-leg form on many random commands and reach discs.
         vx = self.req_vx
         vy = self.req_vy
         w = self.req_yaw
-        half_ms = self.clock.stance_ticks * TICK_MS >> 1
+        clock = self.clock
+        half_ms = clock.stance_ticks * TICK_MS >> 1
         # Half a stance may not turn past 90 degrees (the disc test needs a monotone turn).
         turn = w * half_ms // 1000
         k = 1000
         if turn > _HALF_TURN or turn < -_HALF_TURN:
             k = _HALF_TURN * 1000 // (turn if turn > 0 else -turn)
         g = self.geometry
-        three = self.clock.stance_ticks * 2 <= self.clock.cycle_ticks  # a tripod: three feet hold the body
+        # On three feet (a tripod), a foot far out loads its femur (a longer lever): the excess
+        # over stance_out_max from the coxa axis scales the command back too.
+        out_max = g.stance_out_max if clock.stance_ticks * 2 <= clock.cycle_ticks else 0
+        reach = g.neutral_reach
+        far = (out_max + reach + 1) * (out_max + reach + 1)
+        nx = self.nx
+        ny = self.ny
+        mx = g.mount_x
+        my = g.mount_y
+        rho = self.rho
+        srho = self.srho
+        step = self.step
+        lims = self.stance_rho  # first each leg's limit on a half stance, at the end its stance disc
+        for i in range(6):
+            lim = rho[i] if rho[i] < step else step
+            if srho[i] < lim:
+                lim = srho[i]  # the servos' speed: a longer step needs a faster swing
+            lims[i] = lim
+        a = self._aim
+        xy = self._xy  # scratch: left as the plain form leaves it (the last leg's touch-down point)
+        tx = xy[0]
+        ty = xy[1]
         while k > 0:
+            self.aim_for(vx * k // 1000, vy * k // 1000, w * k // 1000)
+            c = a[0]
+            s = a[1]
+            ox = a[2]
+            oy = a[3]
             worst = -1
             for i in range(6):
-                e = self.half_stance(i, vx * k // 1000, vy * k // 1000, w * k // 1000)
-                lim = self.rho[i] if self.rho[i] < self.step else self.step
-                if self.srho[i] < lim:
-                    lim = self.srho[i]  # the servos' speed: a longer step needs a faster swing
-                if e > lim:
+                # target(i): the touch-down point, fine (mul_q15 written out; one product for a
+                # factor below 2**15, the feet of any robot within 204 mm of the body's centre)
+                x = nx[i]
+                m = x if x >= 0 else -x
+                if m < 32768:
+                    xc = (m * c + 16384) >> 15
+                    xs = (m * s + 16384) >> 15
+                else:
+                    xc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
+                    xs = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
+                if x < 0:
+                    xc = -xc
+                    xs = -xs
+                y = ny[i]
+                m = y if y >= 0 else -y
+                if m < 32768:
+                    yc = (m * c + 16384) >> 15
+                    ys = (m * s + 16384) >> 15
+                else:
+                    yc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
+                    ys = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
+                if y < 0:
+                    yc = -yc
+                    ys = -ys
+                tx = xc - ys + ox
+                ty = xs + yc + oy
+                m = (tx - x) >> FINE_SHIFT
+                d2 = m * m
+                m = (ty - y) >> FINE_SHIFT
+                d2 += m * m
+                lim = lims[i]
+                if lim < 0 or d2 > lim * (lim + 2):
                     # The shortfall sets the next try; rounding can leave it a hair short.
-                    kk = k * lim // e
-                    if worst < 0 or kk < worst:
-                        worst = kk
-                out = self._outward(i) if three else 0
-                if out > g.stance_out_max > 0:
-                    # On three feet, a foot far out loads its femur (a longer lever): scale the excess back.
-                    kk = k * g.stance_out_max // out
-                    if worst < 0 or kk < worst:
-                        worst = kk
+                    m = k * lim // isqrt(d2)
+                    if worst < 0 or m < worst:
+                        worst = m
+                if out_max > 0:
+                    # The touch-down point or its mirror through neutral (lift-off), from the coxa axis.
+                    x = (x >> FINE_SHIFT << 1) - mx[i]
+                    y = (y >> FINE_SHIFT << 1) - my[i]
+                    xc = (tx >> FINE_SHIFT) - mx[i]
+                    yc = (ty >> FINE_SHIFT) - my[i]
+                    d2 = xc * xc + yc * yc
+                    xc = x - xc - mx[i]
+                    yc = y - yc - my[i]
+                    if xc * xc + yc * yc > d2:
+                        d2 = xc * xc + yc * yc
+                    if d2 >= far:
+                        m = k * out_max // (isqrt(d2) - reach)
+                        if worst < 0 or m < worst:
+                            worst = m
             if worst < 0:
                 break
             k = worst - 1 if worst >= k else worst
+        xy[0] = tx
+        xy[1] = ty
         if k < 0:
             k = 0
         for i in range(6):
-            lim = self.rho[i] if self.rho[i] < self.step else self.step
-            if 0 < self.srho[i] < lim:
-                lim = self.srho[i]  # (no room to step at all: walking is refused, keep the reach)
+            lim = rho[i] if rho[i] < step else step
+            if 0 < srho[i] < lim:
+                lim = srho[i]  # (no room to step at all: walking is refused, keep the reach)
             lim += STANCE_SLACK
-            self.stance_rho[i] = lim if lim < self.rho[i] else self.rho[i]
+            lims[i] = lim if lim < rho[i] else rho[i]
         self.scale_permille = k
         self.cmd[0] = vx * k // 1000
         self.cmd[1] = vy * k // 1000
         self.cmd[2] = w * k // 1000
-
-    def half_stance(self, i, vx, vy, w):
-        """How far (0.1 mm) leg i's touch-down point lies from neutral at this command."""
-        self.aim_for(vx, vy, w)
-        self.target(i, self._xy)
-        dx = (self._xy[0] - self.nx[i]) >> FINE_SHIFT
-        dy = (self._xy[1] - self.ny[i]) >> FINE_SHIFT
-        return isqrt(dx * dx + dy * dy)
-
-    def _outward(self, i):
-        """How much farther (0.1 mm) than neutral from leg i's coxa axis its stance reaches, at
-        touch-down (_xy, just aimed by half_stance) or at lift-off (its mirror through neutral)."""
-        g = self.geometry
-        mx = g.mount_x[i]
-        my = g.mount_y[i]
-        tx = self._xy[0] >> FINE_SHIFT
-        ty = self._xy[1] >> FINE_SHIFT
-        sx = (self.nx[i] >> FINE_SHIFT << 1) - tx
-        sy = (self.ny[i] >> FINE_SHIFT << 1) - ty
-        a = isqrt((tx - mx) * (tx - mx) + (ty - my) * (ty - my))
-        b = isqrt((sx - mx) * (sx - mx) + (sy - my) * (sy - my))
-        return (a if a > b else b) - g.neutral_reach
 
     def aim_for(self, vx, vy, w):
         """Half a stance of body motion at (vx, vy, w): the turn and the shift, into _aim."""
@@ -335,18 +392,20 @@ class Walker:
             self._aim_at(vx, vy, w)
 
     def _aim_at(self, vx, vy, w):
-        half_ms = self.clock.stance_ticks * TICK_MS >> 1
-        turn = w * half_ms // 1000  # cdeg
+        # Few names on purpose (h: half a stance, ms; t: its turn, cdeg; then the cosine and sine
+        # of half the turn): within 11 locals + stack slots the frame stays off the heap.
+        h = self.clock.stance_ticks * TICK_MS >> 1
+        t = w * h // 1000
         a = self._aim
-        a[0] = cos(turn)
-        a[1] = sin(turn)
+        a[0] = sin(t + 9000)  # cos(t)
+        a[1] = sin(t)
         # The shift is the chord of the arc: the straight move turned by half the turn.
-        sx = vx * half_ms * FINE // 1000
-        sy = vy * half_ms * FINE // 1000
-        c = cos(turn >> 1)
-        s = sin(turn >> 1)
-        a[2] = mul_q15(sx, c) - mul_q15(sy, s)
-        a[3] = mul_q15(sx, s) + mul_q15(sy, c)
+        vx = vx * h * FINE // 1000
+        vy = vy * h * FINE // 1000
+        h = sin((t >> 1) + 9000)
+        t = sin(t >> 1)
+        a[2] = mul_q15(vx, h) - mul_q15(vy, t)
+        a[3] = mul_q15(vx, t) + mul_q15(vy, h)
 
     def target(self, i, out):
         """Leg i's touch-down point (body frame, fine) for the motion in _aim, into out[0:2]."""
@@ -646,6 +705,8 @@ _begin_fast = None
 _aim_fast = None
 if sys.implementation.name == "micropython":
     try:
+        # The same sine as machine code (tests/test_rescale.py): a new command's aims are four sines.
+        from hexapod._tickfast import _sin as sin  # noqa: F811
         from hexapod._tickfast import aim as _aim_fast
         from hexapod._tickfast import begin as _begin_fast
         from hexapod._tickfast import move as _move_fast
