@@ -92,6 +92,8 @@ CASES = (
 import robots.default as robot_file
 from hexapod import geometry, walk
 
+if not FAST:  # the plain code (CPython's and CircuitPython's) on a MicroPython with viper too
+    walk._rescale_fast = None
 G = geometry.load(robot_file)
 w = walk.Walker(G)
 count = differ = slowed = far = turned = many = zero = 0
@@ -170,16 +172,22 @@ def check(result, cases):
     assert differ == 0, result
 
 
-def test_rescale_equals_the_plain_form_in_both_runtimes(both_runtimes):
-    cp, mp = both_runtimes("CASES = 3000\n" + CASES)
+@pytest.mark.parametrize("fast", [1, 0])
+def test_rescale_equals_the_plain_form_in_both_runtimes(both_runtimes, fast):
+    # The VM runs the viper rescale (fast) or the bytecode one; CPython always the bytecode one.
+    cp, mp = both_runtimes("CASES = 3000\nFAST = %d\n" % fast + CASES)
     assert cp == mp
     check(ast.literal_eval(cp.strip().splitlines()[-1]), 3000)
+
+
+def test_the_vm_uses_the_viper_rescale(mp):
+    assert mp.run("from hexapod import walk\nprint(walk._rescale_fast)").startswith("<function")
 
 
 @pytest.mark.skipif(pico.missing() is not None, reason=pico.missing() or "")
 def test_rescale_equals_the_plain_form_on_the_emulated_pico():
     with pico.flashed() as fs:
-        status, out, err, _ = pico.run_source("CASES = 300\n" + CASES, fs=fs, timeout=600)
+        status, out, err, _ = pico.run_source("CASES = 300\nFAST = 1\n" + CASES, fs=fs, timeout=600)
         assert status == 0, out + err
         check(ast.literal_eval(out.strip().splitlines()[-1]), 300)
         status, out, err, _ = pico.run_source("CASES = 1000\n" + AIMS, fs=fs, timeout=600)

@@ -29,6 +29,8 @@ _SPEED_STEP = const(40)  # hexapod.walk.SPEED_STEP
 _YAW_STEP = const(100)  # hexapod.walk.YAW_STEP
 _DEG360 = const(3600000)  # hexapod.walk._DEG360
 _REANCHOR = const(4194304)  # hexapod.walk._REANCHOR
+_HALF_TURN = const(9000)  # hexapod.walk._HALF_TURN
+_SLACK = const(16)  # hexapod.walk.STANCE_SLACK
 
 _SIN_WORDS = array("i", _SIN)  # Q15, 0..90 degrees: no negative word (viper's ptr32 loads are unsigned)
 
@@ -459,6 +461,138 @@ def move(walker) -> int:
     walker.bx = bx
     walker.by = by
     return 0
+
+
+@micropython.viper
+def rescale(walker) -> int:
+    """hexapod.walk.Walker._rescale: the command scaled (scale_permille, cmd) until every half
+    stance fits its disc and no tripod stance foot reaches past stance_out_max; the stance discs;
+    each try's aim made as Walker.aim_for makes it (same key, same _aim)."""
+    sb = 1
+    sb <<= 31  # (v ^ sb) - sb sign-extends a ptr32 load (unsigned on a 64-bit VM); on a board it is v
+    clock = walker.clock
+    st = int(clock.stance_ticks)
+    vx = int(walker.req_vx)
+    vy = int(walker.req_vy)
+    w = int(walker.req_yaw)
+    half_ms = st * _TICK_MS >> 1
+    turn = w * half_ms // 1000
+    k = 1000
+    if turn > _HALF_TURN:
+        k = _HALF_TURN * 1000 // turn
+    elif turn < 0 - _HALF_TURN:
+        k = _HALF_TURN * 1000 // (0 - turn)
+    g = walker.geometry
+    out_max = 0
+    if st * 2 <= int(clock.cycle_ticks):
+        out_max = int(g.stance_out_max)
+    reach = int(g.neutral_reach)
+    far = (out_max + reach + 1) * (out_max + reach + 1)
+    mx = g.mount_x
+    my = g.mount_y
+    srho = walker.srho
+    step = int(walker.step)
+    nx = ptr32(walker.nx)  # noqa: F821
+    ny = ptr32(walker.ny)  # noqa: F821
+    rho = ptr32(walker.rho)  # noqa: F821
+    a = ptr32(walker._aim)  # noqa: F821
+    key = ptr32(walker._aim_key)  # noqa: F821
+    xy = ptr32(walker._xy)  # noqa: F821
+    tx = (xy[0] ^ sb) - sb
+    ty = (xy[1] ^ sb) - sb
+    while k > 0:
+        cx = vx * k // 1000
+        cy = vy * k // 1000
+        cw = w * k // 1000
+        if ((key[0] ^ sb) - sb) != cx or ((key[1] ^ sb) - sb) != cy or ((key[2] ^ sb) - sb) != cw or key[3] != st:
+            # Walker._aim_at: the turn and the chord of half a stance.
+            key[0] = cx
+            key[1] = cy
+            key[2] = cw
+            key[3] = st
+            turn = cw * half_ms // 1000
+            a[0] = int(_sin(turn + 9000))
+            a[1] = int(_sin(turn))
+            cx = cx * half_ms * 16 // 1000
+            cy = cy * half_ms * 16 // 1000
+            c = int(_sin((turn >> 1) + 9000))
+            s = int(_sin(turn >> 1))
+            a[2] = int(_mq(cx, c)) - int(_mq(cy, s))
+            a[3] = int(_mq(cx, s)) + int(_mq(cy, c))
+        c = (a[0] ^ sb) - sb
+        s = (a[1] ^ sb) - sb
+        worst = -1
+        for i in range(6):
+            x = (nx[i] ^ sb) - sb
+            m = x if x >= 0 else 0 - x
+            xc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
+            xs = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
+            if x < 0:
+                xc = 0 - xc
+                xs = 0 - xs
+            y = (ny[i] ^ sb) - sb
+            m = y if y >= 0 else 0 - y
+            yc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
+            ys = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
+            if y < 0:
+                yc = 0 - yc
+                ys = 0 - ys
+            tx = xc - ys + ((a[2] ^ sb) - sb)
+            ty = xs + yc + ((a[3] ^ sb) - sb)
+            dx = (tx - x) >> 4
+            dy = (ty - y) >> 4
+            d2 = dx * dx + dy * dy
+            lim = (rho[i] ^ sb) - sb
+            if step < lim:
+                lim = step
+            m = int(srho[i])
+            if m < lim:
+                lim = m
+            if lim < 0 or d2 > lim * (lim + 2):
+                m = k * lim // int(_isqrt(d2))
+                if worst < 0 or m < worst:
+                    worst = m
+            if out_max > 0:
+                m = int(mx[i])
+                n = int(my[i])
+                dx = (tx >> 4) - m
+                dy = (ty >> 4) - n
+                d2 = dx * dx + dy * dy
+                dx = (x >> 4 << 1) - (tx >> 4) - m
+                dy = (y >> 4 << 1) - (ty >> 4) - n
+                if dx * dx + dy * dy > d2:
+                    d2 = dx * dx + dy * dy
+                if d2 >= far:
+                    m = k * out_max // (int(_isqrt(d2)) - reach)
+                    if worst < 0 or m < worst:
+                        worst = m
+        if worst < 0:
+            break
+        if worst >= k:
+            k = worst - 1
+        else:
+            k = worst
+    xy[0] = tx
+    xy[1] = ty
+    if k < 0:
+        k = 0
+    sr = ptr32(walker.stance_rho)  # noqa: F821
+    for i in range(6):
+        r = (rho[i] ^ sb) - sb
+        lim = r
+        if step < lim:
+            lim = step
+        m = int(srho[i])
+        if m > 0 and m < lim:
+            lim = m
+        lim += _SLACK
+        sr[i] = lim if lim < r else r
+    walker.scale_permille = k
+    cmd = ptr32(walker.cmd)  # noqa: F821
+    cmd[0] = vx * k // 1000
+    cmd[1] = vy * k // 1000
+    cmd[2] = w * k // 1000
+    return k
 
 
 @micropython.viper

@@ -265,8 +265,12 @@ class Walker:
         # distance from neutral) fits its disc and, on three feet, no stance foot reaches too far
         # out; each try sets the next k from the worst shortfall. One function on purpose: calls
         # are costly on a board, and a root is taken only for a foot that is over (compared as
-        # squares: isqrt(d2) > lim when d2 > lim * (lim + 2)). tests/test_rescale.py proves it
-        # equal to the plain one-helper-per-leg form on many random commands and reach discs.
+        # squares: isqrt(d2) > lim when d2 > lim * (lim + 2)). hexapod/_tickfast.py's rescale is the
+        # same in viper; tests/test_rescale.py proves both equal to the plain one-helper-per-leg
+        # form on many random commands and reach discs.
+        if _rescale_fast is not None:
+            _rescale_fast(self)
+            return
         vx = self.req_vx
         vy = self.req_vy
         w = self.req_yaw
@@ -703,6 +707,7 @@ _swings_fast = None
 _move_fast = None
 _begin_fast = None
 _aim_fast = None
+_rescale_fast = None
 if sys.implementation.name == "micropython":
     try:
         # The same sine as machine code (tests/test_rescale.py): a new command's aims are four sines.
@@ -710,9 +715,10 @@ if sys.implementation.name == "micropython":
         from hexapod._tickfast import aim as _aim_fast
         from hexapod._tickfast import begin as _begin_fast
         from hexapod._tickfast import move as _move_fast
+        from hexapod._tickfast import rescale as _rescale_fast
         from hexapod._tickfast import swings as _swings_fast
     except Exception:  # no viper emitter on this build
-        _swings_fast = _move_fast = _begin_fast = _aim_fast = None
+        _swings_fast = _move_fast = _begin_fast = _aim_fast = _rescale_fast = None
 
 
 def _words(n, v=0):
