@@ -6,7 +6,8 @@
 # (ping, follower, tick, both bursts) in us, the period (and how many of the gaps between frame
 # starts lie within 10 and 100 us of 20 ms), the slack, the heap; with the Pico's background I2C
 # sender (drivers/_i2c_rp2.py) its counts and how many frames began a whole period after the last
-# with its bursts still on the bus.
+# with its bursts still on the bus. The script's walk commands run after their frame's step, in the
+# slack where Runner.run polls the console; their own time is `commands_us`.
 # Arguments: [frames (default 500)].
 import gc
 import json
@@ -27,6 +28,7 @@ COMMANDS = ((60, 1200, 0, 0), (160, 0, 0, 3000), (230, 600, 600, 0), (300, -800,
 BUSY = array("i", [0] * FRAMES)  # us from a frame's start to the end of its step
 START = array("i", [0] * FRAMES)  # us from the first frame's start
 LATE = array("i", [0])  # frames begun a whole period after the last with the background sender still busy
+COMMAND_US = array("i", [0] * len(COMMANDS))  # each command's time (Robot.walk/stop) after its frame's step, us
 
 
 def loop(r, frames):
@@ -34,13 +36,6 @@ def loop(r, frames):
     k = 0
     t_first = clock.ticks_us()
     for n in range(frames):
-        if k < len(COMMANDS) and COMMANDS[k][0] == n:
-            c = COMMANDS[k]
-            if c[1] is None:
-                r.robot.stop()
-            else:
-                r.robot.walk(c[1], c[2], c[3])
-            k += 1
         t0 = clock.ticks_us()
         # (a frame begun at once after an overrun may find the last bursts still going out)
         if bg is not None and bg._st[3] and n and clock.ticks_diff(t0, t_first) - START[n - 1] >= 19990:
@@ -48,6 +43,15 @@ def loop(r, frames):
         r.step()
         BUSY[n] = clock.ticks_diff(clock.ticks_us(), t0)
         START[n] = clock.ticks_diff(t0, t_first)
+        if k < len(COMMANDS) and COMMANDS[k][0] == n:
+            # after the step, in the frame's slack, where Runner.run polls the console
+            c = COMMANDS[k]
+            if c[1] is None:
+                r.robot.stop()
+            else:
+                r.robot.walk(c[1], c[2], c[3])
+            COMMAND_US[k] = clock.ticks_diff(clock.ticks_us(), t0) - BUSY[n]
+            k += 1
         r.wait()
 
 
@@ -72,6 +76,7 @@ def summary(free_after_boot, heap, bg=None):
         "heap_bytes_per_frame": heap,
         "sender": list(bg.stats) if bg is not None else None,  # refills, writes done, NACKs
         "frames_begun_with_bus_busy": LATE[0],
+        "commands_us": list(COMMAND_US),
     }
 
 
