@@ -31,6 +31,8 @@ PROVIDED |= {"microcontroller", "pulseio", "supervisor", "struct", "math", "hash
 PROVIDED |= {"watchdog"}
 # Viper modules: MicroPython only (the core imports them only there); CircuitPython boards never get them.
 VIPER = ("hexapod/_ikfast.py", "hexapod/_tickfast.py", "drivers/_pca9685_viper.py", "drivers/_i2c_rp2.py")
+# The RP2040's I2C block only (it refuses to import elsewhere): MicroPython boards of another chip skip it.
+RP2_ONLY = ("drivers/_i2c_rp2.py",)
 # CircuitPython compiles `@micropython.native` only where a board enables it (none of ours: a
 # SyntaxError at import otherwise); the decorator changes speed, never results, so its drive gets
 # the sources without it.
@@ -128,6 +130,8 @@ def select_files(board, robot):
     files, outside = closure(entry, core + chosen)
     if cp:  # leg.py and tick.py import them only on MicroPython
         files = [f for f in files if board_path(f) not in VIPER]
+    elif ARCH.get(board) != "armv6m":
+        files = [f for f in files if board_path(f) not in RP2_ONLY]
     libs = sorted(n for n in outside if n.startswith("adafruit_"))
     return os.path.basename(entry), files, libs
 
