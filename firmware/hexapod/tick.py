@@ -63,6 +63,7 @@ if sys.implementation.name == "micropython":
         from hexapod._tickfast import settled as _settled_fast
     except Exception:  # no viper emitter on this build
         _output_fast = _settled_fast = None
+_settled = _settled_fast or Body.settled  # the pose check, called as _settled(body)
 
 
 def describe(code):
@@ -185,7 +186,7 @@ class Robot:
                 self.mode = self.after
         elif m == STANDING or m == WALKING:  # noqa: SIM109 (a tuple test may allocate)
             # A settled pose makes slew() a no-op (its frame is a heap one).
-            if not (self.body.settled() if _settled_fast is None else _settled_fast(self.body)):
+            if not _settled(self.body):
                 self.body.slew()
             if m == WALKING and self.walker.update() == STOPPED:
                 self.mode = STANDING
@@ -258,7 +259,7 @@ class Robot:
     def _can_move(self):
         if self.mode == WALKING:
             return WALKING_NOW
-        if self.mode == MOVING or not self.body.settled():
+        if self.mode == MOVING or not _settled(self.body):
             return BUSY
         return OK
 
@@ -390,7 +391,7 @@ class Robot:
         self.walker.check_command(vx, vy, yaw_rate)
         if self.mode != STANDING and self.mode != WALKING:
             return BUSY if self.mode == MOVING else NOT_STANDING
-        if not (self.body.settled() if _settled_fast is None else _settled_fast(self.body)):
+        if not _settled(self.body):
             return BUSY
         if (vx or vy or yaw_rate) and not self._roomy(self.walker.rho):
             return UNREACHABLE  # this pose or lift leaves a leg no room to step
