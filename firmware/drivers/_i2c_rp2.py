@@ -23,6 +23,7 @@ if sys.platform != "rp2":
     raise ImportError("the RP2040's I2C block only (rp2 port)")
 
 from array import array  # noqa: E402
+from time import ticks_diff, ticks_us  # noqa: E402
 
 import machine  # noqa: E402
 
@@ -30,15 +31,37 @@ SLOTS = const(4)
 SLOT_BYTES = const(68)  # register pointer + 16 channels x 4 bytes, rounded up
 _I2C0 = const(0x40044000)  # I2C1 is 0x4000 above
 _NVIC_IPR0 = const(0xE000E400)
-# state words: block address, active slot (-1 none), next byte, timer running, callbacks, writes done, NACKs,
-# scratch (what a clearing read returned)
-_ACTIVE = const(1)
-_RUN = const(3)
-_CALLS = const(4)
-_DONE = const(5)
-_ABORTS = const(6)
-# per slot (8 + 8 j): address, bytes, pending, tries left, collected status, collected errors,
-# abort source, this write's status
+# The I2C block's registers (RP2040 datasheet 4.3.17), byte offsets
+_IC_TAR = const(0x04)
+_IC_DATA_CMD = const(0x10)
+_IC_FS_SCL_HCNT = const(0x1C)
+_IC_FS_SCL_LCNT = const(0x20)
+_IC_RAW_INTR_STAT = const(0x34)
+_IC_CLR_TX_ABRT = const(0x54)
+_IC_CLR_STOP_DET = const(0x60)
+_IC_ENABLE = const(0x6C)
+_IC_STATUS = const(0x70)
+_IC_TXFLR = const(0x74)
+_IC_TX_ABRT_SOURCE = const(0x80)
+# The state's words (array("i"), read by viper as machine words):
+_BASE = const(0)  # the I2C block's address
+_ACTIVE = const(1)  # the slot being sent, -1 none
+_POS = const(2)  # its next byte
+_RUN = const(3)  # the refill timer runs
+_CALLS = const(4)  # refills (callbacks and queue()'s)
+_DONE = const(5)  # writes done
+_ABORTS = const(6)  # NACKs
+_SCRATCH = const(7)  # what a clearing read returned
+_SLOT0 = const(8)  # then _SLOT_WORDS words per slot, at these offsets:
+_SLOT_WORDS = const(8)
+_ADDR = const(0)  # 7-bit address
+_LEN = const(1)  # bytes queued
+_PENDING = const(2)  # queued and not yet done (from then on the timer's)
+_TRIES = const(3)  # retries left
+_STATUS = const(4)  # collected status (RETRIED, FAILED) for the caller
+_ERRORS = const(5)  # collected NACKs for the caller
+_ABRT_SRC = const(6)  # the last IC_TX_ABRT_SOURCE
+_WRITE = const(7)  # this write's status so far
 _RETRIED = const(1)
 _FAILED = const(2)
 
@@ -56,66 +79,66 @@ def _pump(t) -> int:
     or NACKed write, start the next; 0 when all is out (the timer then stops itself)."""
     s = ptr32(_ST)  # noqa: F821 (viper built-ins)
     d = ptr8(_DATA)  # noqa: F821
-    s[4] += 1
-    r = ptr32(s[0])  # noqa: F821 (the I2C block's registers, word-indexed: offset >> 2)
-    j = s[1]
+    s[_CALLS] += 1
+    r = ptr32(s[_BASE])  # noqa: F821 (the I2C block's registers as words: r[offset >> 2])
+    j = s[_ACTIVE]
     if j >= 0:
-        o = 8 + 8 * j
-        if r[13] & 0x40:  # IC_RAW_INTR_STAT.TX_ABRT: a NACK; the block sent STOP and flushed its FIFO
-            s[o + 6] = r[32]  # IC_TX_ABRT_SOURCE
-            s[7] = r[21]  # reading IC_CLR_TX_ABRT clears it and lets the FIFO take bytes again
-            s[6] += 1
-            s[o + 5] += 1
-            if s[o + 3] > 0:
-                s[o + 3] -= 1
-                s[o + 7] = _RETRIED
-                s[2] = 0  # the whole write again (queued behind the abort's STOP)
+        o = _SLOT0 + _SLOT_WORDS * j
+        if r[_IC_RAW_INTR_STAT >> 2] & 0x40:  # TX_ABRT: a NACK; the block sent STOP and flushed its FIFO
+            s[o + _ABRT_SRC] = r[_IC_TX_ABRT_SOURCE >> 2]
+            s[_SCRATCH] = r[_IC_CLR_TX_ABRT >> 2]  # the read clears it and lets the FIFO take bytes again
+            s[_ABORTS] += 1
+            s[o + _ERRORS] += 1
+            if s[o + _TRIES] > 0:
+                s[o + _TRIES] -= 1
+                s[o + _WRITE] = _RETRIED
+                s[_POS] = 0  # the whole write again (queued behind the abort's STOP)
             else:
-                s[o + 7] = _FAILED
-                s[o + 4] |= _FAILED
-                s[o + 2] = 0
+                s[o + _WRITE] = _FAILED
+                s[o + _STATUS] |= _FAILED
+                s[o + _PENDING] = 0
                 j = -1
-                s[1] = -1
-        elif s[2] >= s[o + 1] and (r[28] & 0x25) == 0x04:  # IC_STATUS: FIFO empty, master idle
-            s[o + 4] |= s[o + 7]
-            s[o + 2] = 0
-            s[5] += 1
+                s[_ACTIVE] = -1
+        elif s[_POS] >= s[o + _LEN] and (r[_IC_STATUS >> 2] & 0x25) == 0x04:  # all sent and the bus idle
+            s[o + _STATUS] |= s[o + _WRITE]
+            s[o + _PENDING] = 0
+            s[_DONE] += 1
             j = -1
-            s[1] = -1
+            s[_ACTIVE] = -1
     if j < 0:
-        if r[28] & 0x21:  # still finishing a STOP
+        if r[_IC_STATUS >> 2] & 0x21:  # still finishing a STOP
             return 1
-        s[7] = r[24]  # reading IC_CLR_STOP_DET: machine.I2C then waits for a STOP of its own
+        s[_SCRATCH] = r[_IC_CLR_STOP_DET >> 2]  # cleared: machine.I2C then waits for a STOP of its own
         k = 0
         while k < SLOTS:
-            if s[8 + 8 * k + 2]:
+            if s[_SLOT0 + _SLOT_WORDS * k + _PENDING]:
                 break
             k += 1
         if k == SLOTS:
-            if s[3]:
-                s[3] = 0
+            if s[_RUN]:
+                s[_RUN] = 0
                 _TIMER.deinit()
             return 0
         j = k
-        s[7] = r[21]  # a TX_ABRT left by machine.I2C's own transactions is not this write's
-        r[27] = 0  # IC_TAR changes only while IC_ENABLE is 0
-        r[1] = s[8 + 8 * j]
-        r[27] = 1
-        s[1] = j
-        s[2] = 0
-    o = 8 + 8 * j
-    n = s[o + 1]
-    pos = s[2]
-    room = 16 - r[29]  # IC_TXFLR
+        s[_SCRATCH] = r[_IC_CLR_TX_ABRT >> 2]  # a TX_ABRT left by machine.I2C's own transactions is not this write's
+        r[_IC_ENABLE >> 2] = 0  # IC_TAR changes only while IC_ENABLE is 0
+        r[_IC_TAR >> 2] = s[_SLOT0 + _SLOT_WORDS * j + _ADDR]
+        r[_IC_ENABLE >> 2] = 1
+        s[_ACTIVE] = j
+        s[_POS] = 0
+    o = _SLOT0 + _SLOT_WORDS * j
+    n = s[o + _LEN]
+    pos = s[_POS]
+    room = 16 - r[_IC_TXFLR >> 2]
     b = SLOT_BYTES * j
     while room > 0 and pos < n:
         v = d[b + pos]
         if pos == n - 1:
             v |= 0x200  # STOP after this byte
-        r[4] = v  # IC_DATA_CMD
+        r[_IC_DATA_CMD >> 2] = v
         pos += 1
         room -= 1
-    s[2] = pos
+    s[_POS] = pos
     return 1
 
 
@@ -124,8 +147,8 @@ def queue(slot: int, buf, n: int, tries: int) -> int:
     """buf[:n] into slot, pending; the slot's collected status | 256 x its NACKs (then cleared),
     | 0x10000 when the timer must be started; -1 while the slot's last write is still queued."""
     s = ptr32(_ST)  # noqa: F821
-    o = 8 + 8 * slot
-    if s[o + 2]:
+    o = _SLOT0 + _SLOT_WORDS * slot
+    if s[o + _PENDING]:
         return -1
     d = ptr8(_DATA)  # noqa: F821
     b = ptr8(buf)  # noqa: F821
@@ -134,17 +157,17 @@ def queue(slot: int, buf, n: int, tries: int) -> int:
     while i < n:
         d[base + i] = b[i]
         i += 1
-    v = s[o + 4] | s[o + 5] << 8  # the timer leaves a slot's words alone while it is not pending
-    s[o + 4] = 0
-    s[o + 5] = 0
-    s[o + 1] = n
-    s[o + 3] = tries
-    s[o + 7] = 0
-    s[o + 2] = 1  # pending: from here on the timer's
-    if s[3]:  # the timer runs: it takes this slot after the ones before
+    v = s[o + _STATUS] | s[o + _ERRORS] << 8  # the timer leaves a slot's words alone while it is not pending
+    s[o + _STATUS] = 0
+    s[o + _ERRORS] = 0
+    s[o + _LEN] = n
+    s[o + _TRIES] = tries
+    s[o + _WRITE] = 0
+    s[o + _PENDING] = 1  # pending: from here on the timer's
+    if s[_RUN]:  # the timer runs: it takes this slot after the ones before
         return v
     if int(_pump(0)):  # no timer, so no IRQ touches the state: start here, then the timer
-        s[3] = 1
+        s[_RUN] = 1
         return v | 0x10000
     return v
 
@@ -156,16 +179,16 @@ class Sender:
         if bus_id not in (0, 1):
             raise ValueError("bus_id: %r, allowed 0 or 1" % (bus_id,))
         self.bus_id = bus_id
-        self._st = array("i", [0] * (8 + 8 * SLOTS))
-        self._st[0] = _I2C0 + 0x4000 * bus_id
+        self._st = array("i", [0] * (_SLOT0 + _SLOT_WORDS * SLOTS))
+        self._st[_BASE] = _I2C0 + 0x4000 * bus_id
         self._st[_ACTIVE] = -1
         self._data = bytearray(SLOTS * SLOT_BYTES)
         self._slots = 0
         m = machine.mem32
-        base = self._st[0]
+        base = self._st[_BASE]
         # A refill every 12 bytes' time (108 SCL periods of IC_FS_SCL_HCNT + LCNT clk_sys counts):
         # the 16-entry FIFO keeps 4 bytes (90 us at 400 kHz) for a late callback.
-        period = 108 * (m[base + 0x1C] + m[base + 0x20]) // (machine.freq() // 1000000)
+        period = 108 * (m[base + _IC_FS_SCL_HCNT] + m[base + _IC_FS_SCL_LCNT]) // (machine.freq() // 1000000)
         self.period_us = max(20, period)
         self._timer = machine.Timer()
         # machine.Timer runs on pico-sdk's default alarm pool: hardware alarm 3, TIMER_IRQ_3. Its
@@ -179,13 +202,13 @@ class Sender:
     def slot(self, address):
         """The slot for writes to a 7-bit address (one write in flight per slot; one slot per address)."""
         for j in range(self._slots):
-            if self._st[8 + 8 * j] == address:
+            if self._st[_SLOT0 + _SLOT_WORDS * j + _ADDR] == address:
                 return j
         if self._slots == SLOTS:
             raise ValueError("at most %d chips on one background sender" % SLOTS)
         j = self._slots
         self._slots += 1
-        self._st[8 + 8 * j] = address
+        self._st[_SLOT0 + _SLOT_WORDS * j + _ADDR] = address
         return j
 
     def send(self, slot, buf, n, tries):
@@ -205,10 +228,10 @@ class Sender:
     def collect(self, slot):
         """send()'s outcome word without sending (call after idle())."""
         s = self._st
-        o = 8 + 8 * slot
-        v = s[o + 4] | s[o + 5] << 8
-        s[o + 4] = 0
-        s[o + 5] = 0
+        o = _SLOT0 + _SLOT_WORDS * slot
+        v = s[o + _STATUS] | s[o + _ERRORS] << 8
+        s[o + _STATUS] = 0
+        s[o + _ERRORS] = 0
         return v
 
     def idle(self, timeout_us=50000):
@@ -232,19 +255,19 @@ class Sender:
         self._timer.deinit()
         s = self._st
         m = machine.mem32
-        enable = s[0] + 0x6C
+        enable = s[_BASE] + _IC_ENABLE
         m[enable] = 3  # ENABLE | ABORT
         t0 = ticks_us()
         while m[enable] & 2 and ticks_diff(ticks_us(), t0) < 1000:
             pass
         m[enable] = 0  # IC_ENABLE 0 flushes the FIFO whatever the abort did
         m[enable] = 1
-        s[7] = m[s[0] + 0x54]  # reading IC_CLR_TX_ABRT clears it
+        s[_SCRATCH] = m[s[_BASE] + _IC_CLR_TX_ABRT]  # the read clears it
         for j in range(SLOTS):
-            o = 8 + 8 * j
-            if s[o + 2]:
-                s[o + 2] = 0
-                s[o + 4] |= _FAILED
+            o = _SLOT0 + _SLOT_WORDS * j
+            if s[o + _PENDING]:
+                s[o + _PENDING] = 0
+                s[o + _STATUS] |= _FAILED
         s[_ACTIVE] = -1
         s[_RUN] = 0
 
@@ -254,8 +277,6 @@ class Sender:
         s = self._st
         return s[_CALLS], s[_DONE], s[_ABORTS]
 
-
-from time import ticks_diff, ticks_us  # noqa: E402
 
 _SENDER = []  # the one Sender (its state is this module's)
 
