@@ -23,6 +23,17 @@ def hexapod(*args, env=None):
         (("run", "x.py", "--firmware", "/nonexistent/fw.uf2"), "no Pico firmware at /nonexistent/fw.uf2"),
         (("bench", "nope"), "no Pico benchmark 'nope'; there are: frame, ik, tick"),
         (("bench", "ik", "--firmware", "/nonexistent.uf2"), "no Pico firmware at /nonexistent.uf2"),
+        # each count one past its ends, zero and negative (a negative --frames reached the board's
+        # summary as an IndexError; 0 silently became the default)
+        (("bench", "ik", "--rounds", "0"), "--rounds 0: allowed 1..200"),
+        (("bench", "ik", "--rounds", "201"), "--rounds 201: allowed 1..200"),
+        (("bench", "tick", "--ticks", "0"), "--ticks 0: allowed 1..2000"),
+        (("bench", "tick", "--ticks", "-5"), "--ticks -5: allowed 1..2000"),
+        (("bench", "tick", "--ticks", "2001"), "--ticks 2001: allowed 1..2000"),
+        (("bench", "frame", "--frames", "1"), "--frames 1: allowed 2..1000"),
+        (("bench", "frame", "--frames", "-1"), "--frames -1: allowed 2..1000"),
+        (("bench", "frame", "--frames", "1001"), "--frames 1001: allowed 2..1000"),
+        (("bench", "ik", "--frames", "0"), "--frames 0: allowed 2..1000"),
     ],
 )
 def test_bad_input_is_a_usage_error(args, message):

@@ -33,16 +33,32 @@ def _board(files, fs, **kw):
     return [json.loads(line) for line in out.splitlines() if line.startswith("{")], stats
 
 
+# The benches' counts: (least, most, default), each end run on the emulated board 2026-11-24. The
+# most keeps a run within ~2 min of emulation and the scripts' tables inside the board's heap
+# (2,000 frames ran out of it in the loop script's summary).
+COUNTS = {"rounds": (1, 200, 20), "ticks": (1, 2000, 200), "frames": (2, 1000, 500)}
+
+
+def _counts(args):
+    """--rounds, --ticks, --frames checked (UsageError naming the allowed range) or their defaults."""
+    for name, (lo, hi, default) in COUNTS.items():
+        v = getattr(args, name)
+        if v is None:
+            setattr(args, name, default)
+        elif not lo <= v <= hi:
+            raise UsageError("--%s %d: allowed %d..%d" % (name, v, lo, hi))
+
+
 def bench_ik(args, fs, tmp):
     """The VM's IK bench (vm/bench_ik.py) on the board: viper, float and plain-bytecode solves."""
-    rows, _ = _board([_script(os.path.join(VM_DIR, "bench_ik.py"), (args.rounds or 20, 1), tmp)], fs)
+    rows, _ = _board([_script(os.path.join(VM_DIR, "bench_ik.py"), (args.rounds, 1), tmp)], fs)
     return rows[-1]
 
 
 def bench_tick(args, fs, tmp):
     """The VM's tick bench (vm/bench_tick.py) on the board: every gait, then the wall follower."""
     script = os.path.join(VM_DIR, "bench_tick.py")
-    ticks = args.ticks or 200
+    ticks = args.ticks
     gaits, _ = _board([_script(script, ("", ticks, 1, "gaits", 20000), tmp)], fs)
     wall, _ = _board([_script(script, ("", ticks, 1, "wall", 20000), tmp)], fs)
     return {
@@ -133,7 +149,7 @@ def bench_frame(args, fs, tmp):
     and the parts timed apart."""
     from hexapod_host import pico_loop
 
-    frames = args.frames or 500
+    frames = args.frames
     status, lines, bursts, stats = pico_loop.board(frames, fs)
     if status != 0:
         raise UsageError("the emulated Pico failed:\n" + "\n".join(lines))
@@ -176,9 +192,9 @@ def register(sub):
     b.add_argument("name", help="which benchmark: " + ", ".join(sorted(BENCHES)))
     b.add_argument("--json", action="store_true", help="print one JSON object (the default form)")
     b.add_argument("--firmware", metavar="FILE", help="MicroPython RPI_PICO .uf2/.bin")
-    b.add_argument("--rounds", type=int, help="ik: six-leg solves per case (default 20)")
-    b.add_argument("--ticks", type=int, help="tick: ticks per gait (default 200)")
-    b.add_argument("--frames", type=int, help="frame: 20 ms frames of the whole loop (default 500: 10 s)")
+    b.add_argument("--rounds", type=int, help="ik: six-leg solves per case, 1..200 (default 20)")
+    b.add_argument("--ticks", type=int, help="tick: ticks per gait, 1..2000 (default 200)")
+    b.add_argument("--frames", type=int, help="frame: 20 ms frames of the whole loop, 2..1000 (default 500: 10 s)")
     b.set_defaults(func=run_bench)
     s = what.add_parser("serial", help="the emulated Pico as a serial port (a pty; prints its path first)")
     s.add_argument("--fs", metavar="IMG", help="littlefs image to boot with (default: erased flash)")
@@ -216,6 +232,7 @@ def run_files(args):
 def run_bench(args):
     if args.name not in BENCHES:
         raise UsageError("no Pico benchmark %r; there are: %s" % (args.name, ", ".join(sorted(BENCHES))))
+    _counts(args)
     _check(args)
     with tempfile.TemporaryDirectory() as tmp, pico.flashed() as fs:
         result = BENCHES[args.name](args, fs, tmp)
