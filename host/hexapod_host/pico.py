@@ -20,7 +20,8 @@ from hexapod_host import ROOT
 
 HERE = os.path.join(ROOT, "host", "pico")
 RUNNER = os.path.join(HERE, "run.mjs")
-DEFAULT_FIRMWARE = os.path.join(os.path.dirname(ROOT), "shared", "pico-emu", "firmware.uf2")
+# Our own image, built from Debian's source packages by host/pico/firmware.py (`make pico-firmware`).
+DEFAULT_FIRMWARE = os.path.join(ROOT, "build", "pico-firmware", "firmware.bin")
 CLOCK = "emulated rp2040 125 MHz"
 NODE_MIN = 18
 # littlefs2 geometry of the rp2 port's RPI_PICO filesystem (ports/rp2, v1.28): 1408 KiB at 0xA0000.
@@ -49,12 +50,15 @@ def node():
 
 
 def firmware(path=None):
-    """The MicroPython RPI_PICO image: path, else $PICO_FIRMWARE, else ../shared/pico-emu/firmware.uf2."""
-    path = path or os.environ.get("PICO_FIRMWARE") or DEFAULT_FIRMWARE
+    """The MicroPython RPI_PICO image: path, else $PICO_FIRMWARE, else the one `make pico-firmware` builds."""
+    given = path or os.environ.get("PICO_FIRMWARE")
+    path = given or DEFAULT_FIRMWARE
     if not os.path.isfile(path):
+        if given:
+            raise PicoError("no Pico firmware at %s: pass --firmware FILE (a MicroPython RPI_PICO .uf2 or .bin)" % path)
         raise PicoError(
-            "no Pico firmware at %s: pass --firmware FILE or set PICO_FIRMWARE to a MicroPython RPI_PICO "
-            "v1.28+ .uf2 (https://micropython.org/download/RPI_PICO/)" % path
+            "no Pico firmware image (%s): run `make pico-firmware`, which builds MicroPython from Debian's "
+            "source packages (needs apt access to the Debian archive), or pass --firmware FILE" % os.path.relpath(path)
         )
     return os.path.abspath(path)
 

@@ -39,7 +39,7 @@ const here = path.dirname(fileURLToPath(import.meta.url));
 const pkg = path.join(here, 'node_modules', 'rp2040js', 'dist', 'esm');
 const { RP2040, USBCDC, ConsoleLogger, LogLevel } = await import(path.join(pkg, 'index.js'));
 const { SimulationClock } = await import(path.join(pkg, 'clock', 'simulation-clock.js'));
-const { bootromB1 } = await import(path.join(here, 'bootrom.js'));
+const ROM = await import(path.join(here, 'bootrom.mjs'));   // our own minimal bootrom
 
 // Synchronous writes: process.exit() would drop what an asynchronous pipe write still holds.
 const writeOut = (s) => fs.writeSync(1, s);
@@ -74,7 +74,7 @@ if (!opt.firmware) fail('--firmware FILE (.uf2 or .bin) is required');
 if (!(opt.main >= 0)) fail('--main takes emulated seconds >= 0');
 
 // ---------- the chip and its flash ----------
-let clock, mcu, cdc, ROM_ERASE, ROM_PROGRAM, resets = 0, resetRequested = false;
+let clock, mcu, cdc, resets = 0, resetRequested = false;
 // A soft reset stops core 1 through the inter-core FIFO, which rp2040js does not model (it warns
 // on the console): keep those two warnings off the board's stderr.
 const consoleWarn = console.warn;
@@ -99,12 +99,15 @@ if (opt.firmware.endsWith('.uf2')) {
 
 // rp2040js has no QSPI flash model: littlefs writes go through the bootrom's flash_range_erase
 // ('RE') and flash_range_program ('RP'), which we perform on the flash array and return from.
-function romFunction(tag) {
-  const code = tag.charCodeAt(0) | (tag.charCodeAt(1) << 8);
-  for (let t = mcu.readUint16(0x14); mcu.readUint16(t); t += 4) {
-    if (mcu.readUint16(t) === code) return mcu.readUint16(t + 2) & ~1;
-  }
-  throw new Error(`bootrom has no ${tag} function`);
+const ROM_ERASE = ROM.ADDRESS.RE, ROM_PROGRAM = ROM.ADDRESS.RP;
+// A lookup of a code our bootrom does not serve: say which, and stop (the image would jump to 0).
+function romMissing() {
+  const c = mcu.core.registers[1];
+  const tag = String.fromCharCode(c & 0xff, (c >> 8) & 0xff);
+  writeErr(`run.mjs: the image asked the bootrom for '${tag}' (code 0x${c.toString(16)}), which our bootrom ` +
+    `does not serve (it serves ${ROM.FUNCTIONS.join(' ')}: an image built by host/pico/firmware.py needs no ` +
+    `more; a stock MicroPython release takes its float functions from the RP2040's ROM)\n`);
+  process.exit(3);
 }
 function flashCall(pc) {
   const r = mcu.core.registers;
@@ -140,13 +143,12 @@ function writeRaw(b) {                                // stdout may be a non-blo
 function powerOn(fsBytes) {
   clock = new SimulationClock(MHZ * 1e6);
   mcu = new RP2040(clock);
-  mcu.loadBootrom(bootromB1);
+  mcu.loadBootrom(ROM.bootrom);
   mcu.logger = new ConsoleLogger(process.env.RP2040_DEBUG ? LogLevel.Debug : LogLevel.Error);
   loadFirmware();
   mcu.flash.fill(0xff, FS_OFFSET, FS_OFFSET + FS_SIZE);          // erased NOR; MicroPython formats it
   if (fsBytes) mcu.flash.set(fsBytes, FS_OFFSET);
-  mcu.core.PC = 0x10000000;
-  ROM_ERASE = romFunction('RE'); ROM_PROGRAM = romFunction('RP');
+  mcu.core.reset();                       // SP and PC from the ROM's vectors: boot through boot2
   mcu.peripherals[0x40058].onWatchdogTrigger = () => { resetRequested = true; };
   cdc = new USBCDC(mcu.usbCtrl);
   outgoing.length = 0; armed = -1; connected = false;
@@ -291,7 +293,10 @@ function step(n) {
       continue;
     }
     const pc = core.PC;
-    if (pc < 0x4000 && (pc === ROM_ERASE || pc === ROM_PROGRAM)) { flashCall(pc); continue; }
+    if (pc < 0x4000) {
+      if (pc === ROM_ERASE || pc === ROM_PROGRAM) { flashCall(pc); continue; }
+      if (pc === ROM.NOT_FOUND) romMissing();
+    }
     if (profile) profile.set(pc, (profile.get(pc) || 0) + 1);
     clock.tick(core.executeInstruction() * CYCLE_NS);
     instructions++;
