@@ -2,7 +2,7 @@
 
 machine.I2C's writeto waits while every byte crosses the bus (38 bytes of a PCA9685 frame: 0.86 ms
 at 400 kHz). Here the bytes go into the I2C block's 16-entry TX FIFO (IC_DATA_CMD, STOP on the last
-one; RP2040 datasheet 4.3) and a hard machine.Timer callback tops the FIFO up until every queued
+one; RP2040 datasheet 4.3) and a machine.Timer callback (hard where the port has it) tops the FIFO up until every queued
 write is out, so the CPU pays only for the copies and the callbacks. The RP2040 holds SCL low when
 its FIFO runs dry before a STOP (IC_EMPTYFIFO_HOLD_MASTER_EN = 1): a late refill stretches the
 bus, never cuts a write short. machine.I2C still sets up the pins and the baud rate; its other
@@ -196,6 +196,15 @@ class Sender:
         # sonar's echo IRQ (IO_IRQ_BANK0, 0x80) then preempts a refill instead of waiting up to
         # ~15 us for it, which would read ~2.5 mm long (measured on the emulated chip).
         m[_NVIC_IPR0] = (m[_NVIC_IPR0] & 0x00FFFFFF) | 0xC0000000
+        # Hard callbacks (rp2 Timer's `hard=`, MicroPython 1.26+) refill from the IRQ itself. Older
+        # ports only schedule the callback (soft): it then runs when the VM next looks, at a bytecode
+        # jump or in sleep_ms, which in the loop is the frame's wait; a late refill stretches the bus.
+        try:
+            self._timer.init(period=1000000, tick_hz=1000000, callback=_idle_callback, hard=True)
+            self.hard = True
+        except TypeError:
+            self.hard = False
+        self._timer.deinit()
         global _ST, _DATA, _TIMER
         _ST, _DATA, _TIMER = self._st, self._data, self._timer
 
@@ -223,7 +232,10 @@ class Sender:
 
     def start(self):
         """The refill timer on (after queue() returned | 0x10000: the first bytes are in the FIFO)."""
-        self._timer.init(period=self.period_us, tick_hz=1000000, callback=_pump, hard=True)
+        if self.hard:
+            self._timer.init(period=self.period_us, tick_hz=1000000, callback=_pump, hard=True)
+        else:
+            self._timer.init(period=self.period_us, tick_hz=1000000, callback=_pump)
 
     def collect(self, slot):
         """send()'s outcome word without sending (call after idle())."""
@@ -276,6 +288,10 @@ class Sender:
         """(refills: the timer's callbacks and queue()'s, writes done, NACKs) since start-up."""
         s = self._st
         return s[_CALLS], s[_DONE], s[_ABORTS]
+
+
+def _idle_callback(t):
+    """Sender's probe for hard callbacks: the timer is off again long before it could run."""
 
 
 _SENDER = []  # the one Sender (its state is this module's)
