@@ -58,6 +58,15 @@ def test_missing_or_old_node_is_named(tmp_path):
         assert proc.returncode == 2 and "Node.js >= 18" in proc.stderr and words in proc.stderr, proc.stderr
 
 
+def test_no_image_names_how_to_build_it(monkeypatch, tmp_path):
+    """With no image built and none named, the reason (a test's skip line too) says what to run."""
+    monkeypatch.delenv("PICO_FIRMWARE", raising=False)
+    monkeypatch.setattr(pico, "DEFAULT_FIRMWARE", str(tmp_path / "firmware.bin"))
+    reason = pico.missing()
+    assert reason is not None and "no Pico firmware image" in reason and "make pico-firmware" in reason, reason
+    assert "Debian" in reason and "\n" not in reason
+
+
 def test_image_dir_must_be_new_or_empty(tmp_path):
     (tmp_path / "keep.txt").write_text("mine")
     proc = hexapod("run", __file__, "--image", str(tmp_path))
