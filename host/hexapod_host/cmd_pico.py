@@ -185,7 +185,7 @@ def register(sub):
     r.add_argument(
         "--firmware",
         metavar="FILE",
-        help="MicroPython RPI_PICO .uf2/.bin (default: $PICO_FIRMWARE, else build/pico-firmware/firmware.bin from make pico-firmware)",
+        help="MicroPython RPI_PICO .uf2/.bin (default: $PICO_FIRMWARE, else make pico-firmware's build)",
     )
     r.set_defaults(func=run_files)
     b = what.add_parser("bench", help="benchmarks on the emulated Pico (JSON out): " + ", ".join(sorted(BENCHES)))
