@@ -25,10 +25,11 @@ def search_path():
     return os.pathsep.join((STUBS, FIRMWARE, ROOT, ".frozen"))
 
 
-def run(source=None, *, script=None, stdin=None, heapsize="256k", args=(), timeout=300):
+def run(source=None, *, script=None, stdin=None, heapsize="256k", args=(), timeout=300, path=()):
     """Run source text (or a script file) in the VM; return its stdout as text.
 
-    stdin is text or bytes fed to the VM; heapsize is MicroPython's -X heapsize value.
+    stdin is text or bytes fed to the VM; heapsize is MicroPython's -X heapsize value; path
+    names more folders to import from, after search_path()'s.
     """
     exe = executable()
     if exe is None:
@@ -36,7 +37,7 @@ def run(source=None, *, script=None, stdin=None, heapsize="256k", args=(), timeo
     cmd = [exe, "-X", "heapsize=" + heapsize]
     cmd += ["-c", source] if script is None else [script]
     cmd += list(args)
-    env = dict(os.environ, MICROPYPATH=search_path())
+    env = dict(os.environ, MICROPYPATH=os.pathsep.join((search_path(), *path)))
     if isinstance(stdin, str):
         stdin = stdin.encode()
     proc = subprocess.run(cmd, input=stdin, capture_output=True, env=env, timeout=timeout)

@@ -1,20 +1,43 @@
 """Pytest plugin: the two-runtime harness.
 
 A test that takes the `rt` fixture runs twice, once on CPython and once inside the
-MicroPython VM. `rt.run(source)` executes firmware-side source text and returns what it
+MicroPython VM. `rt.call(target, *args, **kwargs)` calls a scenario function there and
+returns its value; `rt.run(source)` executes firmware-side source text and returns what it
 printed; `rt.value(source)` returns the literal the source printed last. Tests compare
-the two runtimes through `both_runtimes`, which runs one source on each and returns
-both outputs.
+the two runtimes through `both_runtimes`: `both_runtimes(source)` runs one source on each
+and returns both outputs, `both_runtimes.call(target, ...)` calls one scenario on each and
+returns both values.
+
+Scenarios are real modules in tests/scenarios/, imported by the bare name `scenarios` in
+both runtimes (this plugin puts tests/ on sys.path and on the VM's MICROPYPATH, so source
+text run by `rt.run` may import them too). A scenario is MicroPython-compatible Python that
+takes plain arguments and returns a plain value: ints, strings, bools, None, and lists,
+tuples and dicts of them; it keeps no state between calls. The test keeps the asserts:
+
+    def test_walk(rt):
+        faults, pulses = rt.call("scenarios.tick:walk", gait=0, ticks=200)
+        assert faults == 0
+
+`target` is "module:function"; args and kwargs must be literals (their repr is the call in
+the VM). Either runtime's value goes through repr and ast.literal_eval, so both give back
+the same plain types, and a value that is not plain fails on CPython too.
 """
 
 import ast
 import contextlib
+import importlib
 import io
+import os
 import sys
 
 import pytest
 
-from hexapod_host import mpvm
+from hexapod_host import ROOT, mpvm
+
+# The folder holding the `scenarios` package: last on the path, so it shadows nothing.
+TESTS = os.path.join(ROOT, "tests")
+if TESTS not in sys.path:
+    sys.path.append(TESTS)
 
 # Script lines (both runtimes) making `g`, robots/default.py's Geometry without its servo speed
 # guard, its stance reach limit and its per-gait cycles (every gait at 1 s): for tests of the walk's kinematics that
@@ -22,10 +45,8 @@ from hexapod_host import mpvm
 UNGUARDED_GEOMETRY = """
 import robots.default as d
 from hexapod import geometry
-_data = {k: getattr(d, k) for k in dir(d) if k.isupper()}
-_data["SERVO"] = {k: v for k, v in d.SERVO.items() if k != "planner_share_permille" and k != "stance_out_max"}
-_data.pop("GAIT_CYCLE_MS")
-g = geometry.from_data("default", _data)
+from scenarios.rig import unguarded_geometry
+g = unguarded_geometry()
 """
 
 
@@ -67,12 +88,21 @@ class CPythonRuntime:
         """Run source and parse the last line it printed as a Python literal."""
         return ast.literal_eval(self.run(source, **kw).strip().splitlines()[-1])
 
+    def call(self, target, *args, **kwargs):
+        """Call the scenario "module:function" with literal arguments; return its plain value."""
+        module, function = target.split(":")
+        return ast.literal_eval(repr(getattr(importlib.import_module(module), function)(*args, **kwargs)))
+
 
 class MicroPythonRuntime(CPythonRuntime):
     name = "micropython"
 
     def run(self, source, *, stdin="", heapsize="256k"):
-        return mpvm.run(source, stdin=stdin, heapsize=heapsize)
+        return mpvm.run(source, stdin=stdin, heapsize=heapsize, path=(TESTS,))
+
+    def call(self, target, *args, **kwargs):
+        module, function = target.split(":")
+        return self.value("import %s as _m\nprint(repr(_m.%s(*%r, **%r)))" % (module, function, args, kwargs))
 
 
 RUNTIMES = {"cpython": CPythonRuntime, "micropython": MicroPythonRuntime}
@@ -102,14 +132,22 @@ def mp():
     return MicroPythonRuntime()
 
 
+class BothRuntimes:
+    """One source, or one scenario, on CPython and in the MicroPython VM: the pair of results."""
+
+    def __call__(self, source, **kw):
+        """(cpython_stdout, micropython_stdout) of source (stdin=, heapsize= as for run)."""
+        return CPythonRuntime().run(source, **kw), MicroPythonRuntime().run(source, **kw)
+
+    def call(self, target, *args, **kwargs):
+        """(cpython_value, micropython_value) of the scenario "module:function"."""
+        return CPythonRuntime().call(target, *args, **kwargs), MicroPythonRuntime().call(target, *args, **kwargs)
+
+
 @pytest.fixture
 def both_runtimes():
-    """run(source, stdin) -> (cpython_stdout, micropython_stdout)."""
+    """run(source, stdin) -> (cpython_stdout, micropython_stdout); .call(target, ...) -> both values."""
     reason = micropython_missing()
     if reason:
         pytest.skip(reason)
-
-    def run(source, **kw):
-        return CPythonRuntime().run(source, **kw), MicroPythonRuntime().run(source, **kw)
-
-    return run
+    return BothRuntimes()
