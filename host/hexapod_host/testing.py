@@ -102,7 +102,8 @@ class MicroPythonRuntime(CPythonRuntime):
 
     def call(self, target, *args, **kwargs):
         module, function = target.split(":")
-        return self.value("import %s as _m\nprint(repr(_m.%s(*%r, **%r)))" % (module, function, args, kwargs))
+        # print streams the value's repr (no copy of it on the heap); the list keeps a string quoted.
+        return self.value("import %s as _m\nprint([_m.%s(*%r, **%r)])" % (module, function, args, kwargs))[0]
 
 
 RUNTIMES = {"cpython": CPythonRuntime, "micropython": MicroPythonRuntime}
