@@ -4,54 +4,24 @@ Every scenario runs on CPython and inside the MicroPython VM; the printed intege
 identical, and then the properties are checked on them.
 """
 
-import ast
 import math
 
 import pytest
 
-from hexapod_host.testing import UNGUARDED_GEOMETRY
-
-# The walk's kinematics at 1 s cycles, faster than the servo guard allows (test_servo_guard.py).
-SETUP = (
-    UNGUARDED_GEOMETRY
-    + """
-from hexapod import tick
-from hexapod.gait import NAMES
-robot = tick.Robot(g, tick.default_servos(g), tick.FrameBuffer())
-w = robot.walker
-T = [0]
-def run(n):
-    for _ in range(n):
-        code = robot.tick(T[0])
-        T[0] += 20
-        if code:
-            print("FAULT", code, robot.fault_leg, robot.fault_code)
-robot.stand_up()
-while robot.mode != tick.STANDING:
-    run(1)
-"""
-)
+TARGET = "scenarios.walk:"
 
 
-def scenario(both_runtimes, body):
-    cp, mp = both_runtimes(SETUP + body)
+def scenario(both_runtimes, name, *args):
+    """Run scenarios.walk's name on both runtimes: bit-identical, no tick faulted; its rows."""
+    cp, mp = both_runtimes.call(TARGET + name, *args)
     assert cp == mp
-    assert "FAULT" not in cp
-    return [ast.literal_eval(line) for line in cp.splitlines() if line.strip()]
+    faults, faulted, rows = cp
+    assert faults == 0 and faulted == [], faulted
+    return rows
 
 
 def test_straight_stance_is_constant_speed(both_runtimes):
-    rows = scenario(
-        both_runtimes,
-        """
-robot.walk(1111, 0, 0)
-run(200)
-print(list(w.cmd))
-for _ in range(100):
-    run(1)
-    print([[w.su[i], w.fx[i], w.fy[i], w.fz[i]] for i in range(6)])
-""",
-    )
+    rows = scenario(both_runtimes, "steady", 1111, 0, 0, 200, 100, ("su", "fx", "fy", "fz"))
     cmd, rows = rows[0], rows[1:]
     assert cmd == [1111, 0, 0]
     per_tick = 1111 * 16 * 20 / 1000  # fine units (0.1 mm / 16) per 20 ms
@@ -67,18 +37,7 @@ for _ in range(100):
 
 def test_turning_stance_is_an_arc_at_constant_rate(both_runtimes):
     vx, yaw = 600, 1100  # 60 mm/s, 11 deg/s: centre of the turn 312.5 mm to the left
-    rows = scenario(
-        both_runtimes,
-        """
-robot.walk(%d, 0, %d)
-run(200)
-print(list(w.cmd))
-for _ in range(80):
-    run(1)
-    print([[w.su[i], w.fx[i], w.fy[i]] for i in range(6)])
-"""
-        % (vx, yaw),
-    )
+    rows = scenario(both_runtimes, "steady", vx, 0, yaw, 200, 80, ("su", "fx", "fy"))
     cmd, rows = rows[0], rows[1:]
     assert cmd == [vx, 0, yaw]
     cy = vx / math.radians(yaw / 100) * 16  # turn centre on the body's y axis, fine units
@@ -110,16 +69,7 @@ for _ in range(80):
 
 
 def test_turn_in_place_pivots_about_the_body_centre(both_runtimes):
-    rows = scenario(
-        both_runtimes,
-        """
-robot.walk(0, 0, -2000)
-run(150)
-for _ in range(60):
-    run(1)
-    print([w.bx, w.by, [[w.su[i], w.fx[i], w.fy[i]] for i in range(6)]])
-""",
-    )
+    rows = scenario(both_runtimes, "turn_in_place")
     for a, b in zip(rows, rows[1:], strict=False):
         assert a[0] == b[0] == 0 and a[1] == b[1] == 0  # the body centre does not travel
         for i in range(6):
@@ -129,29 +79,7 @@ for _ in range(60):
 
 @pytest.mark.parametrize("gait", [0, 1, 2, 3])
 def test_stop_finishes_the_step_and_lands_at_neutral(both_runtimes, gait):
-    rows = scenario(
-        both_runtimes,
-        """
-robot.set_gait(%d)
-robot.walk(900, -300, 1200)
-states = []
-for _ in range(137):
-    run(1)
-    states.append(w.state)
-robot.stop()
-air = sum(1 for i in range(6) if w.su[i] >= 0)
-n = 0
-while robot.mode == tick.WALKING and n < 1000:
-    run(1)
-    states.append(w.state)
-    n += 1
-print([air, n, w.clock.cycle_ticks])
-print(states)
-print([[w.su[i], w.fx[i] - w.nx[i], w.fy[i] - w.ny[i], w.fz[i] - w.ground] for i in range(6)])
-print([robot.mode, robot.faults])
-"""
-        % gait,
-    )
+    rows = scenario(both_runtimes, "stop", gait)
     (air, n, cycle), states, feet, (mode, faults) = rows
     assert air > 0  # the stop came with feet in the air
     assert n <= 3 * cycle
@@ -163,23 +91,7 @@ print([robot.mode, robot.faults])
 
 
 def test_gait_switch_waits_for_all_feet_down(both_runtimes):
-    rows = scenario(
-        both_runtimes,
-        """
-robot.walk(1000, 0, 0)
-run(113)
-for target in (2, 3, 1, 0):
-    robot.set_gait(target)
-    before = w.clock.gait
-    n = 0
-    while w.clock.gait == before:
-        air = sum(1 for i in range(6) if w.su[i] >= 0)
-        run(1)
-        n += 1
-    print([target, w.clock.gait, n, air, w.phase, sum(1 for i in range(6) if w.su[i] >= 0)])
-    run(57)
-""",
-    )
+    rows = scenario(both_runtimes, "gait_switch")
     for target, now, n, _air_before, phase, air_after in rows:
         assert now == target
         assert n < 200
@@ -189,22 +101,7 @@ for target in (2, 3, 1, 0):
 
 
 def test_heading_form_matches_velocity_form(both_runtimes):
-    rows = scenario(
-        both_runtimes,
-        """
-half = w.clock.stance_ticks * 20 // 2
-for L, theta in ((300, 0), (250, 4500), (200, 9000), (280, -13500)):
-    robot.walk_heading(L, theta)
-    cmd = list(w.cmd)
-    run(300)
-    # touch-down point of leg 1 relative to its neutral, in 0.1 mm
-    while w.su[0] < 0:
-        run(1)
-    while w.su[0] >= 0:
-        run(1)
-    print([L, theta, half, cmd, w.scale_permille, (w.fx[0] - w.nx[0]) >> 4, (w.fy[0] - w.ny[0]) >> 4])
-""",
-    )
+    rows = scenario(both_runtimes, "heading")
     for L, theta, half, cmd, scale, dx, dy in rows:
         assert scale == 1000
         a = math.radians(theta / 100)
@@ -216,23 +113,7 @@ for L, theta in ((300, 0), (250, 4500), (200, 9000), (280, -13500)):
 
 @pytest.mark.parametrize("left,right", [(4500, 1000), (1000, 4500)])
 def test_seed_000_turn_coxa_sweeps(both_runtimes, left, right):
-    rows = scenario(
-        both_runtimes,
-        """
-robot.set_params(step_length=600, cycle_ms=2000)
-robot.walk_sweeps(%d, %d)
-print([w.scale_permille, w.cmd[0], w.cmd[2]])
-run(250)
-coxa = {1: [], 4: []}
-for _ in range(w.clock.cycle_ticks):
-    run(1)
-    for i in (1, 4):
-        if w.su[i] < 0:
-            coxa[i].append(robot.angles[3 * i])
-print([max(coxa[4]) - min(coxa[4]), max(coxa[1]) - min(coxa[1])])
-"""
-        % (left, right),
-    )
+    rows = scenario(both_runtimes, "sweeps", left, right)
     (scale, vx, yaw), (swept_left, swept_right) = rows
     assert scale == 1000 and vx > 0
     assert (yaw < 0) == (left > right)  # right turn: clockwise, negative yaw
@@ -240,14 +121,7 @@ print([max(coxa[4]) - min(coxa[4]), max(coxa[1]) - min(coxa[1])])
 
 
 def test_commands_beyond_reach_are_scaled_not_refused(both_runtimes):
-    rows = scenario(
-        both_runtimes,
-        """
-for cmd in ((3000, 0, 0), (0, -3000, 0), (0, 0, 9000), (2000, 2000, -6000), (500, 0, 0)):
-    robot.walk(cmd[0], cmd[1], cmd[2])
-    print([list(cmd), w.scale_permille, list(w.cmd), w.step, min(w.rho)])
-""",
-    )
+    rows = scenario(both_runtimes, "beyond_reach")
     for cmd, scale, scaled, _step, _rho in rows:
         if cmd == [500, 0, 0]:
             assert scale == 1000 and scaled == cmd
@@ -257,82 +131,50 @@ for cmd in ((3000, 0, 0), (0, -3000, 0), (0, 0, 9000), (2000, 2000, -6000), (500
 
 
 def test_a_leg_without_room_scales_the_walk_to_nothing(rt):
-    got = rt.value(
-        SETUP
-        + """
-w.rho[4] = 0
-w.command(1000, 0, 500)
-print([w.scale_permille, list(w.cmd)])
-"""
-    )
+    got = rt.call(TARGET + "no_room")
     assert got == [0, [0, 0, 0]]
 
 
+# robot.<method>(*args, **kwargs) while walking, and what its ValueError must say
 BAD_WALKS = [
-    ("robot.walk(3001, 0, 0)", "vx: 3001 0.1 mm/s is outside -3000..3000"),
-    ("robot.walk(0, -3001, 0)", "vy"),
-    ("robot.walk(0, 0, 9001)", "yaw_rate: 9001 cdeg/s"),
-    ("robot.walk(1.5, 0, 0)", "vx: need a whole number"),
-    ("robot.walk('1', 0, 0)", "vx"),
-    ("robot.walk(0, True, 0)", "vy: need a whole number"),
-    ("robot.walk_heading(601, 0)", "length"),
-    ("robot.walk_heading(-1, 0)", "length"),
-    ("robot.walk_heading(100, 18001)", "heading"),
-    ("robot.walk_heading(100, 1.0)", "heading"),
-    ("robot.walk_sweeps(9001, 100)", "left sweep"),
-    ("robot.walk_sweeps(100, -1)", "right sweep"),
-    ("robot.set_params(step_length=49)", "step_length: 49 is outside 50..600"),
-    ("robot.set_params(step_length=601)", "step_length"),
-    ("robot.set_params(lift_height=99)", "lift_height"),
-    ("robot.set_params(lift_height=601)", "lift_height"),
-    ("robot.set_params(cycle_ms=499)", "cycle_ms"),
-    ("robot.set_params(cycle_ms=5001)", "cycle_ms"),
-    ("robot.set_params(cycle_ms='1000')", "cycle_ms"),
-    ("robot.set_gait(4)", "gait"),
-    ("robot.set_gait('wave')", "gait"),
-    ("robot.set_height(599)", "height"),
-    ("robot.set_height(1001)", "height"),
-    ("robot.set_height(800.0)", "height"),
-    ("robot.set_pose(x=401)", "pose x"),
-    ("robot.set_pose(roll=-1501)", "pose roll"),
+    ("walk", (3001, 0, 0), {}, "vx: 3001 0.1 mm/s is outside -3000..3000"),
+    ("walk", (0, -3001, 0), {}, "vy"),
+    ("walk", (0, 0, 9001), {}, "yaw_rate: 9001 cdeg/s"),
+    ("walk", (1.5, 0, 0), {}, "vx: need a whole number"),
+    ("walk", ("1", 0, 0), {}, "vx"),
+    ("walk", (0, True, 0), {}, "vy: need a whole number"),
+    ("walk_heading", (601, 0), {}, "length"),
+    ("walk_heading", (-1, 0), {}, "length"),
+    ("walk_heading", (100, 18001), {}, "heading"),
+    ("walk_heading", (100, 1.0), {}, "heading"),
+    ("walk_sweeps", (9001, 100), {}, "left sweep"),
+    ("walk_sweeps", (100, -1), {}, "right sweep"),
+    ("set_params", (), {"step_length": 49}, "step_length: 49 is outside 50..600"),
+    ("set_params", (), {"step_length": 601}, "step_length"),
+    ("set_params", (), {"lift_height": 99}, "lift_height"),
+    ("set_params", (), {"lift_height": 601}, "lift_height"),
+    ("set_params", (), {"cycle_ms": 499}, "cycle_ms"),
+    ("set_params", (), {"cycle_ms": 5001}, "cycle_ms"),
+    ("set_params", (), {"cycle_ms": "1000"}, "cycle_ms"),
+    ("set_gait", (4,), {}, "gait"),
+    ("set_gait", ("wave",), {}, "gait"),
+    ("set_height", (599,), {}, "height"),
+    ("set_height", (1001,), {}, "height"),
+    ("set_height", (800.0,), {}, "height"),
+    ("set_pose", (), {"x": 401}, "pose x"),
+    ("set_pose", (), {"roll": -1501}, "pose roll"),
 ]
 
 
 def test_bad_commands_raise_and_change_nothing(both_runtimes):
-    body = "robot.walk(800, 0, 300)\nrun(77)\n"
-    body += (
-        "snap = lambda: [robot.mode, w.state, list(w.cmd), w.step, w.lift, w.clock.gait, w.clock.cycle_ms,"
-        " list(robot.body.target), w.ground]\n"
-    )
-    body += "before = snap()\n"
-    for call, _ in BAD_WALKS:
-        body += "try:\n    %s\n    print('ACCEPTED')\nexcept ValueError as e:\n    print(repr(str(e)))\n" % call
-    body += "print(snap() == before)\n"
-    rows = scenario(both_runtimes, body)
+    rows = scenario(both_runtimes, "bad_calls", [call[:3] for call in BAD_WALKS])
     assert rows[-1] is True
-    for (call, message), text in zip(BAD_WALKS, rows[:-1], strict=True):
+    for (*call, message), text in zip(BAD_WALKS, rows[:-1], strict=True):
         assert message in text, (call, text)
 
 
 def test_changes_the_feet_would_not_notice_do_not_wait(rt):
-    got = rt.value(
-        SETUP
-        + """
-robot.walk(1500, 0, 0)
-run(61)
-res = []
-phase = w.phase
-robot.set_gait(0)  # the gait it already walks
-res.append([w.pending, w.phase == phase])
-robot.set_params(step_length=200)  # step length: applies at once, the command rescales
-res.append([w.pending, w.step, w.cmd[0] < 1500])
-robot.set_params(lift_height=400)  # the feet would notice: waits for all feet down
-res.append([w.pending, w.lift, w.next_lift])
-run(60)
-res.append([w.pending, w.lift])
-print(res)
-"""
-    )
+    got = rt.call(TARGET + "changes_in_flight")
     assert got == [[0, True], [0, 200, True], [1, 300, 400], [0, 400]]
 
 
@@ -342,19 +184,7 @@ def test_swing_leaves_and_meets_the_ground_at_the_stance_speed(both_runtimes, ga
     # The swing ends moving as the stance feet do (Hermite velocity terms), so a foot that
     # touches down a tick early or lifts a tick late does not fight the stance. Oracle: the
     # rigid ground motion under the body, from the command alone (float).
-    rows = scenario(
-        both_runtimes,
-        """
-robot.set_gait(%d)
-robot.walk(%d, %d, %d)
-run(150)
-print([w.clock.swing_ticks] + list(w.cmd))
-for _ in range(w.clock.cycle_ticks + 2):
-    run(1)
-    print([[w.su[i], w.fx[i], w.fy[i]] for i in range(6)])
-"""
-        % (["tripod", "tetrapod", "ripple", "wave"].index(gait), vx, vy, yaw),
-    )
+    rows = scenario(both_runtimes, "swing_ends", ["tripod", "tetrapod", "ripple", "wave"].index(gait), vx, vy, yaw)
     (swing, cvx, cvy, cyaw), rows = rows[0], rows[1:]
     assert (cvx, cvy, cyaw) != (0, 0, 0)  # (the longer stances of ripple and wave scale it down)
     dt = 0.02

@@ -33,13 +33,16 @@ class Rig:
         self.robot = tick.Robot(self.g, tick.default_servos(self.g), self.frame)
         self.w = self.robot.walker
         self.t = 0
+        self.faults = []  # [code, leg, leg code] of each tick run() saw fault
 
     def run(self, n):
         """n ticks, 20 ms apart."""
         robot = self.robot
         for _ in range(n):
-            robot.tick(self.t)
+            code = robot.tick(self.t)
             self.t += TICK_MS
+            if code:
+                self.faults.append([code, robot.fault_leg, robot.fault_code])
 
     def stand(self):
         self.t = stand(self.robot, self.t)
