@@ -2,64 +2,6 @@
 gait, extreme parameters and poses, checks all 18 angles every tick. And the tripod's
 static stability margin at nominal speed."""
 
-import ast
-
-from hexapod_host.testing import UNGUARDED_GEOMETRY
-
-# The planner's reach at the extremes (every gait at 1 s too), without the servo guard, which
-# refuses most of these settings (test_servo_guard.py).
-SWEEP = (
-    UNGUARDED_GEOMETRY
-    + """
-from hexapod import tick
-lim = g.limits
-seed = [12345]
-def rnd(n):
-    # A small LCG so both runtimes draw the same numbers.
-    seed[0] = (seed[0] * 1103515245 + 12345) & 0x3FFFFFFF
-    return seed[0] % n
-def pick(limit):
-    k = rnd(4)
-    return limit if k == 0 else (-limit if k == 1 else (0 if k == 2 else rnd(2 * limit + 1) - limit))
-for case in CASES:
-    gait, step, lift, cycle, pose = case
-    robot = tick.Robot(g, tick.default_servos(g), tick.FrameBuffer())
-    t = 0
-    robot.stand_up()
-    while robot.mode != tick.STANDING:
-        robot.tick(t)
-        t += 20
-    code = robot.set_pose(*pose)
-    while not robot.body.settled():
-        robot.tick(t)
-        t += 20
-    robot.set_gait(gait)
-    robot.set_params(step_length=step, lift_height=lift, cycle_ms=cycle)
-    outside = 0
-    ticks = 0
-    refused = 0
-    for k in range(COMMANDS):
-        if robot.walk(pick(3000), pick(3000), pick(9000)) != 0:
-            refused += 1
-        for _ in range(1 + rnd(45)):
-            robot.tick(t)
-            t += 20
-            ticks += 1
-            a = robot.angles
-            for j in range(18):
-                lo = lim[2 * (j % 3)]
-                if a[j] < lo or a[j] > lim[2 * (j % 3) + 1]:
-                    outside += 1
-    robot.stop()
-    n = 0
-    while robot.mode == tick.WALKING and n < 2000:
-        robot.tick(t)
-        t += 20
-        n += 1
-    print([case, code, ticks, outside, robot.faults, refused, robot.mode, robot.walker.held])
-"""
-)
-
 CASES = [
     (0, 300, 300, 1000, (0, 0, 0, 0, 0, 0, 0, 0, 0)),
     (0, 600, 600, 500, (0, 0, 0, 0, 0, 0, 0, 0, 0)),
@@ -76,9 +18,9 @@ CASES = [
 
 
 def test_no_joint_ever_leaves_its_limits(both_runtimes):
-    cp, mp = both_runtimes("CASES = %r\nCOMMANDS = 40\n%s" % (CASES, SWEEP))
+    cp, mp = both_runtimes.call("scenarios.gait_limits:sweep", CASES, 40)
     assert cp == mp
-    rows = [ast.literal_eval(line) for line in cp.splitlines()]
+    rows = cp
     assert len(rows) == len(CASES)
     walked = 0
     for case, code, ticks, outside, faults, refused, mode, _held in rows:
@@ -90,44 +32,8 @@ def test_no_joint_ever_leaves_its_limits(both_runtimes):
     assert walked >= len(CASES) - 2  # the poses that leave a leg no room refuse walking instead
 
 
-MARGIN = (
-    UNGUARDED_GEOMETRY
-    + """
-from hexapod import tick
-from hexapod.stability import support_margin
-robot = tick.Robot(g, tick.default_servos(g), tick.FrameBuffer())
-w = robot.walker
-t = 0
-robot.stand_up()
-while robot.mode != tick.STANDING:
-    robot.tick(t)
-    t += 20
-robot.set_gait(GAIT)
-half = w.clock.stance_ticks * 20 // 2
-robot.walk(w.step * 1000 // half, 0, 0)  # nominal: a full step length per half stance
-for _ in range(300):
-    robot.tick(t)
-    t += 20
-xs = [0] * 6
-ys = [0] * 6
-down = [0] * 6
-worst = None
-for _ in range(w.clock.cycle_ticks):
-    robot.tick(t)
-    t += 20
-    for i in range(6):
-        xs[i] = w.fx[i] >> 4
-        ys[i] = w.fy[i] >> 4
-        down[i] = 1 if w.su[i] < 0 else 0
-    m = support_margin(xs, ys, down)
-    worst = m if worst is None or m < worst else worst
-print([w.scale_permille, list(w.cmd), worst])
-"""
-)
-
-
 def test_tripod_static_stability_margin(rt):
-    scale, cmd, worst = rt.value(MARGIN.replace("set_gait(GAIT)", "set_gait(0)"))
+    scale, cmd, worst = rt.call("scenarios.gait_limits:margin", 0)
     assert scale == 1000 and cmd == [1200, 0, 0]  # 120 mm/s: 30 mm steps, 1 s cycle
     # Minimum distance of the body centre inside the stance feet's polygon over a cycle:
     # 64.2 mm for the default robot (docs/motion.md). A positive margin with room to spare.
@@ -135,17 +41,7 @@ def test_tripod_static_stability_margin(rt):
 
 
 def test_support_margin_geometry(rt):
-    got = rt.value(
-        """
-from hexapod.stability import support_margin, NO_SUPPORT
-xs = [1000, 0, -1000, -1000, 0, 1000]
-ys = [-1000, -1500, -1000, 1000, 1500, 1000]
-print([support_margin(xs, ys, [1, 1, 1, 1, 1, 1]),
-       support_margin(xs, ys, [1, 0, 1, 0, 1, 0]),
-       support_margin(xs, ys, [1, 0, 1, 0, 1, 0], 0, -1200),
-       support_margin(xs, ys, [1, 1, 0, 0, 0, 0]) == NO_SUPPORT])
-"""
-    )
+    got = rt.call("scenarios.gait_limits:margin_geometry")
     # All six: the front and back edges are 100 mm away. Tripod 1-3-5: the edges RF-LM and
     # LM-RR pass 1.5e6 / hypot(1000, 2500) = 55.7 mm from the centre. A point 120 mm to the
     # right is 20 mm outside the edge RF-RR.
