@@ -7,9 +7,8 @@ the per-tick joint budget (60 deg / 8.5 ticks * 0.4 = 282 cdeg); the joint angle
 sent, frame by frame, must stay inside it.
 """
 
-import ast
-
 import pytest
+from scenarios import rig
 
 import robots.default as d
 from hexapod import geometry, tick
@@ -40,12 +39,7 @@ def unguarded():
 
 def standing(g):
     robot = tick.Robot(g, tick.default_servos(g), tick.FrameBuffer())
-    t = [0]
-    robot.stand_up()
-    while robot.mode != tick.STANDING:
-        robot.tick(t[0])
-        t[0] += 20
-    return robot, t
+    return robot, [rig.stand(robot)]
 
 
 def test_budget_from_the_datasheet():
@@ -175,35 +169,14 @@ def test_nothing_the_guard_accepts_saturates_a_servo_in_physics(gait, cycle, kw)
 
 
 def test_guard_is_bit_identical_on_both_runtimes(both_runtimes):
-    cp, mp = both_runtimes(
-        """
-import robots.default as d
-from hexapod import geometry, tick
-g = geometry.load(d)
-robot = tick.Robot(g, tick.default_servos(g), tick.FrameBuffer())
-w = robot.walker
-out = [g.servo_step, list(w.srho), w.servo_peak]
-out += [robot.set_gait(3, 1000), robot.set_gait(3), list(w.srho), w.servo_peak]
-out += [robot.set_gait(2, 1560), list(w.srho), w.servo_peak]
-print(out)
-robot.stand_up()
-t = 0
-while robot.mode != tick.STANDING:
-    robot.tick(t)
-    t += 20
-print([robot.set_gait(0, 1680), robot.walk(0, 3000, 0), list(w.cmd), w.scale_permille])
-"""
-    )
+    cp, mp = both_runtimes.call("scenarios.servo_guard:guard")
     assert cp == mp  # the stance reach limit's square roots too
-    code, walk, cmd, scale = ast.literal_eval(cp.strip().splitlines()[-1])
+    code, walk, cmd, scale = cp[1]
     # Hand-worked: at 1.68 s the tripod's stance is 42 ticks, half of it 0.42 s; sideways the
     # middle legs' stance runs straight out from the coxa, so 15 mm out is 15 mm in 0.42 s:
     # 35.7 mm/s (the servo guard alone allows the full 30 mm step: 71.4).
     assert code == walk == tick.OK and cmd[0] == cmd[2] == 0 and abs(cmd[1] - 357) <= 3, (cmd, scale)
-    cp = cp.strip().splitlines()[0]
-    step, srho, peak, wave_fast, wave, srho_wave, peak_wave, ripple, srho_ripple, peak_ripple = ast.literal_eval(
-        cp.strip()
-    )
+    step, srho, peak, wave_fast, wave, srho_wave, peak_wave, ripple, srho_ripple, peak_ripple = cp[0]
     assert step == 282 and min(srho) > 0 and peak <= step * 9 // 10
     assert wave_fast == tick.SERVO_SPEED and wave == tick.OK and ripple == tick.OK
     assert min(srho_wave) > max(srho) and peak_wave < peak and peak_ripple <= 253
