@@ -2,6 +2,62 @@
 gait, extreme parameters and poses, checks all 18 angles every tick. And the tripod's
 static stability margin at nominal speed."""
 
+import ast
+
+from hexapod_host.testing import UNGUARDED_GEOMETRY
+
+# (Source text, not a scenario: test_tick_ranges.py runs it under an instrumented core.)
+# The planner's reach at the extremes (every gait at 1 s too), without the servo guard, which
+# refuses most of these settings (test_servo_guard.py).
+SWEEP = (
+    UNGUARDED_GEOMETRY
+    + """
+from hexapod import tick
+from scenarios.rig import stand
+lim = g.limits
+seed = [12345]
+def rnd(n):
+    # A small LCG so both runtimes draw the same numbers.
+    seed[0] = (seed[0] * 1103515245 + 12345) & 0x3FFFFFFF
+    return seed[0] % n
+def pick(limit):
+    k = rnd(4)
+    return limit if k == 0 else (-limit if k == 1 else (0 if k == 2 else rnd(2 * limit + 1) - limit))
+for case in CASES:
+    gait, step, lift, cycle, pose = case
+    robot = tick.Robot(g, tick.default_servos(g), tick.FrameBuffer())
+    t = stand(robot)
+    code = robot.set_pose(*pose)
+    while not robot.body.settled():
+        robot.tick(t)
+        t += 20
+    robot.set_gait(gait)
+    robot.set_params(step_length=step, lift_height=lift, cycle_ms=cycle)
+    outside = 0
+    ticks = 0
+    refused = 0
+    for k in range(COMMANDS):
+        if robot.walk(pick(3000), pick(3000), pick(9000)) != 0:
+            refused += 1
+        for _ in range(1 + rnd(45)):
+            robot.tick(t)
+            t += 20
+            ticks += 1
+            a = robot.angles
+            for j in range(18):
+                lo = lim[2 * (j % 3)]
+                if a[j] < lo or a[j] > lim[2 * (j % 3) + 1]:
+                    outside += 1
+    robot.stop()
+    n = 0
+    while robot.mode == tick.WALKING and n < 2000:
+        robot.tick(t)
+        t += 20
+        n += 1
+    print([case, code, ticks, outside, robot.faults, refused, robot.mode, robot.walker.held])
+"""
+)
+
 CASES = [
     (0, 300, 300, 1000, (0, 0, 0, 0, 0, 0, 0, 0, 0)),
     (0, 600, 600, 500, (0, 0, 0, 0, 0, 0, 0, 0, 0)),
@@ -18,9 +74,9 @@ CASES = [
 
 
 def test_no_joint_ever_leaves_its_limits(both_runtimes):
-    cp, mp = both_runtimes.call("scenarios.gait_limits:sweep", CASES, 40)
+    cp, mp = both_runtimes("CASES = %r\nCOMMANDS = 40\n%s" % (CASES, SWEEP))
     assert cp == mp
-    rows = cp
+    rows = [ast.literal_eval(line) for line in cp.splitlines()]
     assert len(rows) == len(CASES)
     walked = 0
     for case, code, ticks, outside, faults, refused, mode, _held in rows:
