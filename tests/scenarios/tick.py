@@ -207,6 +207,36 @@ def clamped_frame():
     ]
 
 
+def _ordinary(robot, n):
+    # Speed and turn change every tick, through the command path as a PID loop would.
+    robot.walk(600 + (n * 7) % 900, (n * 13) % 400 - 200, ((n * 37) % 4000) - 2000)
+
+
+def _extreme(robot, n):
+    s = 1 if (n // 50) % 2 else -1
+    robot.walk(3000 * s, -3000, -9000 * s)
+
+
+def _walking_heap(rig, steer, ticks):
+    """The heap bytes ticks walking ticks leave allocated, steer(robot, n) commanding each; then a stop."""
+    import gc
+
+    robot = rig.robot
+    gc.collect()
+    gc.disable()
+    a = gc.mem_alloc()
+    for n in range(ticks):
+        steer(robot, n)
+        robot.tick(rig.t)
+        rig.t += 20
+    walk_bytes = gc.mem_alloc() - a
+    gc.enable()
+    robot.stop()
+    while robot.mode == tick.WALKING:
+        rig.run(1)
+    return walk_bytes
+
+
 def steady_tick_heap():
     """MicroPython only (gc.mem_alloc): the heap bytes a stand-up and each gait's walking ticks leave
     allocated: ["stand", bytes], then [gait, bytes, faults] for every gait at ordinary commands
@@ -230,38 +260,12 @@ def steady_tick_heap():
         robot.set_gait(gait)
         robot.walk(800, 100, 1200)
         rig.run(150)
-        gc.collect()
-        gc.disable()
-        a = gc.mem_alloc()
-        for n in range(400):
-            # Speed and turn change every tick, through the command path as a PID loop would.
-            robot.walk(600 + (n * 7) % 900, (n * 13) % 400 - 200, ((n * 37) % 4000) - 2000)
-            robot.tick(rig.t)
-            rig.t += 20
-        walk_bytes = gc.mem_alloc() - a
-        gc.enable()
-        robot.stop()
-        while robot.mode == tick.WALKING:
-            rig.run(1)
-        rows.append([gait, walk_bytes, robot.faults])
+        rows.append([gait, _walking_heap(rig, _ordinary, 400), robot.faults])
     # The extremes: longest cycle, largest step and lift, the commands at their limits.
     robot.set_params(step_length=600, lift_height=600, cycle_ms=5000)
     for gait in range(4):
         robot.set_gait(gait)
         robot.walk(3000, -3000, 9000)
         rig.run(100)
-        gc.collect()
-        gc.disable()
-        a = gc.mem_alloc()
-        for n in range(300):
-            s = 1 if (n // 50) % 2 else -1
-            robot.walk(3000 * s, -3000, -9000 * s)
-            robot.tick(rig.t)
-            rig.t += 20
-        walk_bytes = gc.mem_alloc() - a
-        gc.enable()
-        robot.stop()
-        while robot.mode == tick.WALKING:
-            rig.run(1)
-        rows.append([gait, walk_bytes, robot.faults])
+        rows.append([gait, _walking_heap(rig, _extreme, 300), robot.faults])
     return rows
