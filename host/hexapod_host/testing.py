@@ -116,6 +116,12 @@ def micropython_missing():
     return None
 
 
+def skip_without_micropython():
+    reason = micropython_missing()
+    if reason:
+        pytest.skip(reason)
+
+
 @pytest.fixture(params=["cpython", "micropython"])
 def rt(request):
     """The runtime a core test runs on: both, one after the other."""
@@ -127,9 +133,7 @@ def rt(request):
 @pytest.fixture
 def mp():
     """The MicroPython VM alone (allocation counts, heap-size runs)."""
-    reason = micropython_missing()
-    if reason:
-        pytest.skip(reason)
+    skip_without_micropython()
     return MicroPythonRuntime()
 
 
@@ -148,7 +152,5 @@ class BothRuntimes:
 @pytest.fixture
 def both_runtimes():
     """run(source, stdin) -> (cpython_stdout, micropython_stdout); .call(target, ...) -> both values."""
-    reason = micropython_missing()
-    if reason:
-        pytest.skip(reason)
+    skip_without_micropython()
     return BothRuntimes()
