@@ -25,7 +25,7 @@ class InstrumentedCore(importlib.abc.MetaPathFinder, importlib.abc.Loader):
     def find_spec(self, name, path, target=None):
         if name != "hexapod" and not name.startswith("hexapod."):
             return None
-        if name == "hexapod._ikfast":
+        if name == "hexapod._leg_viper":
             return None  # MicroPython-only; leg.py does not import it on CPython
         parts = name.split(".")
         base = os.path.join(FIRMWARE, *parts)

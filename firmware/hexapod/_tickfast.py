@@ -15,7 +15,7 @@ from array import array
 import micropython
 from micropython import const
 
-from hexapod._ikfast import _isqrt, solve
+from hexapod._leg_viper import _isqrt, solve
 from hexapod.fixmath import _SIN
 
 _G_T1 = const(10)  # hexapod.leg's result slots (viper folds only local consts)

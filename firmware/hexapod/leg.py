@@ -273,12 +273,12 @@ def solve(x, y, z, g):
     return OK
 
 
-# The same solve compiled by the viper emitter where MicroPython has one (hexapod/_ikfast.py,
-# proven equal to `solve` by tests/test_ikfast.py); CPython and CircuitPython use `solve`.
+# The same solve compiled by the viper emitter where MicroPython has one (hexapod/_leg_viper.py,
+# proven equal to `solve` by tests/test_leg_viper.py); CPython and CircuitPython use `solve`.
 _solve_fast = None
 if sys.implementation.name == "micropython":
     try:
-        from hexapod._ikfast import solve as _solve_fast
+        from hexapod._leg_viper import solve as _solve_fast
     except Exception:  # no viper emitter on this build
         _solve_fast = None
 

@@ -23,14 +23,14 @@ from hexapod_host import FIRMWARE, ROOT
 
 MANIFEST = "hexapod.manifest"
 NEW = ".new"  # suffix of a file on its way up, renamed into place once every file has landed
-# The boards' code emitters (mpy-cross -march): the viper IK (hexapod/_ikfast.py) needs the right one.
+# The boards' code emitters (mpy-cross -march): the viper IK (hexapod/_leg_viper.py) needs the right one.
 ARCH = {"pico": "armv6m", "esp32_devkit": "xtensawin"}
 # Modules of CircuitPython, MicroPython and the stdlib that the board provides itself.
 PROVIDED = {"machine", "time", "sys", "os", "array", "micropython", "gc", "select", "board", "busio", "digitalio"}
 PROVIDED |= {"microcontroller", "pulseio", "supervisor", "struct", "math", "hashlib", "errno", "io", "storage"}
 PROVIDED |= {"watchdog"}
 # Viper modules: MicroPython only (the core imports them only there); CircuitPython boards never get them.
-VIPER = ("hexapod/_ikfast.py", "hexapod/_tickfast.py", "drivers/_pca9685_viper.py", "drivers/_i2c_rp2.py")
+VIPER = ("hexapod/_leg_viper.py", "hexapod/_tickfast.py", "drivers/_pca9685_viper.py", "drivers/_i2c_rp2.py")
 # The RP2040's I2C block only (it refuses to import elsewhere): MicroPython boards of another chip skip it.
 RP2_ONLY = ("drivers/_i2c_rp2.py",)
 # CircuitPython compiles `@micropython.native` only where a board enables it (none of ours: a

@@ -2,7 +2,7 @@
 machine code. Imported by leg.py only on MicroPython, and only if the port has viper.
 
 Viper integers are machine words (32 bits on a board); every value here stays below 2**30
-(tests/test_leg_ranges.py) and tests/test_ikfast.py proves this file returns exactly what
+(tests/test_leg_ranges.py) and tests/test_leg_viper.py proves this file returns exactly what
 the plain `solve` returns, code, excess and angles, on well over 100,000 feet.
 """
 
