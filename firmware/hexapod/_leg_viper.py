@@ -11,6 +11,7 @@ from array import array
 import micropython
 from micropython import const
 
+from hexapod._fixmath_viper import isqrt
 from hexapod.fixmath import _ATAN
 
 # Reason codes and solver slots as in hexapod.leg (viper folds only local consts).
@@ -37,28 +38,6 @@ _ATAN_WORDS = array("i", _ATAN)
 
 
 @micropython.viper
-def _isqrt(n: int) -> int:
-    if n <= 0:
-        return 0
-    x = 32768
-    if n < 67108864:
-        x = 8192
-        if n < 4194304:
-            x = 2048
-            if n < 262144:
-                x = 512
-                if n < 16384:
-                    x = 128
-                    if n < 1024:
-                        x = 32
-    y = (x + n // x) >> 1
-    while y < x:
-        x = y
-        y = (x + n // x) >> 1
-    return x
-
-
-@micropython.viper
 def solve(x: int, y: int, z: int, gbuf) -> int:
     g = ptr32(gbuf)  # noqa: F821 (a viper built-in)
     if x > _COORD_MAX or x < 0 - _COORD_MAX or y > _COORD_MAX or y < 0 - _COORD_MAX:
@@ -72,9 +51,9 @@ def solve(x: int, y: int, z: int, gbuf) -> int:
     if x > big or x < 0 - big or y > big or y < 0 - big or v > reach or v < 0 - reach:
         xs = x >> 2
         ys = y >> 2
-        hs = ((int(_isqrt(xs * xs + ys * ys)) << 2) - a1) >> 2
+        hs = ((int(isqrt(xs * xs + ys * ys)) << 2) - a1) >> 2
         vs = v >> 2
-        m = (int(_isqrt(hs * hs + vs * vs)) << 2) - reach
+        m = (int(isqrt(hs * hs + vs * vs)) << 2) - reach
         g[_G_EXCESS] = m if m > 0 else 1
         return _TOO_FAR
     r2 = x * x + y * y
@@ -90,7 +69,7 @@ def solve(x: int, y: int, z: int, gbuf) -> int:
     rj = fk = ti = tf = ci = pi = qi = qf = sp = sq = sh = 0
     job = 0
     while True:
-        # _isqrt(n): the floor square root.
+        # isqrt(n): the floor square root.
         r = 0
         if n > 0:
             r = 32768
@@ -125,14 +104,14 @@ def solve(x: int, y: int, z: int, gbuf) -> int:
             ci = r2 + a1 * a1 + v * v - ti
             pi = g[_G_SUM2] - ci
             if pi < 0:
-                g[_G_EXCESS] = int(_isqrt(ci - 1)) + 1 - reach
+                g[_G_EXCESS] = int(isqrt(ci - 1)) + 1 - reach
                 return _TOO_FAR
             qi = ci - g[_G_DIF2]
             if tf:
                 qi -= 1
                 qf = 65536 - tf
             if qi < 0:
-                g[_G_EXCESS] = g[_G_MIN_REACH] - int(_isqrt(ci))
+                g[_G_EXCESS] = g[_G_MIN_REACH] - int(isqrt(ci))
                 return _TOO_CLOSE
             vi = pi
             vf = tf

@@ -30,7 +30,15 @@ PROVIDED = {"machine", "time", "sys", "os", "array", "micropython", "gc", "selec
 PROVIDED |= {"microcontroller", "pulseio", "supervisor", "struct", "math", "hashlib", "errno", "io", "storage"}
 PROVIDED |= {"watchdog"}
 # Viper modules: MicroPython only (the core imports them only there); CircuitPython boards never get them.
-VIPER = ("hexapod/_leg_viper.py", "hexapod/_tickfast.py", "drivers/_pca9685_viper.py", "drivers/_i2c_rp2.py")
+VIPER = (
+    "hexapod/_fixmath_viper.py",
+    "hexapod/_leg_viper.py",
+    "hexapod/_body_viper.py",
+    "hexapod/_walk_viper.py",
+    "hexapod/_tick_viper.py",
+    "drivers/_pca9685_viper.py",
+    "drivers/_i2c_rp2.py",
+)
 # The RP2040's I2C block only (it refuses to import elsewhere): MicroPython boards of another chip skip it.
 RP2_ONLY = ("drivers/_i2c_rp2.py",)
 # CircuitPython compiles `@micropython.native` only where a board enables it (none of ours: a
