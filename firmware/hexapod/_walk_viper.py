@@ -13,7 +13,7 @@ host VM and the emulated Pico.
 import micropython
 from micropython import const
 
-from hexapod._fixmath_viper import SIN_WORDS, isqrt, mul_q15, sin
+from hexapod._fixmath_viper import SIN_Q15, isqrt, mul_q15, sin
 
 _REPLAN = const(64)  # hexapod.walk.REPLAN_STEP
 _STOPPING = const(3)  # hexapod.walk.STOPPING
@@ -110,7 +110,7 @@ def swings(walker, lo: int, hi: int, w: int, still: int) -> int:
     k0 = (k[0] ^ sb) - sb
     k1 = (k[1] ^ sb) - sb
     k2 = (k[2] ^ sb) - sb
-    tab = ptr32(SIN_WORDS)  # noqa: F821
+    tab = ptr16(SIN_Q15)  # noqa: F821
     airborne = 0
     for i in range(lo, hi):
         u = (su[i] ^ sb) - sb
