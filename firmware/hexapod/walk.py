@@ -35,6 +35,23 @@ from hexapod.gait import TICK_MS, TRIPOD, GaitClock, actual_cycle_ms, check_cycl
 from hexapod.reach import servo_radii
 from hexapod.trajectory import swing_shape, swing_stroke
 
+# The viper twins (docs/viper.md): the tick's walker steps compiled by the viper emitter where
+# MicroPython has one (hexapod/_walk_viper.py, proven equal to _ramp and _lift_all, _move_body,
+# _aim_swings, _swings and _rescale by tests/test_tick_viper.py and tests/test_rescale.py), and
+# fixmath's sine as machine code (hexapod/_fixmath_viper.py, tests/test_rescale.py): a new
+# command's aims are four sines. CPython and CircuitPython run the plain code.
+_swings_fast = _move_fast = _begin_fast = _aim_fast = _rescale_fast = None
+if sys.implementation.name == "micropython":
+    try:
+        from hexapod._fixmath_viper import sin  # noqa: F811
+        from hexapod._walk_viper import aim as _aim_fast
+        from hexapod._walk_viper import begin as _begin_fast
+        from hexapod._walk_viper import move as _move_fast
+        from hexapod._walk_viper import rescale as _rescale_fast
+        from hexapod._walk_viper import swings as _swings_fast
+    except Exception:  # no viper emitter on this build
+        _swings_fast = _move_fast = _begin_fast = _aim_fast = _rescale_fast = None
+
 STOPPED = const(0)
 STARTING = const(1)
 WALKING = const(2)
@@ -698,27 +715,6 @@ class Walker:
                 self.py[i] -= by
             self.bx = 0
             self.by = 0
-
-
-# The tick's walker steps compiled by the viper emitter where MicroPython has one (hexapod/_walk_viper.py,
-# proven equal to _ramp and _lift_all, _move_body, _aim_swings and _swings by tests/test_tick_viper.py);
-# CPython and CircuitPython run the plain code.
-_swings_fast = None
-_move_fast = None
-_begin_fast = None
-_aim_fast = None
-_rescale_fast = None
-if sys.implementation.name == "micropython":
-    try:
-        # The same sine as machine code (tests/test_rescale.py): a new command's aims are four sines.
-        from hexapod._fixmath_viper import sin  # noqa: F811
-        from hexapod._walk_viper import aim as _aim_fast
-        from hexapod._walk_viper import begin as _begin_fast
-        from hexapod._walk_viper import move as _move_fast
-        from hexapod._walk_viper import rescale as _rescale_fast
-        from hexapod._walk_viper import swings as _swings_fast
-    except Exception:  # no viper emitter on this build
-        _swings_fast = _move_fast = _begin_fast = _aim_fast = _rescale_fast = None
 
 
 def _words(n, v=0):
