@@ -14,25 +14,26 @@ from micropython import const
 from hexapod._fixmath_viper import isqrt
 from hexapod.fixmath import _ATAN
 
-# Reason codes and solver slots as in hexapod.leg (viper folds only local consts).
-_OK = const(0)
-_TOO_FAR = const(1)
-_TOO_CLOSE = const(2)
-_OUT_OF_RANGE = const(9)
-_COORD_MAX = const(30000)
-_G_COXA = const(0)
-_G_OFFSET_UP = const(1)
-_G_OFFSET_DOWN = const(2)
-_G_REACH = const(3)
-_G_MIN_REACH = const(4)
-_G_SUM2 = const(5)
-_G_DIF2 = const(6)
-_G_FEMUR2 = const(7)
-_G_TIBIA2 = const(8)
-_G_EXCESS = const(9)
-_G_T1 = const(10)
-_G_T2 = const(11)
-_G_T3 = const(12)
+# Reason codes and solver slots copied from hexapod.leg (viper folds only a module's own consts);
+# tests/test_viper_twins.py checks each against the name after its #.
+_OK = const(0)  # hexapod.leg.OK
+_TOO_FAR = const(1)  # hexapod.leg.TOO_FAR
+_TOO_CLOSE = const(2)  # hexapod.leg.TOO_CLOSE
+_OUT_OF_RANGE = const(9)  # hexapod.leg.OUT_OF_RANGE
+_COORD_MAX = const(30000)  # hexapod.leg.COORD_MAX
+_G_COXA = const(0)  # hexapod.leg.G_COXA
+_G_OFFSET_UP = const(1)  # hexapod.leg.G_OFFSET_UP
+_G_OFFSET_DOWN = const(2)  # hexapod.leg.G_OFFSET_DOWN
+_G_REACH = const(3)  # hexapod.leg.G_REACH
+_G_MIN_REACH = const(4)  # hexapod.leg.G_MIN_REACH
+_G_SUM2 = const(5)  # hexapod.leg.G_SUM2
+_G_DIF2 = const(6)  # hexapod.leg.G_DIF2
+_G_FEMUR2 = const(7)  # hexapod.leg.G_FEMUR2
+_G_TIBIA2 = const(8)  # hexapod.leg.G_TIBIA2
+_G_EXCESS = const(9)  # hexapod.leg.G_EXCESS
+_G_T1 = const(10)  # hexapod.leg.G_T1
+_G_T2 = const(11)  # hexapod.leg.G_T2
+_G_T3 = const(12)  # hexapod.leg.G_T3
 
 _ATAN_WORDS = array("i", _ATAN)
 

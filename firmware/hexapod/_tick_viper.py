@@ -17,9 +17,11 @@ from micropython import const
 from hexapod._body_viper import posed
 from hexapod._leg_viper import solve
 
-_G_T1 = const(10)  # hexapod.leg's result slots (viper folds only local consts)
-_G_T2 = const(11)
-_G_T3 = const(12)
+# hexapod.leg's result slots, copied (viper folds only a module's own consts); tests/test_viper_twins.py
+# checks each against the name after its #.
+_G_T1 = const(10)  # hexapod.leg.G_T1
+_G_T2 = const(11)  # hexapod.leg.G_T2
+_G_T3 = const(12)  # hexapod.leg.G_T3
 
 
 @micropython.viper

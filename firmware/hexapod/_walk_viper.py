@@ -15,9 +15,11 @@ from micropython import const
 
 from hexapod._fixmath_viper import SIN_Q15, isqrt, mul_q15, sin
 
+# Copied from the plain modules (viper folds only a module's own consts); tests/test_viper_twins.py
+# checks each against the expression after its #.
 _REPLAN = const(64)  # hexapod.walk.REPLAN_STEP
 _STOPPING = const(3)  # hexapod.walk.STOPPING
-_FINE_TICK = const(320)  # hexapod.body.FINE * gait.TICK_MS
+_FINE_TICK = const(320)  # hexapod.body.FINE * hexapod.gait.TICK_MS
 _TICK_MS = const(20)  # hexapod.gait.TICK_MS
 _SPEED_STEP = const(40)  # hexapod.walk.SPEED_STEP
 _YAW_STEP = const(100)  # hexapod.walk.YAW_STEP
