@@ -9,7 +9,7 @@ import importlib
 import os
 import re
 
-from hexapod_host import FIRMWARE, flash
+from hexapod_host import FIRMWARE, ROOT, flash
 
 # NAME = const(VALUE)  # SOURCE: a hand copy; SOURCE is hexapod.mod.NAME, or an expression of such names.
 COPY = re.compile(r"^(\w+) = const\((.+)\)  # ((?:hexapod|drivers)\.\w+\.\w+.*)$")
@@ -157,3 +157,19 @@ def test_a_changed_source_is_caught(monkeypatch):
         assert "_REPLAN" in str(e)
     else:
         raise AssertionError("a changed REPLAN_STEP went unnoticed")
+
+
+def test_docs_list_every_twin_with_a_test_that_exists():
+    with open(os.path.join(ROOT, "docs", "viper.md")) as f:
+        text = f.read()
+    rows = {}
+    for line in text.splitlines():
+        m = re.match(r"\| `([\w/]+\.py)` \|", line)
+        if m:
+            rows[m.group(1)] = line
+    assert sorted(rows) == twins(sources())
+    for twin, row in rows.items():
+        named = re.findall(r"`(tests/test_\w+\.py)`", row)
+        assert named, twin
+        for test in named:
+            assert os.path.isfile(os.path.join(ROOT, test)), (twin, test)
