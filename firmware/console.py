@@ -459,7 +459,7 @@ class Console:
 
     def _gait(self, args):
         if args:
-            self._args(args, 1, "a gait name (tripod, tetrapod, ripple, wave)")
+            self._args(args, 1, "a gait name (%s)" % ", ".join(gait.NAMES))
             if args[0] not in gait.NAMES:
                 raise ValueError("%r, allowed %s" % (args[0][:20], ", ".join(gait.NAMES)))
             code = self.robot.set_gait(gait.NAMES.index(args[0]))

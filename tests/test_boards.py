@@ -136,7 +136,7 @@ MUTATIONS = [
 ]
 
 
-# check() imports the whole core from source (board -> follow -> tick -> walk -> _tickfast) inside the VM:
+# check() imports the whole core from source (board -> follow -> tick -> walk -> _walk_viper) inside the VM:
 # its compiler fits in ~250 KB, but whether a given heap does depends on fragmentation (main at
 # 97c1045 failed at 236-248 KB and at 292 KB, passed at 252-288 KB; measured 2026-11-24): 512 KB.
 HEAP = "512k"

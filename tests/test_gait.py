@@ -118,3 +118,29 @@ def test_gait_names():
     assert [gait_number(n) for n in NAMES] == [0, 1, 2, 3]
     with pytest.raises(ValueError, match="'trot' is not one of tripod, tetrapod, ripple, wave"):
         gait_number("trot")
+
+
+def test_gait_names_are_written_once_in_the_core():
+    # Every other module (firmware, host, tools) takes them from hexapod.gait.NAMES: no string is a
+    # gait name, and none lists two of them (a help text's "tripod, tetrapod ..."), outside gait.py.
+    import ast
+    import os
+
+    from hexapod.gait import NAMES
+    from hexapod_host import FIRMWARE, ROOT
+
+    pairs = [a + sep + b for a in NAMES for b in NAMES if a != b for sep in (", ", " or ", " and ")]
+    found = []
+    for base in (FIRMWARE, os.path.join(ROOT, "host"), os.path.join(ROOT, "tools")):
+        for folder, _, files in os.walk(base):
+            for f in files:
+                path = os.path.join(folder, f)
+                if not f.endswith(".py") or path == os.path.join(FIRMWARE, "hexapod", "gait.py"):
+                    continue
+                with open(path) as fh:
+                    tree = ast.parse(fh.read())
+                for n in ast.walk(tree):
+                    text = n.value if isinstance(n, ast.Constant) and isinstance(n.value, str) else ""
+                    if text in NAMES or any(p in text for p in pairs):
+                        found.append((os.path.relpath(path, ROOT), n.lineno, text[:60]))
+    assert not found, found

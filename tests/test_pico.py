@@ -69,7 +69,7 @@ from array import array
 from hexapod import leg as L
 fast = L.solve
 if sys.implementation.name == "micropython":
-    from hexapod import _ikfast as F
+    from hexapod import _leg_viper as F
     fast = F.solve
 LEGS = %r
 # x, y, z per foot as 16-bit words: a bytes literal compiles fast on the board, a tuple does not.

@@ -79,7 +79,7 @@ def test_random_follower_commands_stay_inside_the_servo_budget():
 
 
 def test_a_late_re_aim_is_the_same_on_both_runtimes(both_runtimes):
-    # CPython runs the plain swing, the MicroPython VM the viper one (hexapod/_tickfast.py).
+    # CPython runs the plain swing, the MicroPython VM the viper one (hexapod/_walk_viper.py).
     cp, mp = both_runtimes(
         """
 import robots.default as d

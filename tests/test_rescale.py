@@ -250,13 +250,13 @@ def test_aim_equals_the_plain_form_in_both_runtimes(both_runtimes):
     assert count == 5000 and odd > 500 and differ == 0, (count, odd, differ)
 
 
-# hexapod/_tickfast.py's _sin (walk's sine on a MicroPython with viper) against fixmath.sin, over
+# hexapod/_fixmath_viper.py's sin (walk's sine on a MicroPython with viper) against fixmath.sin, over
 # every table step and its edges, both signs, whole turns away, up to the 2**29 the docstrings allow.
 SINES = (
     LCG
     + """
 from hexapod import fixmath, walk
-from hexapod._tickfast import _sin
+from hexapod._fixmath_viper import sin as _sin
 
 count = differ = 0
 for n in range(CASES):

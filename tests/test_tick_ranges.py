@@ -25,8 +25,8 @@ class InstrumentedCore(importlib.abc.MetaPathFinder, importlib.abc.Loader):
     def find_spec(self, name, path, target=None):
         if name != "hexapod" and not name.startswith("hexapod."):
             return None
-        if name == "hexapod._ikfast":
-            return None  # MicroPython-only; leg.py does not import it on CPython
+        if name.endswith("_viper"):
+            return None  # the viper twins: MicroPython only; the plain modules do not import them on CPython
         parts = name.split(".")
         base = os.path.join(FIRMWARE, *parts)
         is_pkg = os.path.isdir(base)

@@ -1,13 +1,9 @@
 """PCA9685.stage's count and register bytes as viper machine code: the same integer steps as
-PCA9685.count, about 5x faster on a Pico than the native emitter. Imported by pca9685.py only on
-MicroPython ports with viper; CPython and CircuitPython use the plain path (same results: tests)."""
-
-import sys
+PCA9685.count, about 5x faster on a Pico than the native emitter (docs/viper.md lists every viper
+twin). Imported by pca9685.py only on MicroPython ports with viper; CPython and CircuitPython use
+the plain path (same results: tests/test_pca9685_viper.py)."""
 
 import micropython
-
-if sys.implementation.name != "micropython":
-    raise ImportError("viper code runs on MicroPython only")
 
 
 @micropython.viper

@@ -18,6 +18,7 @@ read-back, start-up, off, relax) first waits, bounded, for the bus; the MODE1 re
 chips fall on different frames. Elsewhere (ESP32, CPython, the VM) writes block, as before.
 """
 
+import sys
 from array import array
 
 import micropython
@@ -25,16 +26,22 @@ from micropython import const
 
 from hexapod.servo import PULSE_MAX_US, PULSE_MIN_US
 
-try:
-    from drivers._pca9685_viper import put as _put
-    from drivers._pca9685_viper import stage_all as _stage_all
-except (ImportError, SyntaxError):  # CPython, CircuitPython, a port without viper
-    _put = _stage_all = None
-try:  # frames sent in the background: the rp2 port with viper only (drivers/_i2c_rp2.py)
-    from drivers._i2c_rp2 import for_bus as _sender_for
-    from drivers._i2c_rp2 import queue as _queue
-except (ImportError, SyntaxError):
-    _sender_for = _queue = None
+# The viper twin (docs/viper.md): stage's count and bytes as machine code where MicroPython has the
+# viper emitter (drivers/_pca9685_viper.py, proven equal by tests/test_pca9685_viper.py); and the
+# background sender, the rp2 port's only (drivers/_i2c_rp2.py refuses to import elsewhere).
+# CPython and CircuitPython run the plain path and send in the foreground.
+_put = _stage_all = _sender_for = _queue = None
+if sys.implementation.name == "micropython":
+    try:
+        from drivers._pca9685_viper import put as _put
+        from drivers._pca9685_viper import stage_all as _stage_all
+    except Exception:  # no viper emitter on this build
+        _put = _stage_all = None
+    try:
+        from drivers._i2c_rp2 import for_bus as _sender_for
+        from drivers._i2c_rp2 import queue as _queue
+    except Exception:  # not the rp2 port, or no viper emitter
+        _sender_for = _queue = None
 
 _MODE1 = const(0x00)
 _MODE2 = const(0x01)

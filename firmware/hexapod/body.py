@@ -36,7 +36,7 @@ class Body:
 
     def __init__(self, geometry):
         self.geometry = geometry
-        # array("i") here and below: hexapod/_tickfast.py reads them as machine words (ptr32).
+        # array("i") here and below: _body_viper.py and _tick_viper.py read them as machine words (ptr32).
         self.mx = array("i", [v << FINE_SHIFT for v in geometry.mount_x])
         self.my = array("i", [v << FINE_SHIFT for v in geometry.mount_y])
         self.mc = array("i", geometry.mount_cos)

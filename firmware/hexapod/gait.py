@@ -90,7 +90,8 @@ class GaitClock:
     """Tick timing of one gait at one cycle time: slot, swing and stance lengths in ticks."""
 
     def __init__(self, gait=TRIPOD, cycle_ms=1000):
-        self.start = array("i", [0] * 6)  # each leg's first swing tick in the cycle (hexapod/_tickfast.py reads words)
+        # each leg's first swing tick in the cycle (hexapod/_walk_viper.py reads the words)
+        self.start = array("i", [0] * 6)
         self.set(gait, cycle_ms)
 
     def set(self, gait, cycle_ms):

@@ -20,6 +20,16 @@ from micropython import const
 from hexapod.fixmath import ONE, atan2, cos, isqrt, mul_q15, sin, to_cdeg
 from hexapod.units import format_fixed
 
+# The viper twin (docs/viper.md): solve compiled by the viper emitter where MicroPython has one
+# (hexapod/_leg_viper.py, proven equal to `solve` by tests/test_leg_viper.py); CPython and
+# CircuitPython use `solve`.
+_solve_fast = None
+if sys.implementation.name == "micropython":
+    try:
+        from hexapod._leg_viper import solve as _solve_fast
+    except Exception:  # no viper emitter on this build
+        _solve_fast = None
+
 OK = const(0)
 TOO_FAR = const(1)
 TOO_CLOSE = const(2)
@@ -271,16 +281,6 @@ def solve(x, y, z, g):
     g[G_T2] = to_cdeg(t2)
     g[G_T3] = to_cdeg(t3)
     return OK
-
-
-# The same solve compiled by the viper emitter where MicroPython has one (hexapod/_ikfast.py,
-# proven equal to `solve` by tests/test_ikfast.py); CPython and CircuitPython use `solve`.
-_solve_fast = None
-if sys.implementation.name == "micropython":
-    try:
-        from hexapod._ikfast import solve as _solve_fast
-    except Exception:  # no viper emitter on this build
-        _solve_fast = None
 
 
 def _check_int(name, value, lo, hi):

@@ -48,7 +48,7 @@ class ServoMap:
         if not isinstance(us_per_degree, int) or us_per_degree < 100 or us_per_degree > 5000:
             raise ValueError("us_per_degree: %r is outside 100..5000 (0.01 us per degree)" % (us_per_degree,))
         # centre_us, direction, us_per_degree, min_us, max_us as machine words (array("i")): the
-        # tick's viper frame (hexapod/_tickfast.py) reads all five for one attribute lookup.
+        # tick's viper frame (hexapod/_tick_viper.py) reads all five for one attribute lookup.
         self.cal = array("i", [centre_us, direction, us_per_degree, min_us, max_us])
         self.excess = 0  # microseconds past the range on the last refusal
 

@@ -31,6 +31,18 @@ from hexapod.servo import ServoMap
 from hexapod.turns import sweep_command
 from hexapod.walk import SERVO_SPEED, STEP_MAX, STOPPED, Walker
 
+# The viper twins (docs/viper.md): the frame and the pose check compiled by the viper emitter where
+# MicroPython has one (hexapod/_tick_viper.py and _body_viper.py, proven equal to the plain _output
+# and Body.settled by tests/test_tick_viper.py); CPython and CircuitPython run the plain code.
+_output_fast = _settled_fast = None
+if sys.implementation.name == "micropython":
+    try:
+        from hexapod._body_viper import settled as _settled_fast
+        from hexapod._tick_viper import output as _output_fast
+    except Exception:  # no viper emitter on this build
+        _output_fast = _settled_fast = None
+_settled = _settled_fast or Body.settled  # the pose check, called as _settled(body)
+
 # Reason codes (leg IK codes 1..9 come through in fault_code with fault_leg).
 WALKING_NOW = const(20)
 BUSY = const(21)
@@ -51,19 +63,6 @@ MODE_NAMES = ("relaxed", "sitting", "moving", "standing", "walking", "jog")
 
 _WRAP = const(0x3FFFFFFF)  # time.ticks_ms() wraps at 2**30
 RHO_MIN = const(50)  # a leg needs a reach disc this wide (0.1 mm) to walk
-
-
-# The frame and the pose check compiled by the viper emitter where MicroPython has one (hexapod/_tickfast.py, proven
-# equal to the plain _output and Body.settled by tests/test_tickfast.py); CPython and CircuitPython run the plain code.
-_output_fast = None
-_settled_fast = None
-if sys.implementation.name == "micropython":
-    try:
-        from hexapod._tickfast import output as _output_fast
-        from hexapod._tickfast import settled as _settled_fast
-    except Exception:  # no viper emitter on this build
-        _output_fast = _settled_fast = None
-_settled = _settled_fast or Body.settled  # the pose check, called as _settled(body)
 
 
 def describe(code):
@@ -129,7 +128,7 @@ class Robot:
         self.rest_z = -(geometry.sit_height - geometry.foot_clearance) << FINE_SHIFT
         self.angles = [0] * 18  # last joint angles sent, cdeg
         self.pulses = [0] * 18 if pulses is None else pulses  # last pulses sent, us
-        self._angles = array("i", [0] * 18)  # scratch, array("i"): _tickfast.output writes them as machine words
+        self._angles = array("i", [0] * 18)  # scratch, array("i"): _tick_viper.output writes them as machine words
         self._pulses = array("i", [0] * 18)
         self._leg = [0, 0, 0]
         self._rho = [0] * 6

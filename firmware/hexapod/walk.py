@@ -35,6 +35,23 @@ from hexapod.gait import TICK_MS, TRIPOD, GaitClock, actual_cycle_ms, check_cycl
 from hexapod.reach import servo_radii
 from hexapod.trajectory import swing_shape, swing_stroke
 
+# The viper twins (docs/viper.md): the tick's walker steps compiled by the viper emitter where
+# MicroPython has one (hexapod/_walk_viper.py, proven equal to _ramp and _lift_all, _move_body,
+# _aim_swings, _swings and _rescale by tests/test_tick_viper.py and tests/test_rescale.py), and
+# fixmath's sine as machine code (hexapod/_fixmath_viper.py, tests/test_rescale.py): a new
+# command's aims are four sines. CPython and CircuitPython run the plain code.
+_swings_fast = _move_fast = _begin_fast = _aim_fast = _rescale_fast = None
+if sys.implementation.name == "micropython":
+    try:
+        from hexapod._fixmath_viper import sin  # noqa: F811
+        from hexapod._walk_viper import aim as _aim_fast
+        from hexapod._walk_viper import begin as _begin_fast
+        from hexapod._walk_viper import move as _move_fast
+        from hexapod._walk_viper import rescale as _rescale_fast
+        from hexapod._walk_viper import swings as _swings_fast
+    except Exception:  # no viper emitter on this build
+        _swings_fast = _move_fast = _begin_fast = _aim_fast = _rescale_fast = None
+
 STOPPED = const(0)
 STARTING = const(1)
 WALKING = const(2)
@@ -63,7 +80,7 @@ class Walker:
     """Gait engine and walk state machine for one Geometry (feet in the body frame)."""
 
     def __init__(self, geometry):
-        # The per-leg state and the tick's small vectors are array("i"): hexapod/_tickfast.py reads
+        # The per-leg state and the tick's small vectors are array("i"): hexapod/_walk_viper.py reads
         # and writes them as machine words (ptr32); the plain code indexes them as lists.
         self.geometry = geometry
         self.clock = GaitClock(TRIPOD, 1000)
@@ -265,7 +282,7 @@ class Walker:
         # distance from neutral) fits its disc and, on three feet, no stance foot reaches too far
         # out; each try sets the next k from the worst shortfall. One function on purpose: calls
         # are costly on a board, and a root is taken only for a foot that is over (compared as
-        # squares: isqrt(d2) > lim when d2 > lim * (lim + 2)). hexapod/_tickfast.py's rescale is the
+        # squares: isqrt(d2) > lim when d2 > lim * (lim + 2)). hexapod/_walk_viper.py's rescale is the
         # same in viper; tests/test_rescale.py proves both equal to the plain one-helper-per-leg
         # form on many random commands and reach discs.
         if _rescale_fast is not None:
@@ -505,7 +522,7 @@ class Walker:
         return self._swings(0, 6, w, still)
 
     def _swings(self, lo, hi, w, still):
-        """_swing_all's plain code over legs lo..hi-1 (hexapod/_tickfast.py's swings is the same in viper)."""
+        """_swing_all's plain code over legs lo..hi-1 (hexapod/_walk_viper.py's swings is the same in viper)."""
         su = self.su
         airborne = 0
         for i in range(lo, hi):
@@ -555,7 +572,7 @@ class Walker:
 
     def _swing_step(self, i, w):
         """Leg i's swing foot at its next tick u of w into fx, fy, fz[i], its touch-down point
-        into _xy; returns u (hexapod/_tickfast.py's swing is the same in viper).
+        into _xy; returns u (hexapod/_walk_viper.py's swings is the same in viper).
 
         The foot follows the swing planned to the touch-down point the command asks for now; when
         the command changed since the last tick, the plan jumps, and the foot moves only as the
@@ -630,7 +647,7 @@ class Walker:
     def _stance(self, bx, by, cd):
         """The stance feet read back into the body frame with the body at (bx, by) (fine) turned
         cd (cdeg), into ax, ay; 1 when that would carry a foot out of its stance_rho disc (and further
-        from neutral than it is), else 0 (hexapod/_tickfast.py's stance is the same in viper)."""
+        from neutral than it is), else 0 (hexapod/_walk_viper.py's stance is the same in viper)."""
         c = cos(cd)
         s = sin(cd)
         for i in range(6):
@@ -698,27 +715,6 @@ class Walker:
                 self.py[i] -= by
             self.bx = 0
             self.by = 0
-
-
-# The tick's walker steps compiled by the viper emitter where MicroPython has one (hexapod/_tickfast.py,
-# proven equal to _ramp and _lift_all, _move_body, _aim_swings and _swings by tests/test_tickfast.py);
-# CPython and CircuitPython run the plain code.
-_swings_fast = None
-_move_fast = None
-_begin_fast = None
-_aim_fast = None
-_rescale_fast = None
-if sys.implementation.name == "micropython":
-    try:
-        # The same sine as machine code (tests/test_rescale.py): a new command's aims are four sines.
-        from hexapod._tickfast import _sin as sin  # noqa: F811
-        from hexapod._tickfast import aim as _aim_fast
-        from hexapod._tickfast import begin as _begin_fast
-        from hexapod._tickfast import move as _move_fast
-        from hexapod._tickfast import rescale as _rescale_fast
-        from hexapod._tickfast import swings as _swings_fast
-    except Exception:  # no viper emitter on this build
-        _swings_fast = _move_fast = _begin_fast = _aim_fast = _rescale_fast = None
 
 
 def _words(n, v=0):

@@ -10,10 +10,10 @@ Writes into --out (default plots/):
 import os
 import tempfile
 
+from hexapod.gait import NAMES, TRIPOD
 from hexapod.units import shown
 from hexapod_host.cli import UsageError
 
-GAITS = ("tripod", "tetrapod", "ripple", "wave")
 LEGS = ("1 RF", "2 RM", "3 RR", "4 LR", "5 LM", "6 LF")
 
 
@@ -21,7 +21,7 @@ def register(sub):
     p = sub.add_parser("plot", help="PNG views (gait: foot trajectories, phase diagrams, top view)")
     p.add_argument("what", choices=("gait",), help="what to plot")
     p.add_argument("--out", default="plots", help="directory for the PNGs (default plots/)")
-    p.add_argument("--gait", default="all", help="tripod, tetrapod, ripple, wave or all (default all)")
+    p.add_argument("--gait", default="all", help="%s or all (default all)" % ", ".join(NAMES))
     p.add_argument("--speed", default="100", help="forward speed, mm/s (default 100; scaled to what reach allows)")
     p.add_argument("--turn", default="0", help="yaw rate, degrees/s (default 0)")
     p.set_defaults(func=run)
@@ -30,10 +30,10 @@ def register(sub):
 def _options(args):
     from hexapod.walk import SPEED_MAX, YAW_RATE_MAX
 
-    gaits = GAITS if args.gait == "all" else (args.gait,)
+    gaits = NAMES if args.gait == "all" else (args.gait,)
     for g in gaits:
-        if g not in GAITS:
-            raise UsageError("--gait: %s is not one of %s or all" % (shown(args.gait), ", ".join(GAITS)))
+        if g not in NAMES:
+            raise UsageError("--gait: %s is not one of %s or all" % (shown(args.gait), ", ".join(NAMES)))
     speed = _number("speed", args.speed, 1, SPEED_MAX, "mm/s")  # 0.1 mm/s
     turn = _number("turn", args.turn, 2, YAW_RATE_MAX, "deg/s")  # cdeg/s
     _check_out(args.out)
@@ -182,7 +182,7 @@ def _trajectory(plt, out, speed, turn):
     for k in range(4 * s + 1):
         combined_point(k, s, 2000000, 0, 2000000, buf, sin90_fine, 1 << FINE_BITS)  # 2 cm in 1e-6 cm
         table.append((buf[0] / 1e5, buf[2] / 1e5))  # mm
-    _, w, rows = record("tripod", speed, turn, cycles=1)
+    _, w, rows = record(NAMES[TRIPOD], speed, turn, cycles=1)
     fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.2))
     tx, tz = [p[0] for p in table], [p[1] for p in table]
     a.plot(tx, tz, "o-", ms=4, color="tab:blue")

@@ -10,6 +10,7 @@ end, so a failed copy replaces nothing. CircuitPython boards: .py files onto the
 import ast
 import contextlib
 import errno
+import glob
 import hashlib
 import json
 import os
@@ -23,16 +24,24 @@ from hexapod_host import FIRMWARE, ROOT
 
 MANIFEST = "hexapod.manifest"
 NEW = ".new"  # suffix of a file on its way up, renamed into place once every file has landed
-# The boards' code emitters (mpy-cross -march): the viper IK (hexapod/_ikfast.py) needs the right one.
+# The boards' code emitters (mpy-cross -march): the viper modules (VIPER below) need the right one.
 ARCH = {"pico": "armv6m", "esp32_devkit": "xtensawin"}
 # Modules of CircuitPython, MicroPython and the stdlib that the board provides itself.
 PROVIDED = {"machine", "time", "sys", "os", "array", "micropython", "gc", "select", "board", "busio", "digitalio"}
 PROVIDED |= {"microcontroller", "pulseio", "supervisor", "struct", "math", "hashlib", "errno", "io", "storage"}
 PROVIDED |= {"watchdog"}
-# Viper modules: MicroPython only (the core imports them only there); CircuitPython boards never get them.
-VIPER = ("hexapod/_ikfast.py", "hexapod/_tickfast.py", "drivers/_pca9685_viper.py", "drivers/_i2c_rp2.py")
 # The RP2040's I2C block only (it refuses to import elsewhere): MicroPython boards of another chip skip it.
 RP2_ONLY = ("drivers/_i2c_rp2.py",)
+
+
+def _twins():
+    """The viper twins by their rule (docs/viper.md): MODULE's is _MODULE_viper.py, beside it."""
+    found = glob.glob(os.path.join(FIRMWARE, "*", "_*_viper.py"))
+    return tuple(sorted(os.path.relpath(p, FIRMWARE).replace(os.sep, "/") for p in found))
+
+
+# Viper modules: MicroPython only (the core imports them only there); CircuitPython boards never get them.
+VIPER = _twins() + RP2_ONLY
 # CircuitPython compiles `@micropython.native` only where a board enables it (none of ours: a
 # SyntaxError at import otherwise); the decorator changes speed, never results, so its drive gets
 # the sources without it.

@@ -17,12 +17,13 @@ import sys
 
 from hexapod import geometry as geometry_mod
 from hexapod import tick
-from hexapod.gait import NAMES, TICK_MS, gait_number
+from hexapod.gait import NAMES, RIPPLE, TICK_MS, TRIPOD, WAVE, gait_number
 from hexapod_host import mjcf
 
 STEPS_PER_TICK = int(round(TICK_MS / 1000.0 / mjcf.TIMESTEP_S))
 SETTLE_S = 0.4  # standing in the model before the walk command
 CONTACT_N = 0.05  # a foot carrying at least this normal force (N) is down
+TABLE_GAITS = tuple(NAMES[g] for g in (TRIPOD, RIPPLE, WAVE))  # --table's gaits (docs/physics.md)
 
 
 def load_robot(module, servo_overrides=None):
@@ -321,7 +322,7 @@ def _margin(xy, down, com):
 def simulate(
     module=None,
     *,
-    gait="tripod",
+    gait=NAMES[TRIPOD],
     speed=60.0,
     direction=0.0,
     turn=0.0,
@@ -416,7 +417,7 @@ class Recorder:
 
 def register(sub):
     p = sub.add_parser("physics", help="the core's frames drive a MuJoCo model of the robot file; measured motion")
-    p.add_argument("--gait", default="tripod", help="tripod, tetrapod, ripple or wave (default tripod)")
+    p.add_argument("--gait", default=NAMES[TRIPOD], help="%s (default %s)" % (", ".join(NAMES), NAMES[TRIPOD]))
     p.add_argument("--speed", type=float, default=60.0, help="mm/s along --direction (negative: backward); default 60")
     p.add_argument("--direction", type=float, default=0.0, help="deg from forward, counter-clockwise (90 = left)")
     p.add_argument("--turn", type=float, default=0.0, help="yaw rate, deg/s, positive = left")
@@ -428,7 +429,7 @@ def register(sub):
     p.add_argument(
         "--table",
         action="store_true",
-        help="tripod, ripple, wave at 60, 120 mm/s and turning 30 deg/s (8 s each, on every core): a table",
+        help="%s at 60, 120 mm/s and turning 30 deg/s (8 s each, on every core): a table" % ", ".join(TABLE_GAITS),
     )
     p.set_defaults(func=main)
 
@@ -486,7 +487,7 @@ def main(args):
 
 TABLE_CASES = [
     (gait, label, kw)
-    for gait in ("tripod", "ripple", "wave")
+    for gait in TABLE_GAITS
     for label, kw in (
         ("60 mm/s", dict(speed=60.0)),
         ("120 mm/s", dict(speed=120.0)),

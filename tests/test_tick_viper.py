@@ -1,7 +1,9 @@
-"""The viper frame (hexapod/_tickfast.py) equals the plain Robot._output exactly, on the host
-MicroPython VM and on the emulated Pico (Thumb code): thousands of random feet in and out of reach,
-level and posed bodies, joint limits that bind, and servo ranges whose min or max sits exactly on
-the pulse a frame needs (taken) or one microsecond inside it (refused).
+"""The tick's viper twins equal their plain code exactly, on the host MicroPython VM and on the
+emulated Pico (Thumb code). The frame (hexapod/_tick_viper.py, Robot._output): thousands of random
+feet in and out of reach, level and posed bodies, joint limits that bind, and servo ranges whose
+min or max sits exactly on the pulse a frame needs (taken) or one microsecond inside it (refused).
+The walker's steps (hexapod/_walk_viper.py: swings, stance, move, begin, aim) and the pose check
+(hexapod/_body_viper.py: settled) against Walker's and Body's plain methods.
 """
 
 import ast
@@ -16,7 +18,7 @@ CASES = (
     + """
 import robots.default as robot_file
 from hexapod import geometry, tick
-from hexapod._tickfast import output
+from hexapod._tick_viper import output
 
 G = geometry.load(robot_file)
 # Leg 1 gets limits that bind inside the reach (all three joints), the others keep the file's.
@@ -105,7 +107,7 @@ SWINGS = (
 import robots.default as robot_file
 from hexapod import geometry, walk
 from hexapod.fixmath import cos, sin
-from hexapod._tickfast import swings
+from hexapod._walk_viper import swings
 
 w = walk.Walker(geometry.load(robot_file))
 count = differ = clamped = landed = done = 0
@@ -187,7 +189,7 @@ STANCES = (
     + """
 import robots.default as robot_file
 from hexapod import geometry, walk
-from hexapod._tickfast import stance
+from hexapod._walk_viper import stance
 
 w = walk.Walker(geometry.load(robot_file))
 count = differ = held = 0
@@ -228,7 +230,7 @@ MOVES = (
 import robots.default as robot_file
 from hexapod import geometry, walk
 from hexapod.fixmath import cos, mul_q15, sin
-from hexapod._tickfast import move
+from hexapod._walk_viper import move
 
 w = walk.Walker(geometry.load(robot_file))
 count = differ = held = still = anchored = 0
@@ -307,7 +309,8 @@ STARTS = (
     + """
 import robots.default as robot_file
 from hexapod import body, geometry, walk
-from hexapod._tickfast import aim, begin, settled
+from hexapod._body_viper import settled
+from hexapod._walk_viper import aim, begin
 
 g = geometry.load(robot_file)
 w = walk.Walker(g)

@@ -2,7 +2,7 @@
 machine code. Imported by leg.py only on MicroPython, and only if the port has viper.
 
 Viper integers are machine words (32 bits on a board); every value here stays below 2**30
-(tests/test_leg_ranges.py) and tests/test_ikfast.py proves this file returns exactly what
+(tests/test_leg_ranges.py) and tests/test_leg_viper.py proves this file returns exactly what
 the plain `solve` returns, code, excess and angles, on well over 100,000 feet.
 """
 
@@ -11,51 +11,31 @@ from array import array
 import micropython
 from micropython import const
 
+from hexapod._fixmath_viper import isqrt
 from hexapod.fixmath import _ATAN
 
-# Reason codes and solver slots as in hexapod.leg (viper folds only local consts).
-_OK = const(0)
-_TOO_FAR = const(1)
-_TOO_CLOSE = const(2)
-_OUT_OF_RANGE = const(9)
-_COORD_MAX = const(30000)
-_G_COXA = const(0)
-_G_OFFSET_UP = const(1)
-_G_OFFSET_DOWN = const(2)
-_G_REACH = const(3)
-_G_MIN_REACH = const(4)
-_G_SUM2 = const(5)
-_G_DIF2 = const(6)
-_G_FEMUR2 = const(7)
-_G_TIBIA2 = const(8)
-_G_EXCESS = const(9)
-_G_T1 = const(10)
-_G_T2 = const(11)
-_G_T3 = const(12)
+# Reason codes and solver slots copied from hexapod.leg (viper folds only a module's own consts);
+# tests/test_viper_twins.py checks each against the name after its #.
+_OK = const(0)  # hexapod.leg.OK
+_TOO_FAR = const(1)  # hexapod.leg.TOO_FAR
+_TOO_CLOSE = const(2)  # hexapod.leg.TOO_CLOSE
+_OUT_OF_RANGE = const(9)  # hexapod.leg.OUT_OF_RANGE
+_COORD_MAX = const(30000)  # hexapod.leg.COORD_MAX
+_G_COXA = const(0)  # hexapod.leg.G_COXA
+_G_OFFSET_UP = const(1)  # hexapod.leg.G_OFFSET_UP
+_G_OFFSET_DOWN = const(2)  # hexapod.leg.G_OFFSET_DOWN
+_G_REACH = const(3)  # hexapod.leg.G_REACH
+_G_MIN_REACH = const(4)  # hexapod.leg.G_MIN_REACH
+_G_SUM2 = const(5)  # hexapod.leg.G_SUM2
+_G_DIF2 = const(6)  # hexapod.leg.G_DIF2
+_G_FEMUR2 = const(7)  # hexapod.leg.G_FEMUR2
+_G_TIBIA2 = const(8)  # hexapod.leg.G_TIBIA2
+_G_EXCESS = const(9)  # hexapod.leg.G_EXCESS
+_G_T1 = const(10)  # hexapod.leg.G_T1
+_G_T2 = const(11)  # hexapod.leg.G_T2
+_G_T3 = const(12)  # hexapod.leg.G_T3
 
 _ATAN_WORDS = array("i", _ATAN)
-
-
-@micropython.viper
-def _isqrt(n: int) -> int:
-    if n <= 0:
-        return 0
-    x = 32768
-    if n < 67108864:
-        x = 8192
-        if n < 4194304:
-            x = 2048
-            if n < 262144:
-                x = 512
-                if n < 16384:
-                    x = 128
-                    if n < 1024:
-                        x = 32
-    y = (x + n // x) >> 1
-    while y < x:
-        x = y
-        y = (x + n // x) >> 1
-    return x
 
 
 @micropython.viper
@@ -72,9 +52,9 @@ def solve(x: int, y: int, z: int, gbuf) -> int:
     if x > big or x < 0 - big or y > big or y < 0 - big or v > reach or v < 0 - reach:
         xs = x >> 2
         ys = y >> 2
-        hs = ((int(_isqrt(xs * xs + ys * ys)) << 2) - a1) >> 2
+        hs = ((int(isqrt(xs * xs + ys * ys)) << 2) - a1) >> 2
         vs = v >> 2
-        m = (int(_isqrt(hs * hs + vs * vs)) << 2) - reach
+        m = (int(isqrt(hs * hs + vs * vs)) << 2) - reach
         g[_G_EXCESS] = m if m > 0 else 1
         return _TOO_FAR
     r2 = x * x + y * y
@@ -90,7 +70,7 @@ def solve(x: int, y: int, z: int, gbuf) -> int:
     rj = fk = ti = tf = ci = pi = qi = qf = sp = sq = sh = 0
     job = 0
     while True:
-        # _isqrt(n): the floor square root.
+        # isqrt(n): the floor square root.
         r = 0
         if n > 0:
             r = 32768
@@ -125,14 +105,14 @@ def solve(x: int, y: int, z: int, gbuf) -> int:
             ci = r2 + a1 * a1 + v * v - ti
             pi = g[_G_SUM2] - ci
             if pi < 0:
-                g[_G_EXCESS] = int(_isqrt(ci - 1)) + 1 - reach
+                g[_G_EXCESS] = int(isqrt(ci - 1)) + 1 - reach
                 return _TOO_FAR
             qi = ci - g[_G_DIF2]
             if tf:
                 qi -= 1
                 qf = 65536 - tf
             if qi < 0:
-                g[_G_EXCESS] = g[_G_MIN_REACH] - int(_isqrt(ci))
+                g[_G_EXCESS] = g[_G_MIN_REACH] - int(isqrt(ci))
                 return _TOO_CLOSE
             vi = pi
             vf = tf

@@ -1,4 +1,4 @@
-"""The viper solver (hexapod/_ikfast.py) equals the plain one (hexapod.leg.solve) exactly.
+"""The viper solver (hexapod/_leg_viper.py) equals the plain one (hexapod.leg.solve) exactly.
 
 Run inside the MicroPython VM, where the viper emitter exists: 150,000+ feet over extreme
 and ordinary legs, every result compared: reason code, excess and the three angles.
@@ -11,7 +11,7 @@ EQUAL = (
     + """
 from array import array
 from hexapod import leg as L
-from hexapod import _ikfast as F
+from hexapod import _leg_viper as F
 
 geoms = []
 for coxa in (0, 300, 1500):
