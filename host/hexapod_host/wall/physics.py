@@ -1,11 +1,11 @@
 """The wall simulator's body moved by MuJoCo instead of by its stance feet (`hexapod sim wall --physics`).
 
 The firmware loop, the pings, the room, the disturbances and the rules are the kinematic
-simulator's (hexapod_host.sim_wall); only the mover differs. Each frame the 18 pulses the
+simulator's (hexapod_host.wall.sim); only the mover differs. Each frame the 18 pulses the
 core sent drive the MuJoCo model of the robot file (hexapod_host.sim_physics.Run: pulses ->
 the board's servo maps -> actuator targets, 10 steps of 2 ms); the body's plan-view step
 (its new pose in its old body frame) is taken from the model's free joint and applied to the
-room's Body as the feet's step is in the kinematic one (hexapod_host.room.Body.advance: the
+room's Body as the feet's step is in the kinematic one (hexapod_host.wall.room.Body.advance: the
 trial's speed error and heading slip on top). The legs checked for contact are the model's:
 coxa axis, femur joint, knee and foot centre of each leg where MuJoCo has them, in the plan
 view of the body frame. The walls are not MuJoCo geoms: a touch ends a trial anyway, so they

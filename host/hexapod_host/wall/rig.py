@@ -1,6 +1,6 @@
 """The firmware's side of the wall simulator: the board's whole loop on the stub machine.
 
-Runs on CPython (hexapod_host.sim_wall calls Rig directly) and inside the MicroPython VM
+Runs on CPython (hexapod_host.wall.sim calls Rig directly) and inside the MicroPython VM
 (`serve()` on stdin/stdout, one line per frame), the same code either way, so the trajectory
 of a trial is the same on both runtimes as long as the firmware is bit-identical.
 
@@ -13,6 +13,7 @@ takes back the 18 pulses the core sent (us, 0 = none) and the follower's state. 
 cannot tell: it sees pins, a clock and a bus.
 """
 
+# Bare names, as the board has them: firmware/ and the MicroPython stubs are on sys.path (MICROPYPATH in the VM).
 import _stub_clock as clock
 import hcsr04_model
 import main
@@ -124,3 +125,7 @@ def serve(readline=None, write=None):
         write("%d %s %d %d %d\n" % (code, " ".join([str(p) for p in pulses]), mode, faults, reason))
         if hasattr(sys.stdout, "flush"):
             sys.stdout.flush()
+
+
+if __name__ == "__main__":  # in the VM: `micropython rig.py` (hexapod_host.wall.sim.FirmwareMicroPython)
+    serve()

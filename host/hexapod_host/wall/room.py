@@ -1,6 +1,6 @@
 """The simulated room's physics, in floats on the host: sonar beams, the body moved by its stance
 feet, contact with the walls. Units: mm and radians; world frame x, y (cm in the JSON, converted
-by hexapod_host.world); body frame x forward, y left (docs/wall.md, host half).
+by hexapod_host.wall.world); body frame x forward, y left (docs/wall.md, host half).
 
 - Sonar (`beam_distance`): the nearest wall point inside a sensor's beam, a cone of BEAM_HALF
   either side of its heading. Exact: the distance to a straight wall is convex along it, so its

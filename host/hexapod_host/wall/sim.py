@@ -1,10 +1,10 @@
 """`hexapod sim wall`: seed 000's wall-following experiment with the whole firmware loop in it.
 
-Each trial puts the robot in a 2-D room (hexapod_host.world), runs the board's loop frame by
-frame (host/stubs/wall_rig.py: main.build's Runner on the stub machine, the real HC-SR04 driver
+Each trial puts the robot in a 2-D room (hexapod_host.wall.world), runs the board's loop frame by
+frame (hexapod_host.wall.rig: main.build's Runner on the stub machine, the real HC-SR04 driver
 pinging models, the follower, the tick, the PCA9685 bursts over the I2C model), answers its
 pings by casting each sonar's beam into the room, and moves the body by what its stance feet
-did in the frames the core sent (hexapod_host.room). Disturbances (on by default): sonar noise
+did in the frames the core sent (hexapod_host.wall.room). Disturbances (on by default): sonar noise
 sd 3 mm, 2 % dropouts, a start 1-4 cm off the set point with a heading error up to +-10
 degrees, heading slip sd 1 degree per stride, speed error sd 5 %.
 
@@ -22,9 +22,10 @@ import subprocess
 import sys
 
 from hexapod import follow as fw_follow
-from hexapod_host import mpvm, wall_physics
-from hexapod_host.room import MAX_MM, MIN_MM, Body, beam_distance, point_segment, segments_cross
-from hexapod_host.world import DEFAULT, WorldError, load, shipped
+from hexapod_host import mpvm
+from hexapod_host.wall import physics as wall_physics
+from hexapod_host.wall.room import MAX_MM, MIN_MM, Body, beam_distance, point_segment, segments_cross
+from hexapod_host.wall.world import DEFAULT, WorldError, load, shipped
 
 FRAME_S = 0.02
 SETPOINTS_CM = (8, 10, 12, 14, 16)  # seed 000, Fig. 9
@@ -42,13 +43,15 @@ TOO_FAR_MM = 150.0  # set point + 15 cm
 STEADY_MM = 300.0  # steady-state error: the mean over the last 30 cm
 TRIALS = 10  # per set point for `make sim`: under 2 minutes on 2 shared cores (docs/wall.md)
 PLOT = "wall_sim.png"
+# The rig as a script for the VM: it needs no package there, its imports are the board's bare names.
+RIG_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "rig.py")
 
 
 class FirmwareCPython:
     """The firmware loop in this interpreter (wall_rig.Rig)."""
 
     def __init__(self, bus="pca"):
-        import wall_rig
+        from hexapod_host.wall import rig as wall_rig
 
         self.rig = wall_rig.Rig("pico", bus)
 
@@ -73,7 +76,7 @@ class FirmwareMicroPython:
         env = dict(os.environ, MICROPYPATH=mpvm.search_path())
         self.bus = bus
         self.proc = subprocess.Popen(
-            [exe, "-X", "heapsize=4m", "-c", "import wall_rig\nwall_rig.serve()"],
+            [exe, "-X", "heapsize=4m", RIG_SCRIPT],
             stdin=subprocess.PIPE,
             stdout=subprocess.PIPE,
             env=env,
@@ -160,7 +163,7 @@ def run_trial(
     mover="kinematic",
 ):
     """One trial; returns a dict of its figures (and the path when record). mover: "kinematic"
-    (the body moves by its stance feet) or "physics" (MuJoCo moves it: hexapod_host.wall_physics)."""
+    (the body moves by its stance feet) or "physics" (MuJoCo moves it: hexapod_host.wall.physics)."""
     rng = random.Random(seed)
     side = side or world.follow
     walls = world.walls
