@@ -11,7 +11,7 @@ import _stub_clock as vclock
 import pytest
 
 from drivers import cp_clock
-from hexapod_host.fakes_cp import SUPERVISOR_PERIOD_MS, CircuitPython
+from hexapod_host.stubs.circuitpython import SUPERVISOR_PERIOD_MS, CircuitPython
 from tests.test_leg_ranges import SMALL, Checker, instrumented
 
 P = 1 << 30

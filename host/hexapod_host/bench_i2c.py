@@ -11,7 +11,8 @@ All three are counted by i2c_bus.I2CBus: bits = START + 9 per byte + STOP, plus 
 import json
 import os
 
-from hexapod_host import fakes_busio, mpvm
+from hexapod_host import mpvm
+from hexapod_host.stubs import busio as fakes_busio
 
 VM_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm", "bench_i2c.py")
 FREQ = 400000

@@ -20,6 +20,7 @@ import contextlib
 import sys
 import types
 
+# A bare name: the bus model sits with the MicroPython stubs, where the VM imports it so.
 from i2c_bus import ADDR_NACK, TIMEOUT
 
 

@@ -23,11 +23,12 @@ import importlib
 import sys
 import types
 
+# Bare names: the very modules the firmware sees as `machine`, so one virtual clock and one set of wires.
 import _stub_clock as clock
 import _stub_pins as pins
 from machine import Pin
 
-from hexapod_host import fakes_busio
+from hexapod_host.stubs import busio as fakes_busio
 
 FEATHER_RP2040_PINS = (
     "A0", "A1", "A2", "A3", "D4", "D5", "D6", "D9", "D10", "D11", "D12", "D13", "D24", "D25",
