@@ -15,7 +15,7 @@ import robots.default as d
 from hexapod import geometry, tick
 from hexapod.gait import RIPPLE, TETRAPOD, TRIPOD, WAVE
 from hexapod.walk import WALKING
-from hexapod_host import sim_physics as sp
+from hexapod_host.physics import sim as sp
 
 GUARD = {"planner_share_permille": 400}
 

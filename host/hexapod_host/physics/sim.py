@@ -18,7 +18,7 @@ import sys
 from hexapod import geometry as geometry_mod
 from hexapod import tick
 from hexapod.gait import NAMES, TICK_MS, gait_number
-from hexapod_host import mjcf
+from hexapod_host.physics import mjcf
 
 STEPS_PER_TICK = int(round(TICK_MS / 1000.0 / mjcf.TIMESTEP_S))
 SETTLE_S = 0.4  # standing in the model before the walk command

@@ -2,7 +2,7 @@
 
 The firmware loop, the pings, the room, the disturbances and the rules are the kinematic
 simulator's (hexapod_host.wall.sim); only the mover differs. Each frame the 18 pulses the
-core sent drive the MuJoCo model of the robot file (hexapod_host.sim_physics.Run: pulses ->
+core sent drive the MuJoCo model of the robot file (hexapod_host.physics.sim.Run: pulses ->
 the board's servo maps -> actuator targets, 10 steps of 2 ms); the body's plan-view step
 (its new pose in its old body frame) is taken from the model's free joint and applied to the
 room's Body as the feet's step is in the kinematic one (hexapod_host.wall.room.Body.advance: the
@@ -16,7 +16,7 @@ Units: mm and radians (the room's).
 import math
 
 import robots.default
-from hexapod_host import sim_physics
+from hexapod_host.physics import sim as sim_physics
 
 _RUN = {}  # one compiled model per process (compiling takes ~0.1 s; a trial resets its data)
 
