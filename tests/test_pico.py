@@ -11,7 +11,8 @@ import struct
 import pytest
 
 from hexapod import leg as L
-from hexapod_host import FIRMWARE, pico
+from hexapod_host import FIRMWARE
+from hexapod_host.pico import emulator as pico
 from hexapod_host.testing import CPythonRuntime
 
 REASON = pico.missing()

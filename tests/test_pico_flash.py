@@ -9,7 +9,9 @@ import time
 
 import pytest
 
-from hexapod_host import cli, pico, pico_loop
+from hexapod_host import cli
+from hexapod_host.pico import emulator as pico
+from hexapod_host.pico import loop as pico_loop
 
 REASON = pico.missing()
 pytestmark = pytest.mark.skipif(REASON is not None, reason=REASON or "")

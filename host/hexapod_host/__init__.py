@@ -11,6 +11,7 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 FIRMWARE = os.path.join(ROOT, "firmware")
 BOARDS = os.path.join(ROOT, "boards")
+VM_DIR = os.path.join(ROOT, "host", "hexapod_host", "vm")  # the scripts run inside the MicroPython VM
 # The MicroPython stubs: a folder, not a package, since the firmware imports `machine` by its bare name.
 STUBS = os.path.join(ROOT, "host", "hexapod_host", "stubs", "micropython")
 

@@ -1,5 +1,5 @@
 """`hexapod pico serial`, `hexapod pico run FILE...` and `hexapod pico bench ik|tick|frame --json`: the firmware on an
-emulated Raspberry Pi Pico (hexapod_host.pico). Times are emulated us at 125 MHz, a lower bound
+emulated Raspberry Pi Pico (hexapod_host.pico.emulator). Times are emulated us at 125 MHz, a lower bound
 on silicon (zero-wait flash, approximate cycle costs)."""
 
 import json
@@ -9,8 +9,8 @@ import sys
 import tempfile
 import time
 
-from hexapod_host import pico
 from hexapod_host.cli import UsageError
+from hexapod_host.pico import emulator as pico
 
 VM_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm")
 
@@ -147,7 +147,7 @@ def bench_frame(args, fs, tmp):
     """The whole frame (ping, tick, both bursts) of main.build's loop on the board with emulated
     chips: the loop script's figures over `frames`, its bursts checked against the stub machine's,
     and the parts timed apart."""
-    from hexapod_host import pico_loop
+    from hexapod_host.pico import loop as pico_loop
 
     frames = args.frames
     status, lines, bursts, stats = pico_loop.board(frames, fs)

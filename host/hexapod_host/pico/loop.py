@@ -6,10 +6,11 @@ import json
 import os
 import tempfile
 
-from hexapod_host import pico
+from hexapod_host import VM_DIR
+from hexapod_host.pico import emulator as pico
 from hexapod_host.testing import CPythonRuntime
 
-SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm", "loop_frames.py")
+SCRIPT = os.path.join(VM_DIR, "loop_frames.py")
 DISTANCES = (3000, 4000, 5000, 6000, 7000)  # 0.1 mm, drivers.hcsr04 order
 
 # The stub machine as main.build finds it: the board file's chips on bus 0 and sonars on its pins.

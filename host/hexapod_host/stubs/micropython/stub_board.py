@@ -1,6 +1,6 @@
 """The stub machine as main.build finds it for a board file: a fresh virtual clock, pins and I2C
 buses, the board's PCA9685 models on its bus and HC-SR04 models on its sonar pins. Shared by the
-host's rigs (hexapod_host.wall.rig, pico_loop) and the tests' source-text rigs; runs on CPython and in the
+host's rigs (hexapod_host.wall.rig, hexapod_host.pico.loop) and the tests' source-text rigs; runs on CPython and in the
 MicroPython VM."""
 
 import _stub_clock as clock
