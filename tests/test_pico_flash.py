@@ -67,7 +67,8 @@ def test_hexapod_pico_serial_prints_the_port_and_saves_the_filesystem(tmp_path):
     import subprocess
     import sys
 
-    from hexapod_host import ROOT, flash
+    from hexapod_host import ROOT
+    from hexapod_host.serial import flash
 
     saved = tmp_path / "fs.img"
     env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "host"))

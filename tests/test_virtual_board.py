@@ -1,5 +1,5 @@
 """End to end: the firmware loop in the MicroPython VM on a pseudo-terminal (hexapod
-virtual-board), talked to through pyserial (hexapod_host.link, `hexapod send`)."""
+virtual-board), talked to through pyserial (hexapod_host.serial.link, `hexapod send`)."""
 
 import os
 import pty
@@ -13,7 +13,7 @@ import pytest
 
 from hexapod_host import cli, reference
 from hexapod_host.cmd_console import start_virtual_board
-from hexapod_host.link import Link, LinkError
+from hexapod_host.serial.link import Link, LinkError
 from hexapod_host.testing import micropython_missing
 
 LEG = dict(coxa=30.0, femur=85.0, tibia=125.0, femur_offset=32.0)

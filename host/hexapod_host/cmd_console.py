@@ -1,5 +1,5 @@
 """`hexapod virtual-board`, `hexapod ports`, `hexapod send`: the serial console from a PC
-(docs/console.md). The request/reply client is hexapod_host.link (the jog tool uses it too)."""
+(docs/console.md). The request/reply client is hexapod_host.serial.link (the jog tool uses it too)."""
 
 import os
 import pty
@@ -11,7 +11,7 @@ import tty
 
 from hexapod_host import BOARDS, mpvm
 from hexapod_host.cli import UsageError
-from hexapod_host.link import TIMEOUT_S, Link, LinkError, ports
+from hexapod_host.serial.link import TIMEOUT_S, Link, LinkError, ports
 
 VM_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm", "virtual_board.py")
 

@@ -17,8 +17,8 @@ def register(sub):
 
 
 def run(args):
-    from hexapod_host import jog, jog_tui
-    from hexapod_host.link import Link, LinkError
+    from hexapod_host.serial import jog, jog_tui
+    from hexapod_host.serial.link import Link, LinkError
 
     if os.sep in args.port and not os.path.exists(args.port):
         raise UsageError("no such port %r (hexapod ports lists them)" % args.port)

@@ -103,9 +103,9 @@ def rp2040js():
 
 
 def stage(dest, board="pico", robot="default", arch="armv6m"):
-    """Lay out under dest exactly what `hexapod flash` puts on the board (hexapod_host.flash.stage:
+    """Lay out under dest exactly what `hexapod flash` puts on the board (hexapod_host.serial.flash.stage:
     the entry's import closure and the core as .mpy for arch, main.py as source); returns dest."""
-    from hexapod_host import flash
+    from hexapod_host.serial import flash
 
     try:
         flash.stage(board, robot, dest, arch=arch)

@@ -2,7 +2,7 @@
 
 import curses
 
-from hexapod_host import jog
+from hexapod_host.serial import jog
 
 # curses key codes -> the command layer's key names
 SPECIAL = {
