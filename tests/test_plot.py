@@ -97,7 +97,7 @@ def test_plot_write_failure_leaves_no_partial_file(tmp_path, monkeypatch):
 
 @pytest.mark.skipif(mpvm.executable() is None, reason="no MicroPython VM")
 def test_tick_bench_script_runs_allocation_free():
-    from hexapod_host.tick_bench import bench_tick
+    from hexapod_host.bench.tick import bench_tick
 
     result = bench_tick(None, ticks=300, repeats=1)
     assert result["bench"] == "tick" and result["heap"] == "192k"  # the full run fits 160k only in some heap layouts

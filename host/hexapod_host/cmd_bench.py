@@ -5,10 +5,10 @@ import os
 
 from hexapod.units import shown
 from hexapod_host import mpvm
-from hexapod_host.bench_i2c import bench_i2c
+from hexapod_host.bench.guard import bench_guard
+from hexapod_host.bench.i2c import bench_i2c
+from hexapod_host.bench.tick import bench_tick
 from hexapod_host.cli import UsageError
-from hexapod_host.guard_bench import bench_guard
-from hexapod_host.tick_bench import bench_tick
 
 VM_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm")
 

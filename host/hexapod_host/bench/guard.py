@@ -15,9 +15,9 @@ import time
 
 from hexapod import reach
 from hexapod.leg import OK
-from hexapod_host import mpvm
+from hexapod_host import VM_DIR, mpvm
 
-VM_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm", "bench_guard.py")
+VM_SCRIPT = os.path.join(VM_DIR, "bench_guard.py")
 HEAP = "160k"
 
 
@@ -116,7 +116,7 @@ def bench_guard(args=None):
     """IK solves and time per configure: host CPython (guard and exhaustive), MicroPython VM (guard, .mpy)."""
     import robots.default as robot_file
     from hexapod import geometry as geo
-    from hexapod_host.tick_bench import GAIT_HEAP, build_mpy
+    from hexapod_host.bench.tick import GAIT_HEAP, build_mpy
 
     g = geo.load(robot_file)
     cases = [(k, g.gait_cycle_ms[k]) for k in range(4)] + [(0, 1600)]

@@ -11,10 +11,10 @@ All three are counted by i2c_bus.I2CBus: bits = START + 9 per byte + STOP, plus 
 import json
 import os
 
-from hexapod_host import mpvm
+from hexapod_host import VM_DIR, mpvm
 from hexapod_host.stubs import busio as fakes_busio
 
-VM_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm", "bench_i2c.py")
+VM_SCRIPT = os.path.join(VM_DIR, "bench_i2c.py")
 FREQ = 400000
 OSC = {0x40: 25_750_000, 0x41: 25_000_000}
 CMAP = [(0, k) for k in range(16)] + [(1, 0), (1, 1)]

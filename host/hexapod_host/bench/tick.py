@@ -10,10 +10,10 @@ import os
 import subprocess
 import tempfile
 
-from hexapod_host import FIRMWARE, ROOT, mpvm
+from hexapod_host import FIRMWARE, ROOT, VM_DIR, mpvm
 
-VM_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm", "bench_tick.py")
-CONSOLE_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm", "bench_console.py")
+VM_SCRIPT = os.path.join(VM_DIR, "bench_tick.py")
+CONSOLE_SCRIPT = os.path.join(VM_DIR, "bench_console.py")
 CONSOLE_HEAP = "512k"
 # The gait rows: the walker's servo guard (physics) and jog mode (console) outgrew 128 KB beside
 # the script and its 20 KB timing buffer. At 160 KB the wall row's Follower() hit MemoryError in
