@@ -1,23 +1,14 @@
 """`hexapod bench NAME --json`: speed and memory figures, measured in one run, JSON out."""
 
 import json
-import os
 
 from hexapod.units import shown
 from hexapod_host import mpvm
 from hexapod_host.bench.guard import bench_guard
 from hexapod_host.bench.i2c import bench_i2c
+from hexapod_host.bench.ik import bench_ik
 from hexapod_host.bench.tick import bench_tick
 from hexapod_host.cli import UsageError
-
-VM_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm")
-
-
-def bench_ik(args):
-    """Fixed-point vs float six-leg IK inside the MicroPython VM."""
-    out = mpvm.run(script=os.path.join(VM_DIR, "bench_ik.py"), heapsize="128k")
-    return json.loads(out.strip().splitlines()[-1])
-
 
 # name -> function(args) returning a dict; other modules add theirs here.
 BENCHES = {"ik": bench_ik, "i2c": bench_i2c, "tick": bench_tick, "guard": bench_guard}
