@@ -5,7 +5,7 @@ import pytest
 import hexapod_host  # noqa: F401  (puts firmware, boards and shims on sys.path)
 from hexapod_host.pico import emulator as pico
 
-pytest_plugins = ["hexapod_host.testing"]
+pytest_plugins = ["hexapod_host.testing.runtimes"]
 
 
 def pytest_sessionstart(session):

@@ -19,7 +19,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from hexapod_host import cli, cmd_kin, mpvm
-from hexapod_host.testing import micropython_missing
+from hexapod_host.testing.runtimes import micropython_missing
 from hexapod_host.vm import kin
 
 VM_DIR = os.path.dirname(os.path.abspath(kin.__file__))

@@ -121,7 +121,7 @@ def test_poll_reader_on_an_open_line_with_nothing_waiting_allocates_nothing(mp):
     import subprocess
 
     from hexapod_host import mpvm
-    from hexapod_host.testing import HEAP_PROBE
+    from hexapod_host.testing.runtimes import HEAP_PROBE
 
     src = (
         RIG

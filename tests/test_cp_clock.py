@@ -192,7 +192,7 @@ def test_same_ticks_in_both_runtimes(rt):
 
 
 def test_a_frames_clock_reads_allocate_nothing(mp):
-    from hexapod_host.testing import HEAP_PROBE
+    from hexapod_host.testing.runtimes import HEAP_PROBE
 
     src = (
         VM_SRC

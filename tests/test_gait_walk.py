@@ -9,7 +9,7 @@ import math
 
 import pytest
 
-from hexapod_host.testing import UNGUARDED_GEOMETRY
+from hexapod_host.testing.runtimes import UNGUARDED_GEOMETRY
 
 # The walk's kinematics at 1 s cycles, faster than the servo guard allows (test_servo_guard.py).
 SETUP = (

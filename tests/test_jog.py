@@ -1,6 +1,6 @@
 """`hexapod jog`: the command layer (keys -> console lines, reply lines -> the view) against a fake
 board console answering with the real core, and the terminal tool driven in tmux as a person would.
-Expected angles come from the float reference IK (hexapod_host.reference), pulses from the pico
+Expected angles come from the float reference IK (hexapod_host.testing.reference), pulses from the pico
 board file's rows worked by hand (centre_us + direction * 10 us per degree)."""
 
 import os
@@ -11,8 +11,8 @@ import time
 
 import pytest
 
-from hexapod_host import reference
 from hexapod_host.serial import jog
+from hexapod_host.testing import reference
 from tests.fake_console import FakeConsole, serve_pty
 
 LEG = dict(coxa=30.0, femur=85.0, tibia=125.0, femur_offset=32.0)  # robots/default.py, mm

@@ -13,7 +13,7 @@ import pytest
 from hexapod import leg as L
 from hexapod_host import FIRMWARE
 from hexapod_host.pico import emulator as pico
-from hexapod_host.testing import CPythonRuntime
+from hexapod_host.testing.runtimes import CPythonRuntime
 
 REASON = pico.missing()
 pytestmark = pytest.mark.skipif(REASON is not None, reason=REASON or "")

@@ -8,7 +8,7 @@ import tempfile
 
 from hexapod_host import VM_DIR
 from hexapod_host.pico import emulator as pico
-from hexapod_host.testing import CPythonRuntime
+from hexapod_host.testing.runtimes import CPythonRuntime
 
 SCRIPT = os.path.join(VM_DIR, "loop_frames.py")
 DISTANCES = (3000, 4000, 5000, 6000, 7000)  # 0.1 mm, drivers.hcsr04 order

@@ -8,7 +8,7 @@ by hexapod_host.wall.world); body frame x forward, y left (docs/wall.md, host ha
   where the cone's two edge rays cut the wall or a wall end inside the cone. The first echo
   (nearest wall) wins; the HC-SR04 hears nothing under 2 cm or beyond 4 m.
 - Body (`Body.move`): each frame the servo pulses the core sent are turned back into joint
-  angles (the board's servo maps) and feet (float FK, hexapod_host.reference); the feet on the
+  angles (the board's servo maps) and feet (float FK, hexapod_host.testing.reference); the feet on the
   ground in both frames stay put in the world, so the body's motion is the least-squares rigid
   2-D motion that carries them from this frame's body coordinates to the last's (2-D Kabsch).
 - Contact (`Body.touches`): the body outline, the sonar brackets, and every leg's coxa, femur
@@ -21,7 +21,7 @@ import math
 import robots.default
 from hexapod import board as boards
 from hexapod import geometry
-from hexapod_host.reference import fk
+from hexapod_host.testing.reference import fk
 
 BEAM_HALF = math.radians(15)  # HC-SR04: about 15 degrees either side of its axis
 MIN_MM = 20.0  # nothing closer is heard (the module holds its echo for 38 ms)
