@@ -8,7 +8,8 @@ import subprocess
 
 import pytest
 
-from hexapod_host import FIRMWARE, ROOT, STUBS, cli, mpvm
+from hexapod_host import FIRMWARE, ROOT, STUBS, mpvm
+from hexapod_host.commands import cli
 from hexapod_host.serial import flash
 from tests.test_runner import SETUP
 

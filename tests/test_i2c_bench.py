@@ -4,7 +4,7 @@ import json
 
 import pytest
 
-from hexapod_host import cli
+from hexapod_host.commands import cli
 from hexapod_host.testing.runtimes import micropython_missing
 
 

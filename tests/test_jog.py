@@ -134,7 +134,7 @@ def test_a_board_that_stops_answering():
 
 
 def test_jog_cli_refuses_a_missing_port(capsys):
-    from hexapod_host import cli
+    from hexapod_host.commands import cli
 
     with pytest.raises(SystemExit) as stop:
         cli.main(["jog", "--port", "/dev/ttyNOPE3"])
@@ -165,7 +165,7 @@ def test_jog_in_a_terminal_as_a_person_would():
     fake = FakeConsole()
     path, stop = serve_pty(fake)
     # The shell prints jog's exit status after it, and stays a moment so the screen can be read.
-    cmd = "%s -m hexapod_host.cli jog --port %s; echo exit=$?; sleep 5" % (sys.executable, path)
+    cmd = "%s -m hexapod_host jog --port %s; echo exit=$?; sleep 5" % (sys.executable, path)
     tmux("kill-server")
     try:
         assert tmux("new-session", "-d", "-s", "jog", "-x", "100", "-y", "30", cmd).returncode == 0
@@ -193,7 +193,7 @@ def test_jog_in_a_terminal_as_a_person_would():
 
 def test_serial_link_silent_board_and_disconnect(capsys):
     """A port where nothing answers, and a board that goes away mid-session, through pyserial."""
-    from hexapod_host import cli
+    from hexapod_host.commands import cli
     from hexapod_host.serial.link import Link, LinkError
 
     master, slave = os.openpty()  # a terminal with no board behind it
@@ -242,7 +242,7 @@ def test_jog_end_to_end_through_the_virtual_board(tmp_path):
     """The command layer over pyserial to the firmware loop in the MicroPython VM (hexapod virtual-board):
     leg 2's three channels in the PCA9685 model follow the foot, every other channel stays limp."""
     from hexapod_host import mpvm
-    from hexapod_host.cmd_console import start_virtual_board
+    from hexapod_host.commands.console import start_virtual_board
     from hexapod_host.serial.link import Link, LinkError
 
     if mpvm.executable() is None:
@@ -288,7 +288,7 @@ def test_jog_end_to_end_through_the_virtual_board(tmp_path):
 def test_jog_in_a_terminal_on_the_virtual_board(tmp_path):
     """The same by hand on the firmware loop in the VM: a typed foot command, two keys, the screen and the chip."""
     from hexapod_host import mpvm
-    from hexapod_host.cmd_console import start_virtual_board
+    from hexapod_host.commands.console import start_virtual_board
     from hexapod_host.serial.link import Link
 
     if mpvm.executable() is None:
@@ -296,7 +296,7 @@ def test_jog_in_a_terminal_on_the_virtual_board(tmp_path):
     proc, path, master, slave = start_virtual_board("pico", "default", str(tmp_path), -1)
     tmux("kill-server")
     try:
-        cmd = "%s -m hexapod_host.cli jog --port %s" % (sys.executable, path)
+        cmd = "%s -m hexapod_host jog --port %s" % (sys.executable, path)
         assert tmux("new-session", "-d", "-s", "jog", "-x", "100", "-y", "30", cmd).returncode == 0
         shown = screen_until("foot   x    240.0")
         assert "foot   x    240.0  y      0.0  z     32.0" in shown, shown  # relaxed: the leg stretched out

@@ -7,7 +7,7 @@ import types
 import pytest
 import serial
 
-from hexapod_host import cli
+from hexapod_host.commands import cli
 from hexapod_host.serial import link
 from hexapod_host.serial.link import Link, LinkError
 

@@ -19,7 +19,7 @@ import robots.default as d
 from hexapod import geometry
 from hexapod.body import FINE_SHIFT, Body
 from hexapod.leg import OK
-from hexapod_host import cli
+from hexapod_host.commands import cli
 from hexapod_host.physics import mjcf
 from hexapod_host.physics import sim as sp
 

@@ -9,7 +9,7 @@ import time
 
 import pytest
 
-from hexapod_host import cli
+from hexapod_host.commands import cli
 from hexapod_host.pico import emulator as pico
 from hexapod_host.pico import loop as pico_loop
 
@@ -72,7 +72,7 @@ def test_hexapod_pico_serial_prints_the_port_and_saves_the_filesystem(tmp_path):
 
     saved = tmp_path / "fs.img"
     env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "host"))
-    cmd = [sys.executable, "-m", "hexapod_host.cli", "pico", "serial", "--save-fs", str(saved)]
+    cmd = [sys.executable, "-m", "hexapod_host", "pico", "serial", "--save-fs", str(saved)]
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
     try:
         port = proc.stdout.readline().strip()

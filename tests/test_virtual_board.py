@@ -11,8 +11,8 @@ import tty
 
 import pytest
 
-from hexapod_host import cli
-from hexapod_host.cmd_console import start_virtual_board
+from hexapod_host.commands import cli
+from hexapod_host.commands.console import start_virtual_board
 from hexapod_host.serial.link import Link, LinkError
 from hexapod_host.testing import reference
 from hexapod_host.testing.runtimes import micropython_missing

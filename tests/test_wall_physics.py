@@ -8,7 +8,7 @@ import math
 
 import pytest
 
-from hexapod_host import cli
+from hexapod_host.commands import cli
 from hexapod_host.wall import physics as wall_physics
 from hexapod_host.wall import rig as wall_rig
 from hexapod_host.wall import sim as sim_wall

@@ -9,7 +9,7 @@ import math
 import hcsr04_model
 import pytest
 
-from hexapod_host import cli
+from hexapod_host.commands import cli
 from hexapod_host.wall import rig as wall_rig
 from hexapod_host.wall import sim as sim_wall
 from hexapod_host.wall import world

@@ -8,7 +8,7 @@ from hexapod_host.bench.guard import bench_guard
 from hexapod_host.bench.i2c import bench_i2c
 from hexapod_host.bench.ik import bench_ik
 from hexapod_host.bench.tick import bench_tick
-from hexapod_host.cli import UsageError
+from hexapod_host.commands.cli import UsageError
 
 # name -> function(args) returning a dict; other modules add theirs here.
 BENCHES = {"ik": bench_ik, "i2c": bench_i2c, "tick": bench_tick, "guard": bench_guard}

@@ -13,14 +13,14 @@ import sys
 
 # Modules that add subcommands; each defines register(subparsers).
 COMMAND_MODULES = (
-    "hexapod_host.cmd_kin",
-    "hexapod_host.cmd_bench",
-    "hexapod_host.cmd_sim",
-    "hexapod_host.cmd_plot",
-    "hexapod_host.cmd_flash",
-    "hexapod_host.cmd_jog",
-    "hexapod_host.cmd_console",
-    "hexapod_host.cmd_pico",
+    "hexapod_host.commands.kin",
+    "hexapod_host.commands.bench",
+    "hexapod_host.commands.sim",
+    "hexapod_host.commands.plot",
+    "hexapod_host.commands.flash",
+    "hexapod_host.commands.jog",
+    "hexapod_host.commands.console",
+    "hexapod_host.commands.pico",
 )
 
 

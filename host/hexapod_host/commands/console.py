@@ -9,11 +9,11 @@ import sys
 import tempfile
 import tty
 
-from hexapod_host import BOARDS, mpvm
-from hexapod_host.cli import UsageError
+from hexapod_host import BOARDS, VM_DIR, mpvm
+from hexapod_host.commands.cli import UsageError
 from hexapod_host.serial.link import TIMEOUT_S, Link, LinkError, ports
 
-VM_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm", "virtual_board.py")
+VM_SCRIPT = os.path.join(VM_DIR, "virtual_board.py")
 
 
 def register(sub):

@@ -7,7 +7,7 @@ command) is printed before it runs; --dry-run prints it and touches no board. do
 import os
 import shlex
 
-from hexapod_host.cli import UsageError
+from hexapod_host.commands.cli import UsageError
 from hexapod_host.serial import flash
 
 

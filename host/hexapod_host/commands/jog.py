@@ -6,7 +6,7 @@ docs/jog.md; the protocol is docs/console.md.
 import os
 import sys
 
-from hexapod_host.cli import UsageError
+from hexapod_host.commands.cli import UsageError
 
 
 def register(sub):

@@ -7,7 +7,7 @@ import sys
 from hexapod.leg import ANGLE_MAX, COXA_MAX, DEFAULT_LIMITS, LINK_MAX, LINK_MIN, OFFSET_MAX, Leg
 from hexapod.units import OutOfRange, format_fixed, parse_fixed, shown
 from hexapod_host import mpvm
-from hexapod_host.cli import UsageError
+from hexapod_host.commands.cli import UsageError
 from hexapod_host.vm import kin
 
 KIN_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(kin.__file__)), "kin.py")

@@ -9,10 +9,9 @@ import sys
 import tempfile
 import time
 
-from hexapod_host.cli import UsageError
+from hexapod_host import VM_DIR
+from hexapod_host.commands.cli import UsageError
 from hexapod_host.pico import emulator as pico
-
-VM_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "vm")
 
 
 def _script(path, argv, tmp):

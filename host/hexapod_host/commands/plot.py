@@ -11,7 +11,7 @@ import os
 import tempfile
 
 from hexapod.units import shown
-from hexapod_host.cli import UsageError
+from hexapod_host.commands.cli import UsageError
 
 GAITS = ("tripod", "tetrapod", "ripple", "wave")
 LEGS = ("1 RF", "2 RM", "3 RR", "4 LR", "5 LM", "6 LF")

@@ -435,7 +435,7 @@ def register(sub):
 
 def check_args(args):
     """UsageError for any bad option value, before anything runs."""
-    from hexapod_host.cli import UsageError
+    from hexapod_host.commands.cli import UsageError
 
     try:
         gait_number(args.gait)
@@ -456,7 +456,7 @@ def check_args(args):
 def main(args):
     import json
 
-    from hexapod_host.cli import UsageError
+    from hexapod_host.commands.cli import UsageError
 
     servo = check_args(args)
     if args.table:

@@ -467,7 +467,7 @@ def plot(path, world, traces, title, dashed=None):
 
 
 def _number(text, name, lo, hi, unit):
-    from hexapod_host.cli import UsageError
+    from hexapod_host.commands.cli import UsageError
 
     try:
         v = float(text)
@@ -479,7 +479,7 @@ def _number(text, name, lo, hi, unit):
 
 
 def _whole(text, name, lo, hi):
-    from hexapod_host.cli import UsageError
+    from hexapod_host.commands.cli import UsageError
 
     try:
         v = int(text)
@@ -513,7 +513,7 @@ def register(sub):
 
 def parse(args):
     """Checked options: (world, setpoints, trials, seed, side, gains, runtime, jobs)."""
-    from hexapod_host.cli import UsageError
+    from hexapod_host.commands.cli import UsageError
 
     try:
         world = load(args.world)
