@@ -4,7 +4,11 @@
 import importlib
 
 # Modules that add `hexapod sim KIND`; each defines register(subparsers).
-SIM_MODULES = ("hexapod_host.commands.sim_kinematics", "hexapod_host.wall.sim", "hexapod_host.physics.sim")
+SIM_MODULES = (
+    "hexapod_host.commands.sim_kinematics",
+    "hexapod_host.commands.sim_wall",
+    "hexapod_host.commands.sim_physics",
+)
 DEFAULT = "wall"
 
 
