@@ -31,6 +31,7 @@ def _figures(stats, frames=1):
 
 
 def _bus():
+    # Bare names: the models sit with the MicroPython stubs, where the VM (vm/bench_i2c.py) imports them so.
     from i2c_bus import I2CBus
     from pca9685_model import PCA9685Model
 
@@ -65,7 +66,7 @@ def servokit_frame():
 
 def physical_minimum():
     """One burst per chip from LED0_OFF_L through the last servo channel's OFF_H."""
-    import machine
+    import machine  # the stub machine, by the name the firmware imports it
 
     bus = _bus()
     i2c = machine.I2C(0, FREQ, bus=bus)
