@@ -59,7 +59,7 @@ SERVO = {
 # optional, 1000 each when absent. Slower-swinging gaits need longer cycles.
 GAIT_CYCLE_MS = (1000, 2220, 2280, 4320)
 
-# For physics only (host/hexapod_host/mjcf.py): masses without the servos (g), the body's
+# For physics only (host/hexapod_host/physics/mjcf.py): masses without the servos (g), the body's
 # thickness (0.1 mm), the foot's friction with the floor (per mille) and its sphere (0.1 mm).
 PHYSICS = {
     "body_g": 600,

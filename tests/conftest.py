@@ -3,9 +3,9 @@ import os
 import pytest
 
 import hexapod_host  # noqa: F401  (puts firmware, boards and shims on sys.path)
-from hexapod_host import pico
+from hexapod_host.pico import emulator as pico
 
-pytest_plugins = ["hexapod_host.testing"]
+pytest_plugins = ["hexapod_host.testing.runtimes"]
 
 
 def pytest_sessionstart(session):

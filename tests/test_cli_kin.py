@@ -9,7 +9,7 @@ import pytest
 
 from hexapod.leg import OK, Leg
 from hexapod.units import format_fixed
-from hexapod_host import cli
+from hexapod_host.commands import cli
 
 HEXAPOD = os.path.join(os.path.dirname(sys.executable), "hexapod")
 

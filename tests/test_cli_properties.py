@@ -18,8 +18,10 @@ import tempfile
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from hexapod_host import cli, cmd_kin, mpvm
-from hexapod_host.testing import micropython_missing
+from hexapod_host import mpvm
+from hexapod_host.commands import cli
+from hexapod_host.commands import kin as cmd_kin
+from hexapod_host.testing.runtimes import micropython_missing
 from hexapod_host.vm import kin
 
 VM_DIR = os.path.dirname(os.path.abspath(kin.__file__))
@@ -181,7 +183,8 @@ def fast_parser(build):
 def test_every_command_line_follows_the_exit_rule(argv, stdin):
     from unittest import mock
 
-    from hexapod_host import cmd_bench, cmd_plot
+    from hexapod_host.commands import bench as cmd_bench
+    from hexapod_host.commands import plot as cmd_plot
 
     cwd = os.getcwd()
     with tempfile.TemporaryDirectory() as tmp, contextlib.ExitStack() as stack:

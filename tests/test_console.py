@@ -7,7 +7,7 @@ import re
 
 import pytest
 
-from hexapod_host import reference
+from hexapod_host.testing import reference
 from tests.console_rig import RIG, clean_stubs  # noqa: F401 (autouse fixture)
 
 # seed 004's leg (robots/default.py), mm
@@ -284,7 +284,7 @@ print(repr(seen))
 
 
 def test_idle_console_frame_allocates_nothing(mp):
-    from hexapod_host.testing import HEAP_PROBE
+    from hexapod_host.testing.runtimes import HEAP_PROBE
 
     src = (
         RIG

@@ -103,7 +103,7 @@ def test_console_bench_rows(mp):
     import os
 
     from hexapod_host import mpvm
-    from hexapod_host.tick_bench import CONSOLE_HEAP, CONSOLE_SCRIPT
+    from hexapod_host.bench.tick import CONSOLE_HEAP, CONSOLE_SCRIPT
 
     assert os.path.exists(CONSOLE_SCRIPT)
     result = json.loads(mpvm.run(script=CONSOLE_SCRIPT, heapsize=CONSOLE_HEAP, args=("3",)).strip().splitlines()[-1])
@@ -121,7 +121,7 @@ def test_poll_reader_on_an_open_line_with_nothing_waiting_allocates_nothing(mp):
     import subprocess
 
     from hexapod_host import mpvm
-    from hexapod_host.testing import HEAP_PROBE
+    from hexapod_host.testing.runtimes import HEAP_PROBE
 
     src = (
         RIG

@@ -11,7 +11,7 @@ import _stub_clock as vclock
 import pytest
 
 from drivers import cp_clock
-from hexapod_host.fakes_cp import SUPERVISOR_PERIOD_MS, CircuitPython
+from hexapod_host.stubs.circuitpython import SUPERVISOR_PERIOD_MS, CircuitPython
 from tests.test_leg_ranges import SMALL, Checker, instrumented
 
 P = 1 << 30
@@ -192,7 +192,7 @@ def test_same_ticks_in_both_runtimes(rt):
 
 
 def test_a_frames_clock_reads_allocate_nothing(mp):
-    from hexapod_host.testing import HEAP_PROBE
+    from hexapod_host.testing.runtimes import HEAP_PROBE
 
     src = (
         VM_SRC

@@ -20,7 +20,8 @@ from pca9685_model import PCA9685Model
 
 from drivers import cp_clock, hcsr04
 from hexapod import board as boards
-from hexapod_host import FIRMWARE, fakes_cp
+from hexapod_host import FIRMWARE
+from hexapod_host.stubs import circuitpython as fakes_cp
 
 BOARD = boards.load("feather_rp2040")
 TABLE = boards.servo_table(BOARD)

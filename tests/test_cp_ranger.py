@@ -16,7 +16,7 @@ from i2c_bus import I2CBus
 from machine import Pin, time_pulse_us
 
 from drivers import hcsr04
-from hexapod_host import fakes_cp
+from hexapod_host.stubs import circuitpython as fakes_cp
 from tests.test_leg_ranges import SMALL, Checker, instrumented
 
 NAME = "drivers.cp_hcsr04_pulsein"

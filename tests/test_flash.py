@@ -8,7 +8,9 @@ import subprocess
 
 import pytest
 
-from hexapod_host import FIRMWARE, ROOT, STUBS, cli, flash, mpvm
+from hexapod_host import FIRMWARE, ROOT, STUBS, mpvm
+from hexapod_host.commands import cli
+from hexapod_host.serial import flash
 from tests.test_runner import SETUP
 
 CORE = sorted("hexapod/" + f for f in os.listdir(os.path.join(FIRMWARE, "hexapod")) if f.endswith(".py"))

@@ -16,7 +16,7 @@ for gait in range(len(NAMES)):
 
 @pytest.fixture(scope="module")
 def tables():
-    from hexapod_host.testing import CPythonRuntime
+    from hexapod_host.testing.runtimes import CPythonRuntime
 
     return parse(CPythonRuntime().run(TABLE))
 

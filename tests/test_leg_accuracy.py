@@ -15,7 +15,7 @@ import random
 import pytest
 
 from hexapod.leg import OK, Leg
-from hexapod_host import reference
+from hexapod_host.testing import reference
 
 OPEN = (-18000, 18000, -18000, 18000, -18000, 18000)
 

@@ -6,7 +6,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from hexapod.leg import OK, Leg
-from hexapod_host import reference
+from hexapod_host.testing import reference
 
 OPEN = (-18000, 18000, -18000, 18000, -18000, 18000)
 

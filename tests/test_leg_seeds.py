@@ -10,7 +10,7 @@ import math
 import pytest
 
 from hexapod.leg import DEFAULT_LIMITS, OK, Leg
-from hexapod_host import reference
+from hexapod_host.testing import reference
 from tests.data import seed004_tables
 
 # x, y, z (cm) -> theta1, theta2, gamma (degrees, "Calculation Results" column)

@@ -1,4 +1,4 @@
-"""hexapod_host.link and `hexapod ports` on fake serial ports: board-looking ports first, other
+"""hexapod_host.serial.link and `hexapod ports` on fake serial ports: board-looking ports first, other
 lines skipped, a REPL prompt and a disconnect named."""
 
 import termios
@@ -7,8 +7,9 @@ import types
 import pytest
 import serial
 
-from hexapod_host import cli, link
-from hexapod_host.link import Link, LinkError
+from hexapod_host.commands import cli
+from hexapod_host.serial import link
+from hexapod_host.serial.link import Link, LinkError
 
 
 class FakePort:

@@ -13,7 +13,7 @@ from pca9685_model import PCA9685Model
 from drivers import cp_pca9685
 from drivers.pca9685 import PCA9685, ServoBank
 from hexapod.servo import ServoMap
-from hexapod_host import fakes_busio
+from hexapod_host.stubs import busio as fakes_busio
 
 OSC = {0x40: 25_750_000, 0x41: 25_000_000}  # chip 0x40 runs 3 % fast; both trimmed
 PULSES = [600, 777, 901, 1000, 1111, 1234, 1333, 1499, 1500, 1501, 1618, 1750, 1801, 1999, 2048, 2222, 2345, 2400]

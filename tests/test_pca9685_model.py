@@ -4,7 +4,7 @@ from fractions import Fraction
 
 import pytest
 
-from hexapod_host import fakes_busio
+from hexapod_host.stubs import busio as fakes_busio
 
 PRE = """
 import machine

@@ -19,8 +19,9 @@ import robots.default as d
 from hexapod import geometry
 from hexapod.body import FINE_SHIFT, Body
 from hexapod.leg import OK
-from hexapod_host import cli, mjcf
-from hexapod_host import sim_physics as sp
+from hexapod_host.commands import cli
+from hexapod_host.physics import mjcf
+from hexapod_host.physics import sim as sp
 
 mujoco = mjcf.import_mujoco()
 G, SERVO, PHYSICS = mjcf.robot_physics(d)

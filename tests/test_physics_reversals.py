@@ -9,7 +9,7 @@ import pytest
 
 import robots.default as d
 from hexapod import tick
-from hexapod_host import sim_physics as sp
+from hexapod_host.physics import sim as sp
 
 # forward <-> backward, sideways <-> forward, yaw flips, mixed (0.1 mm/s, cdeg/s), twice over.
 COMMANDS = [(600, 0, 0), (-600, 0, 0), (0, 600, 0), (600, 0, 0), (0, -600, 0), (0, 0, 3000), (0, 0, -3000)]

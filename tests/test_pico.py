@@ -11,8 +11,9 @@ import struct
 import pytest
 
 from hexapod import leg as L
-from hexapod_host import FIRMWARE, pico
-from hexapod_host.testing import CPythonRuntime
+from hexapod_host import FIRMWARE
+from hexapod_host.pico import emulator as pico
+from hexapod_host.testing.runtimes import CPythonRuntime
 
 REASON = pico.missing()
 pytestmark = pytest.mark.skipif(REASON is not None, reason=REASON or "")

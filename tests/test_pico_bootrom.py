@@ -9,7 +9,7 @@ import subprocess
 
 import pytest
 
-from hexapod_host import pico
+from hexapod_host.pico import emulator as pico
 
 NODE_MISSING = None
 try:

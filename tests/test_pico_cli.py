@@ -7,7 +7,7 @@ import sys
 
 import pytest
 
-from hexapod_host import pico
+from hexapod_host.pico import emulator as pico
 
 HEXAPOD = os.path.join(os.path.dirname(sys.executable), "hexapod")
 

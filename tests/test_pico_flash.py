@@ -9,7 +9,9 @@ import time
 
 import pytest
 
-from hexapod_host import cli, pico, pico_loop
+from hexapod_host.commands import cli
+from hexapod_host.pico import emulator as pico
+from hexapod_host.pico import loop as pico_loop
 
 REASON = pico.missing()
 pytestmark = pytest.mark.skipif(REASON is not None, reason=REASON or "")
@@ -65,11 +67,12 @@ def test_hexapod_pico_serial_prints_the_port_and_saves_the_filesystem(tmp_path):
     import subprocess
     import sys
 
-    from hexapod_host import ROOT, flash
+    from hexapod_host import ROOT
+    from hexapod_host.serial import flash
 
     saved = tmp_path / "fs.img"
     env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "host"))
-    cmd = [sys.executable, "-m", "hexapod_host.cli", "pico", "serial", "--save-fs", str(saved)]
+    cmd = [sys.executable, "-m", "hexapod_host", "pico", "serial", "--save-fs", str(saved)]
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
     try:
         port = proc.stdout.readline().strip()

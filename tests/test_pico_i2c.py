@@ -10,7 +10,7 @@ import tempfile
 
 import pytest
 
-from hexapod_host import pico
+from hexapod_host.pico import emulator as pico
 
 REASON = pico.missing()
 pytestmark = pytest.mark.skipif(REASON is not None, reason=REASON or "")

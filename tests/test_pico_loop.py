@@ -6,7 +6,8 @@ import re
 
 import pytest
 
-from hexapod_host import pico, pico_loop
+from hexapod_host.pico import emulator as pico
+from hexapod_host.pico import loop as pico_loop
 
 REASON = pico.missing()
 pytestmark = pytest.mark.skipif(REASON is not None, reason=REASON or "")

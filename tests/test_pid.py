@@ -1,12 +1,12 @@
 """hexapod.pid: seed 000 eq. 14 in integers, step by step against the float form
-(hexapod_host.reference.PidFloat), hand-worked cases, both runtimes, bad gains."""
+(hexapod_host.testing.reference.PidFloat), hand-worked cases, both runtimes, bad gains."""
 
 import random
 
 import pytest
 
 from hexapod import pid
-from hexapod_host.reference import PidFloat
+from hexapod_host.testing.reference import PidFloat
 
 PAPER = (25000, 500, 1000)  # seed 000: Kp = 25, Ki = 0.5, Kd = 1, in milli-units
 

@@ -6,7 +6,8 @@ import os
 
 import pytest
 
-from hexapod_host import cli, mpvm
+from hexapod_host import mpvm
+from hexapod_host.commands import cli
 
 
 def test_plot_gait_writes_pngs(tmp_path, capsys):
@@ -63,7 +64,7 @@ def test_plot_out_must_be_a_directory(tmp_path, capsys):
     ],
 )
 def test_plot_unwritable_out_exits_2_before_drawing(tmp_path, capsys, monkeypatch, out, message):
-    from hexapod_host import cmd_plot
+    from hexapod_host.commands import plot as cmd_plot
 
     (tmp_path / "FILE").write_text("x")
     monkeypatch.setattr(cmd_plot, "record", lambda *a, **k: pytest.fail("drew before checking --out"))
@@ -79,8 +80,8 @@ def test_plot_write_failure_leaves_no_partial_file(tmp_path, monkeypatch):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from hexapod_host import cmd_plot
-    from hexapod_host.cli import UsageError
+    from hexapod_host.commands import plot as cmd_plot
+    from hexapod_host.commands.cli import UsageError
 
     fig, _ = plt.subplots()
 
@@ -97,7 +98,7 @@ def test_plot_write_failure_leaves_no_partial_file(tmp_path, monkeypatch):
 
 @pytest.mark.skipif(mpvm.executable() is None, reason="no MicroPython VM")
 def test_tick_bench_script_runs_allocation_free():
-    from hexapod_host.tick_bench import bench_tick
+    from hexapod_host.bench.tick import bench_tick
 
     result = bench_tick(None, ticks=300, repeats=1)
     assert result["bench"] == "tick" and result["heap"] == "192k"  # the full run fits 160k only in some heap layouts

@@ -9,7 +9,7 @@ import ast
 
 import pytest
 
-from hexapod_host import pico
+from hexapod_host.pico import emulator as pico
 from tests.test_fixmath import LCG
 
 # The reference: hexapod/walk.py's _rescale, half_stance and _outward as they were at c39d877.

@@ -121,7 +121,7 @@ print((boot, back, nack, brownout, sonar, r.distances[0] > 0, r.frames, r.held, 
 
 def test_a_steady_frame_allocates_nothing(mp):
     """Ping + tick + two bursts, through the stub machine and the chip models, in the VM."""
-    from hexapod_host.testing import HEAP_PROBE
+    from hexapod_host.testing.runtimes import HEAP_PROBE
 
     src = (
         SETUP

@@ -4,7 +4,7 @@ import math
 import random
 
 from hexapod.leg import COORD_MAX
-from hexapod_host.testing import HEAP_PROBE
+from hexapod_host.testing.runtimes import HEAP_PROBE
 
 GEOMETRIES = [(300, 450, 620, 0), (300, 850, 1250, 320), (1500, 2500, 2500, 1500), (0, 100, 120, 0)]
 

@@ -14,7 +14,7 @@ import robots.default as d
 from hexapod import geometry, tick
 from hexapod.gait import RIPPLE, TETRAPOD, TRIPOD, WAVE
 from hexapod.walk import WALKING
-from hexapod_host import sim_physics as sp
+from hexapod_host.physics import sim as sp
 
 GUARD = {"planner_share_permille": 400}
 
@@ -204,12 +204,12 @@ def _walker_at(pose=None):
     ],
 )
 def test_cheap_guard_is_never_looser_than_the_exhaustive_one(gait, cycle, lift, pose):
-    # The oracle: every direction and every tick pair solved in full (guard_bench.exhaustive_*).
+    # The oracle: every direction and every tick pair solved in full (hexapod_host.bench.guard.exhaustive_*).
     # Each radius the core's guard returns passes the exhaustive check, and so do a quarter,
     # half and three quarters of it (commands scale down); 3.2 mm more (or the cap) fails it.
     from hexapod import reach
     from hexapod.gait import swing_stance_ticks
-    from hexapod_host import guard_bench as gb
+    from hexapod_host.bench import guard as gb
 
     g, w, caps = _walker_at(pose)
     swing, stance = swing_stance_ticks(gait, cycle, [0, 0])
@@ -339,7 +339,7 @@ def test_bad_stance_out_max_is_named(value):
 def test_bench_guard_counts_and_runs_in_the_vm():
     # `hexapod bench guard`: the guard's IK solves against the exhaustive form's on the host (the
     # same radii), and the same radii from the .mpy build in the MicroPython VM.
-    from hexapod_host import guard_bench
+    from hexapod_host.bench import guard as guard_bench
 
     out = guard_bench.bench_guard()
     assert out["servo_step_cdeg"] == 282 and len(out["rows"]) == 5

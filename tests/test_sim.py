@@ -31,7 +31,7 @@ def ends(line):
 
 
 def test_sim_alone_is_the_default_kind():
-    from hexapod_host import cmd_sim
+    from hexapod_host.commands import sim as cmd_sim
 
     proc = subprocess.run([HEXAPOD, "sim", "--help"], capture_output=True, text=True, timeout=60)
     assert proc.returncode == 0 and cmd_sim.DEFAULT in proc.stdout

@@ -10,7 +10,7 @@ import ast
 
 import pytest
 
-from hexapod_host import pico
+from hexapod_host.pico import emulator as pico
 from tests.test_fixmath import LCG
 
 CASES = (

@@ -57,7 +57,7 @@ def test_table_iii_exact_in_integers(rt):
 
 def test_table_iii_float_form():
     from hexapod.trajectory import combined_step
-    from hexapod_host.reference import track_point as track_point_float
+    from hexapod_host.testing.reference import track_point as track_point_float
 
     step = [0, 0]
     for k, (t, fx, fy, fz) in enumerate(TABLE_III):

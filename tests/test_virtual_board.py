@@ -1,5 +1,5 @@
 """End to end: the firmware loop in the MicroPython VM on a pseudo-terminal (hexapod
-virtual-board), talked to through pyserial (hexapod_host.link, `hexapod send`)."""
+virtual-board), talked to through pyserial (hexapod_host.serial.link, `hexapod send`)."""
 
 import os
 import pty
@@ -11,10 +11,11 @@ import tty
 
 import pytest
 
-from hexapod_host import cli, reference
-from hexapod_host.cmd_console import start_virtual_board
-from hexapod_host.link import Link, LinkError
-from hexapod_host.testing import micropython_missing
+from hexapod_host.commands import cli
+from hexapod_host.commands.console import start_virtual_board
+from hexapod_host.serial.link import Link, LinkError
+from hexapod_host.testing import reference
+from hexapod_host.testing.runtimes import micropython_missing
 
 LEG = dict(coxa=30.0, femur=85.0, tibia=125.0, femur_offset=32.0)
 HALF_COUNT_US = 20000 / 4096 / 2  # the PCA9685 at 50 Hz: 4.88 us a count

@@ -13,7 +13,7 @@ import pytest
 
 import robots.default
 from hexapod import follow, geometry, tick
-from hexapod_host.reference import fk
+from hexapod_host.testing.reference import fk
 
 G = geometry.load(robots.default)
 SETPOINT_MM = 80.0  # the paper's smallest set point, 8 cm

@@ -61,7 +61,7 @@ print((code, parallel, toward, off, f.mode_name, r.robot.mode, r.robot.walker.st
 
 def test_a_steady_wall_follow_frame_allocates_nothing(mp):
     """Ping + follower (PID, walk command) + tick + two bursts, in the VM: 0 heap bytes."""
-    from hexapod_host.testing import HEAP_PROBE
+    from hexapod_host.testing.runtimes import HEAP_PROBE
 
     src = (
         RIG

@@ -7,10 +7,13 @@ import json
 import math
 
 import pytest
-import wall_rig
 
-from hexapod_host import cli, sim_wall, wall_physics, world
-from hexapod_host.room import Body
+from hexapod_host.commands import cli
+from hexapod_host.wall import physics as wall_physics
+from hexapod_host.wall import rig as wall_rig
+from hexapod_host.wall import sim as sim_wall
+from hexapod_host.wall import world
+from hexapod_host.wall.room import Body
 
 SHORT = {  # a 40 cm walk along a straight wall: trials of ~5 s
     "walls": [[0, 0, 100, 0]],

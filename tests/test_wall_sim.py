@@ -8,10 +8,12 @@ import math
 
 import hcsr04_model
 import pytest
-import wall_rig
 
-from hexapod_host import cli, sim_wall, world
-from hexapod_host.room import Body, beam_distance, rigid_2d, segment_distance
+from hexapod_host.commands import cli
+from hexapod_host.wall import rig as wall_rig
+from hexapod_host.wall import sim as sim_wall
+from hexapod_host.wall import world
+from hexapod_host.wall.room import Body, beam_distance, rigid_2d, segment_distance
 
 GOOD = {
     "walls": [[0, 0, 200, 0]],

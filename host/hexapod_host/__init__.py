@@ -11,8 +11,11 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 FIRMWARE = os.path.join(ROOT, "firmware")
 BOARDS = os.path.join(ROOT, "boards")
-STUBS = os.path.join(ROOT, "host", "stubs")
+VM_DIR = os.path.join(ROOT, "host", "hexapod_host", "vm")  # the scripts run inside the MicroPython VM
+# The MicroPython stubs: a folder, not a package, since the firmware imports `machine` by its bare name.
+STUBS = os.path.join(ROOT, "host", "hexapod_host", "stubs", "micropython")
 
+# Bare names, as on the board: firmware/ is its root, boards/ and robots/ sit beside hexapod/ there.
 for _path in (STUBS, FIRMWARE, ROOT):
     if _path not in sys.path:
         sys.path.insert(0, _path)

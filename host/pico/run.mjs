@@ -1,6 +1,6 @@
 #!/usr/bin/env node
 // The hexapod firmware on an emulated Raspberry Pi Pico (rp2040js 1.4.1, MicroPython RPI_PICO).
-// Started by host/hexapod_host/pico.py (`hexapod pico ...`); usable alone:
+// Started by host/hexapod_host/pico/emulator.py (`hexapod pico ...`); usable alone:
 //
 //   node run.mjs --firmware F.uf2|F.bin [--fs IMG] [--devices JSON] [--trace OUT]
 //                [--main SECONDS] [--stats OUT] [--max-emu-s N] FILE.py ...

