@@ -9,7 +9,8 @@ import importlib
 import os
 import re
 
-from hexapod_host import FIRMWARE, ROOT, flash
+from hexapod_host import FIRMWARE, ROOT
+from hexapod_host.serial import flash
 
 # NAME = const(VALUE)  # SOURCE: a hand copy; SOURCE is hexapod.mod.NAME, or an expression of such names.
 COPY = re.compile(r"^(\w+) = const\((.+)\)  # ((?:hexapod|drivers)\.\w+\.\w+.*)$")
