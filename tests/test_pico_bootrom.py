@@ -85,7 +85,6 @@ process.stdout.write(JSON.stringify(out));
 def test_the_header_is_the_datasheets():
     """2.8.2: initial SP and reset vector at 0x0/0x4, 'Mu' 0x01 and the version at 0x10, the three
     16-bit pointers at 0x14/0x16/0x18 (the lookup a Thumb function address), all inside the ROM."""
-    pico.rp2040js()
     r = node_run(PRELUDE + "process.stdout.write(JSON.stringify(Array.from(new Uint8Array(ROM.bootrom.buffer))));")
     data = bytes(r)
     assert len(data) == 16 * 1024

@@ -2,13 +2,13 @@
 
 machine.I2C's writeto waits while every byte crosses the bus (38 bytes of a PCA9685 frame: 0.86 ms
 at 400 kHz). Here the bytes go into the I2C block's 16-entry TX FIFO (IC_DATA_CMD, STOP on the last
-one; RP2040 datasheet 4.3) and a machine.Timer callback (hard where the port has it) tops the FIFO up until every queued
-write is out, so the CPU pays only for the copies and the callbacks. The RP2040 holds SCL low when
-its FIFO runs dry before a STOP (IC_EMPTYFIFO_HOLD_MASTER_EN = 1): a late refill stretches the
-bus, never cuts a write short. machine.I2C still sets up the pins and the baud rate; its other
-transactions must wait for idle() first (drivers.pca9685 does). One write per slot (one slot per
-chip) is in flight; slots go out lowest first. A NACK (TX_ABRT) is counted and the write sent
-again from its first byte, up to `tries` more times; the outcome (RETRIED or FAILED, the
+one; RP2040 datasheet 4.3) and a machine.Timer callback (hard where the port has it) tops the FIFO
+up until every queued write is out, so the CPU pays only for the copies and the callbacks. The
+RP2040 holds SCL low when its FIFO runs dry before a STOP (IC_EMPTYFIFO_HOLD_MASTER_EN = 1): a late
+refill stretches the bus, never cuts a write short. machine.I2C still sets up the pins and the baud
+rate; its other transactions must wait for idle() first (drivers.pca9685 does). One write per slot
+(one slot per chip) is in flight; slots go out lowest first. A NACK (TX_ABRT) is counted and the
+write sent again from its first byte, up to `tries` more times; the outcome (RETRIED or FAILED, the
 driver's bits) is collected with the NEXT write of that slot: one frame later.
 
 Emulated (rp2040js 1.4.1) only: never run on silicon, whose timer IRQ latency is not known here.
