@@ -25,6 +25,7 @@ the same plain types, and a value that is not plain fails on CPython too.
 
 import ast
 import contextlib
+import copy
 import importlib
 import io
 import os
@@ -71,6 +72,13 @@ def heap_bytes(fn, arg):
 
 class CPythonRuntime:
     name = "cpython"
+    heapsize = None  # the VM heap call() runs with (CPython has none)
+
+    def with_heapsize(self, heapsize):
+        """This runtime with call() running in a VM heap of heapsize ("4m"); CPython ignores it."""
+        other = copy.copy(self)
+        other.heapsize = heapsize
+        return other
 
     def run(self, source, *, stdin="", heapsize=None):
         """Execute source in a fresh namespace here; return its stdout."""
@@ -96,6 +104,7 @@ class CPythonRuntime:
 
 class MicroPythonRuntime(CPythonRuntime):
     name = "micropython"
+    heapsize = "256k"
 
     def run(self, source, *, stdin="", heapsize="256k"):
         return mpvm.run(source, stdin=stdin, heapsize=heapsize, path=(TESTS,))
@@ -103,7 +112,8 @@ class MicroPythonRuntime(CPythonRuntime):
     def call(self, target, *args, **kwargs):
         module, function = target.split(":")
         # print streams the value's repr (no copy of it on the heap); the list keeps a string quoted.
-        return self.value("import %s as _m\nprint([_m.%s(*%r, **%r)])" % (module, function, args, kwargs))[0]
+        source = "import %s as _m\nprint([_m.%s(*%r, **%r)])" % (module, function, args, kwargs)
+        return self.value(source, heapsize=self.heapsize)[0]
 
 
 RUNTIMES = {"cpython": CPythonRuntime, "micropython": MicroPythonRuntime}
@@ -140,13 +150,22 @@ def mp():
 class BothRuntimes:
     """One source, or one scenario, on CPython and in the MicroPython VM: the pair of results."""
 
+    heapsize = MicroPythonRuntime.heapsize
+
     def __call__(self, source, **kw):
         """(cpython_stdout, micropython_stdout) of source (stdin=, heapsize= as for run)."""
         return CPythonRuntime().run(source, **kw), MicroPythonRuntime().run(source, **kw)
 
+    def with_heapsize(self, heapsize):
+        """call() with the VM's heap at heapsize ("4m")."""
+        other = BothRuntimes()
+        other.heapsize = heapsize
+        return other
+
     def call(self, target, *args, **kwargs):
         """(cpython_value, micropython_value) of the scenario "module:function"."""
-        return CPythonRuntime().call(target, *args, **kwargs), MicroPythonRuntime().call(target, *args, **kwargs)
+        vm = MicroPythonRuntime().with_heapsize(self.heapsize)
+        return CPythonRuntime().call(target, *args, **kwargs), vm.call(target, *args, **kwargs)
 
 
 @pytest.fixture
