@@ -1,0 +1,150 @@
+"""Wall following through the whole loop on the stub machine: the Pico board file, PCA9685 and HC-SR04
+models, the virtual clock, main.build's runner and its follower."""
+
+import _stub_clock as clock
+import main
+import stub_board
+
+from hexapod import board as boards
+
+
+class Loop:
+    """The board's models (both PCA9685s plugged, the five sonars at 300 + 100 k mm) and, after
+    build(), main.build's runner on the virtual clock."""
+
+    def __init__(self):
+        self.board = stub_board.reset("pico")
+        self.table = boards.servo_table(self.board)
+        self.bus, self.chips = stub_board.pca9685_models(self.board, attach=False)
+        self.sonar = stub_board.sonar_models(self.board, [3000 + 1000 * k for k in range(5)])
+        self.bus.attach(self.chips[0x40])
+        self.bus.attach(self.chips[0x41])
+        self.r = None
+
+    def build(self):
+        self.r = main.build(clock=clock)
+        return self.r
+
+    def unsafe(self):
+        """Servos whose output is neither off nor inside min..max (give or take half a count)."""
+        bad = []
+        for k in range(18):
+            address, ch, smap = self.table[k]
+            m = self.chips[address]
+            ns = m.pulse_ns(ch)
+            half = (m.prescale() + 1) * 500000000 // m.clock_hz() + 1
+            if ns and not smap.min_us * 1000 - half <= ns <= smap.max_us * 1000 + half:
+                bad.append((k, ns))
+        return bad
+
+    def frames(self, n):
+        """n frames of the runner; the unsafe outputs seen."""
+        r = self.r
+        worst = []
+        for _ in range(n):
+            r.step()
+            worst += self.unsafe()
+            r.wait()
+        return worst
+
+    def at(self, *distances):
+        """The five sonars' distances (0.1 mm): front, left front, left rear, right front, right rear."""
+        for k in range(5):
+            self.sonar[k].set_distance(distances[k])
+
+    def state(self):
+        f = self.r.follower
+        return (f.mode_name, f.used, f.distance, f.angle, f.error, f.output, f.vx, f.yaw, self.r.robot.mode)
+
+
+def _standing():
+    loop = Loop()
+    loop.build().robot.stand_up()
+    loop.frames(150)
+    return loop
+
+
+def follow_left():
+    """(follow's code, state parallel at 80 mm, state nose in at 73 mm, follow_off's code, follower mode,
+    robot mode, walker state, unsafe outputs after) through the loop."""
+    loop = _standing()
+    r = loop.r
+    loop.at(9000, 800, 800, 9000, 9000)
+    code = r.follow("left", 800)
+    loop.frames(30)
+    parallel = loop.state()
+    loop.at(9000, 700, 760, 9000, 9000)  # 7 cm at the front sensor, nose toward the wall
+    loop.frames(30)
+    toward = loop.state()
+    off = r.follow_off()
+    bad = loop.frames(100)
+    return (code, parallel, toward, off, r.follower.mode_name, r.robot.mode, r.robot.walker.state, bad)
+
+
+def follow_heap():
+    """MicroPython only (gc.mem_alloc): (heap bytes of 300 following frames run twice, PID updates,
+    follower mode, robot mode, frames held, the turn changed)."""
+    import gc
+
+    loop = _standing()
+    r = loop.r
+    f = r.follower
+    loop.at(9000, 780, 800, 9000, 9000)  # 2 mm close, nose 0.6 deg in: the integral moves every update
+    r.follow("left", 800)
+    loop.frames(100)
+
+    def run(n):
+        for _ in range(n):
+            r.step()
+            r.wait()
+
+    before = f.updates
+    sent = f.yaw
+    run(300)
+    gc.collect()
+    gc.disable()
+    a = gc.mem_alloc()
+    run(300)
+    heap = gc.mem_alloc() - a
+    gc.enable()
+    return (heap, f.updates - before, f.mode_name, r.robot.mode, r.held, sent != f.yaw)
+
+
+def main_from_board_setting():
+    """main.main for 300 frames with the board's follow setting (left, 120 mm, 60 mm/s), the left wall at
+    115 mm: (mode, side, setpoint, speed, updated, distance, turning right, robot mode)."""
+    import boards.pico
+
+    loop = Loop()
+    loop.at(9000, 1150, 1150, 9000, 9000)
+    boards.pico.BOARD["follow"] = {"side": "left", "setpoint": 1200, "speed": 600}
+    try:
+        r = main.main(frames=300, clock=clock)
+    finally:
+        boards.pico.BOARD["follow"] = None
+    f = r.follower
+    return (f.mode_name, f.side, f.setpoint, f.speed, f.updates > 10, f.distance, f.yaw < 0, r.robot.mode)
+
+
+def follow_refusals():
+    """follow's codes relaxed and standing up, the first word of each bad call's ValueError, (mode,
+    robot mode, requested speed) after, follow's code standing, (mode, robot mode) then."""
+    loop = Loop()
+    loop.sonar[0].set_distance(9000)  # nothing ahead
+    r = loop.build()
+    out = [r.follow("left", 800)]  # relaxed
+    r.robot.stand_up()
+    loop.frames(2)
+    out.append(r.follow("right", 800))  # standing up
+    for args in (("middle", 800), ("left", 0), ("left", 800, 99999), ("left", 800, None, "wave")):
+        try:
+            r.follow(*args)
+            out.append("accepted")
+        except ValueError as e:
+            out.append(str(e).split(":")[0])
+    loop.frames(150)
+    out.append((r.follower.mode_name, r.robot.mode, r.robot.walker.req_vx))
+    out.append(r.follow("right", 800))
+    loop.frames(10)
+    out.append((r.follower.mode_name, r.robot.mode))
+    return out
