@@ -1,4 +1,6 @@
-"""Seed 003's swing trajectory (eq. 12-14): Table III exactly, in both runtimes, and the gait's swing."""
+"""Seed 003's swing trajectory (eq. 12-14): Table III exactly, in both runtimes, and the gait's swing.
+
+The firmware side is tests/scenarios/trajectory.py."""
 
 import math
 
@@ -27,25 +29,9 @@ TABLE_III = [
     (0, 0, 0, 2),
 ]
 
-COMBINED = """
-from hexapod.trajectory import FINE_BITS, combined_point, combined_step, sin90_fine
-rows = []
-buf = [0, 0, 0]
-step = [0, 0]
-for k in range(21):
-    combined_step(k, 5, step)
-    t = step[0]
-    # x = z = 2 cm at 1e-6 cm units: the table's sixth decimal is the last digit here.
-    combined_point(k, 5, 2000000, 0, 2000000, buf, sin90_fine, 1 << FINE_BITS)
-    fine = list(buf)
-    combined_point(k, 5, 200, 0, 200, buf)  # the tick's Q15 sine, at 0.1 mm
-    rows.append([t] + fine + list(buf))
-print(rows)
-"""
-
 
 def test_table_iii_exact_in_integers(rt):
-    rows = rt.value(COMBINED)
+    rows = rt.call("scenarios.trajectory:table_iii", 21, 5)
     assert len(rows) == len(TABLE_III)
     for row, (t, fx, fy, fz) in zip(rows, TABLE_III, strict=True):
         assert row[0] == t
@@ -69,20 +55,8 @@ def test_table_iii_float_form():
 
 def test_heading_form_splits_the_step_like_the_paper(rt):
     # Seed 003: x = L cos(theta), y = L sin(theta); eq. 12-13 then scale both the same way.
-    rows = rt.value(
-        """
-from hexapod.fixmath import cos, sin, mul_q15
-from hexapod.trajectory import track_point
-out = [0, 0, 0]
-rows = []
-for theta in (0, 1500, 4500, 9000, -3000, 18000):
-    x = mul_q15(400, cos(theta))
-    y = mul_q15(400, sin(theta))
-    track_point(5, 5, x, y, 300, out)
-    rows.append([theta, x, y] + list(out))
-print(rows)
-"""
-    )
+    rows = rt.call("scenarios.trajectory:heading", [0, 1500, 4500, 9000, -3000, 18000], 400, 300)
+    assert len(rows) == 6
     for theta, x, y, fx, fy, fz in rows:
         assert abs(x - 400 * math.cos(math.radians(theta / 100))) <= 1
         assert abs(y - 400 * math.sin(math.radians(theta / 100))) <= 1
@@ -90,31 +64,15 @@ print(rows)
 
 
 def test_fine_sine_against_math(rt):
-    got = rt.value(
-        """
-from hexapod.trajectory import sin90_fine
-print([sin90_fine(t, s) for s in (1, 3, 7, 90, 1000) for t in range(-s, s + 1, max(1, s // 7))])
-"""
-    )
-    want = [
-        round(math.sin(math.radians(t * 90 / s)) * 2**40)
-        for s in (1, 3, 7, 90, 1000)
-        for t in range(-s, s + 1, max(1, s // 7))
-    ]
+    cases = [(t, s) for s in (1, 3, 7, 90, 1000) for t in range(-s, s + 1, max(1, s // 7))]
+    got = rt.call("scenarios.trajectory:fine_sines", cases)
+    want = [round(math.sin(math.radians(t * 90 / s)) * 2**40) for t, s in cases]
     assert max(abs(a - b) for a, b in zip(got, want, strict=True)) <= 1
 
 
 def test_swing_shape(rt):
-    rows = rt.value(
-        """
-from hexapod.trajectory import swing_shape
-out = [0, 0]
-rows = []
-for w in (4, 12, 25, 50):
-    rows.append([list(swing_shape(u, w, out)) for u in range(w + 1)])
-print(rows)
-"""
-    )
+    rows = rt.call("scenarios.trajectory:shapes", [4, 12, 25, 50])
+    assert [len(shape) for shape in rows] == [5, 13, 26, 51]
     for shape in rows:
         w = len(shape) - 1
         assert shape[0] == [0, 0] and shape[-1] == [32768, 0]
@@ -131,13 +89,8 @@ print(rows)
 
 
 def test_swing_stroke(rt):
-    rows = rt.value(
-        """
-from hexapod.trajectory import swing_stroke
-out = [0, 0]
-print([[list(swing_stroke(u, w, out)) for u in range(w + 1)] for w in (4, 8, 25, 50, 208)])
-"""
-    )
+    rows = rt.call("scenarios.trajectory:strokes", [4, 8, 25, 50, 208])
+    assert [len(shape) for shape in rows] == [5, 9, 26, 51, 209]
     for shape in rows:
         w = len(shape) - 1
         for u, (stroke, carry) in enumerate(shape):
