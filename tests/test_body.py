@@ -1,4 +1,6 @@
-"""Body pose and the body-frame -> leg-frame transform, against a float reference."""
+"""Body pose and the body-frame -> leg-frame transform, against a float reference.
+
+The firmware side is tests/scenarios/body.py."""
 
 import math
 
@@ -15,23 +17,7 @@ POSES = [
     (-400, 400, 400, -1500, 1500, -1500, -2000, 2000, 2000),
 ]
 
-TRANSFORM = """
-import robots.default as d
-from hexapod import geometry
-from hexapod.body import Body
-g = geometry.load(d)
-b = Body(g)
-out = [0, 0, 0]
-rows = []
-for pose in POSES:
-    b.set_target(list(pose))
-    b.jump()
-    for i in range(6):
-        for foot in ((2000, -1500, -800), (-1700, 1900, -600), (0, 2300, -1000)):
-            b.to_leg(i, foot[0] << 4, foot[1] << 4, foot[2] << 4, out, 0)
-            rows.append(list(out))
-print(rows)
-"""
+FEET = ((2000, -1500, -800), (-1700, 1900, -600), (0, 2300, -1000))  # body frame, 0.1 mm
 
 
 def reference(geometry, pose, i, foot):
@@ -53,12 +39,13 @@ def test_transform_matches_float_reference(rt):
     from hexapod import geometry
 
     g = geometry.load(d)
-    rows = rt.value("POSES = %r\n%s" % (POSES, TRANSFORM))
+    rows = rt.call("scenarios.body:transform", POSES, FEET)
+    assert len(rows) == len(POSES) * 6 * len(FEET)
     k = 0
     worst = 0
     for pose in POSES:
         for i in range(6):
-            for foot in ((2000, -1500, -800), (-1700, 1900, -600), (0, 2300, -1000)):
+            for foot in FEET:
                 want = reference(g, pose, i, foot)
                 worst = max(worst, *(abs(rows[k][j] - want[j]) for j in range(3)))
                 k += 1
@@ -67,25 +54,8 @@ def test_transform_matches_float_reference(rt):
 
 def test_pose_signs(rt):
     # Roll lowers the right side: a right foot ends up relatively higher (z up) in the body frame.
-    got = rt.value(
-        """
-import robots.default as d
-from hexapod import geometry
-from hexapod.body import Body
-g = geometry.load(d)
-b = Body(g)
-out = [0, 0, 0]
-res = []
-for pose in ([0] * 9, [0, 0, 0, 1000, 0, 0, 0, 0, 0], [0, 0, 0, 0, 1000, 0, 0, 0, 0], [0, 0, 100, 0, 0, 0, 0, 0, 0]):
-    b.set_target(pose)
-    b.jump()
-    b.to_leg(1, 0, -2075 << 4, -800 << 4, out, 0)  # right middle foot
-    right = out[2]
-    b.to_leg(0, 1800 << 4, -1700 << 4, -800 << 4, out, 0)  # right front foot
-    res.append([right, out[2]])
-print(res)
-"""
-    )
+    poses = [[0] * 9, [0, 0, 0, 1000, 0, 0, 0, 0, 0], [0, 0, 0, 0, 1000, 0, 0, 0, 0], [0, 0, 100, 0, 0, 0, 0, 0, 0]]
+    got = rt.call("scenarios.body:pose_signs", poses)
     level, rolled, pitched, raised = got
     assert level == [-800, -800]
     assert rolled[0] > -800  # right side down: the right foot is higher relative to the body
@@ -94,26 +64,7 @@ print(res)
 
 
 def test_slew_is_bounded_per_tick(rt):
-    steps = rt.value(
-        """
-import robots.default as d
-from hexapod import geometry
-from hexapod.body import Body, POSE_STEP, ANGLE_STEP
-b = Body(geometry.load(d))
-b.set_target([400, -400, 300, 1500, -1500, 1000, 2000, -2000, 500])
-prev = list(b.pose)
-worst = [0, 0]
-n = 0
-while b.slew():
-    n += 1
-    for k in range(9):
-        d = abs(b.pose[k] - prev[k])
-        j = 1 if 3 <= k < 6 else 0
-        worst[j] = max(worst[j], d)
-    prev = list(b.pose)
-print([n, worst, POSE_STEP, ANGLE_STEP, b.settled(), list(b.pose)])
-"""
-    )
+    steps = rt.call("scenarios.body:slew", [400, -400, 300, 1500, -1500, 1000, 2000, -2000, 500])
     n, worst, pose_step, angle_step, settled, pose = steps
     assert settled and pose == [400, -400, 300, 1500, -1500, 1000, 2000, -2000, 500]
     assert worst == [pose_step, angle_step]
