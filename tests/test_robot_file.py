@@ -1,4 +1,6 @@
-"""Robot build files (robots/*.py): the default loads, bad ones fail with a clear ValueError."""
+"""Robot build files (robots/*.py): the default loads, bad ones fail with a clear ValueError.
+
+The both-runtime side is tests/scenarios/robot_file.py."""
 
 import glob
 import os
@@ -18,16 +20,7 @@ def data(**changes):
 
 
 def test_default_robot_loads_in_both_runtimes(rt):
-    got = rt.value(
-        """
-import robots.default as d
-from hexapod import geometry
-g = geometry.load(d)
-xy = [0, 0]
-feet = [list(g.neutral_xy(i, xy)) for i in range(6)]
-print([g.name, g.legs[0].coxa, g.legs[0].femur, g.legs[0].tibia, g.legs[0].femur_offset, feet, g.mount_angle])
-"""
-    )
+    got = rt.call("scenarios.robot_file:default_robot")
     name, coxa, femur, tibia, offset, feet, angles = got
     assert (name, coxa, femur, tibia, offset) == ("default", 300, 850, 1250, 320)  # seed 004's leg
     assert angles == [-4500, -9000, -13500, 13500, 9000, 4500]
@@ -155,22 +148,8 @@ def test_missing_field_is_named():
 
 
 def test_bad_robot_refused_in_the_vm_too(rt):
-    out = rt.run(
-        """
-import robots.default as d
-from hexapod import geometry
-fields = {}
-for k in dir(d):
-    if k.isupper():
-        fields[k] = getattr(d, k)
-fields["SIT_HEIGHT"] = 9000
-try:
-    geometry.from_data("vm", fields)
-except ValueError as e:
-    print(e)
-"""
-    )
-    assert out.strip() == "robot 'vm': SIT_HEIGHT: 9000 is outside the allowed 0..599"
+    out = rt.call("scenarios.robot_file:refused", "vm", SIT_HEIGHT=9000)
+    assert out == "robot 'vm': SIT_HEIGHT: 9000 is outside the allowed 0..599"
 
 
 def test_mpy_cross_compiles_robots_and_motion_core(tmp_path):
