@@ -163,26 +163,9 @@ def test_defaults_are_circuitpythons_modules(monkeypatch):
     assert clock.ticks_diff(clock.ticks_ms(), t) == 5 and vclock.now_us() == 5007
 
 
-VM_SRC = """
-import _stub_clock as v
-from drivers import cp_clock
-
-v.reset(0)
-START = (1 << 29) - 65000
-
-
-def sup():
-    return (v.now_us() // 1000 + START) & ((1 << 29) - 1)
-
-
-c = cp_clock.Clock(ticks_ms=sup, sleep=v.sleep, delay_us=v.sleep_us, monotonic_ns=v.monotonic_ns)
-"""
-
-
 def test_same_ticks_in_both_runtimes(rt):
-    loop = "out = []\nfor step in %r:\n    v.advance_us(step * 1000)\n    out.append((c.ticks_ms(), c.ticks_us()))\n"
-    src = VM_SRC + loop % (MS_STEPS * 3,) + "print(out)\n"
-    got = rt.value(src)
+    # tests/scenarios/cp_clock.py: a supervisor.ticks_ms starting 65 s before its 2**29 ms wrap
+    got = rt.call("scenarios.cp_clock:ticks", list(MS_STEPS * 3))
     start = SUPERVISOR_PERIOD_MS - 65000
     elapsed, expected = 0, []
     for step in MS_STEPS * 3:
@@ -192,25 +175,4 @@ def test_same_ticks_in_both_runtimes(rt):
 
 
 def test_a_frames_clock_reads_allocate_nothing(mp):
-    from hexapod_host.testing.runtimes import HEAP_PROBE
-
-    src = (
-        VM_SRC
-        + HEAP_PROBE
-        + """
-def frames(n):
-    t = c.ticks_ms()
-    for _ in range(n):
-        v.advance_us(20000)
-        now = c.ticks_ms()
-        c.ticks_diff(now, t)
-        c.ticks_add(now, 20)
-        c.ticks_us()
-        c.sleep_us(10)
-        t = now
-
-
-print(heap_bytes(frames, 500))
-"""
-    )
-    assert mp.value(src) == 0
+    assert mp.call("scenarios.cp_clock:frames_heap", 500) == 0
