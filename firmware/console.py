@@ -12,7 +12,7 @@ SerialReader (CircuitPython: supervisor.runtime.serial_bytes_available), BufferR
 
 from calstore import TRIM_MAX, Store
 from micropython import const
-from runner import counters
+from runner import BOOT_WORDS, counters
 
 from drivers import hcsr04
 from hexapod import follow, gait, tick
@@ -349,7 +349,7 @@ class Console:
         on = f.mode != follow.OFF
         return (
             "ok %s faults %d mode %s gait %s "
-            "walk_ms %d wall %s wall_mode %s wall_d %s wall_angle %s wall_error %s wall_out %s wall_faults %d cal %s"
+            "walk_ms %d wall %s wall_mode %s wall_d %s wall_angle %s wall_error %s wall_out %s wall_faults %d cal %s boot %s"
             % (
                 counters(r),
                 r.robot.faults,
@@ -364,6 +364,7 @@ class Console:
                 format_fixed(f.output if on else 0, 2),
                 f.fault_total if on else 0,
                 self.cal_source,
+                BOOT_WORDS[r.boot],
             )
         )
 

@@ -57,9 +57,12 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=time, max_range=10000, sampl
     return r
 
 
-def main(frames=-1, clock=time, board_name=BOARD, robot_name=ROBOT, reader=None):
-    """Build, stand up (then follow the board's "follow" wall, if set), run frames (for ever
-    when -1) with a status line every 5 s; returns the Runner. With a console reader (the
+def main(frames=-1, clock=time, board_name=BOARD, robot_name=ROBOT, reader=None, boot=None, calibrated=None):
+    """Build, power up (runner.power_up: relaxed, or with the board file's "boot": "stand" and a
+    valid calibration file stand up, then follow the board's "follow" wall, if set), run frames
+    (for ever when -1) with a status line every 5 s; returns the Runner. boot ("relaxed",
+    "stand") overrides the board file's; calibrated (True/False) says whether the servos are
+    calibrated where no calibration file is read (host runs; None: the file, loaded by the console). With a console reader (the
     board entry: console.PollReader on sys.stdin) the console and the calibration file take
     over from the status line (docs/console.md); Ctrl-C relaxes the servos (or holds them,
     the board file's on_exit) and leaves `runner` for the REPL."""
@@ -78,9 +81,9 @@ def main(frames=-1, clock=time, board_name=BOARD, robot_name=ROBOT, reader=None)
             walk_timeout_ms=r.board.get("walk_timeout_ms") or console.WALK_TIMEOUT_MS,
             write=sys.stdout.write,
         )
-    r.robot.stand_up()
-    if r.board.get("follow"):
-        r.follow_when_standing(r.board["follow"])
+    if calibrated is None:  # the board entry: the calibration file decides
+        calibrated = r.console is not None and r.console.cal_source == "file"
+    r.power_up(r.board if boot is None else dict(r.board, boot=boot), calibrated)
     if reader is not None and r.board.get("watchdog_ms"):
         from machine import WDT
 

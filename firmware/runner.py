@@ -22,6 +22,19 @@ FRAME_MS = 20
 FRAME_US = 20000
 SPIN_US = 1500  # a frame's last stretch waits in sleep_us: sleep_ms may end up to 1 ms late
 
+# What power_up did, as the console's `status` shows it (boot WORD).
+BOOT_NOT_YET = 0
+BOOT_STOOD = 1  # the board file's "boot": "stand", with a valid calibration file
+BOOT_RELAXED = 2  # the board file's "boot": "relaxed" (the default)
+BOOT_UNCALIBRATED = 3  # no valid calibration file: relaxed, whatever the board file's "boot"
+BOOT_WORDS = ("none", "stood", "relaxed", "relaxed_uncalibrated")
+BOOT_NOTICES = (
+    "",
+    "boot: standing up (the board file's boot setting is stand, the servos are calibrated)",
+    "boot: relaxed, no pulse until `stand` (the board file's boot setting)",
+    "boot: relaxed, no pulse until `stand`: no valid calibration file (calibrate, `save`: docs/jog.md)",
+)
+
 
 class Runner:
     """Robot + servo bank + sonars -> a loop of 20 ms frames; step() runs one."""
@@ -46,6 +59,7 @@ class Runner:
         self._start = None  # a follow setting waiting for the robot to stand
         self.console = None  # console.Console: polled once a frame when set (console.start)
         self.watchdog = None  # machine.WDT (the board file's watchdog_ms): fed once a frame
+        self.boot = BOOT_NOT_YET  # what power_up did (BOOT_WORDS)
 
     def follow(self, side, setpoint, speed=None, form="yaw"):
         """Follow the `side` ("left" or "right") wall at `setpoint` (0.1 mm, the side sonar's
@@ -61,6 +75,23 @@ class Runner:
         """Stop following: the robot finishes its steps and sets its feet down. Returns 0."""
         self._start = None
         return self.follower.off()
+
+    def power_up(self, board, calibrated, out=print):
+        """What a board does at power-up (main.py, code.py): stand, and then follow the board's
+        "follow" wall, only when the board file's "boot" is "stand" and calibrated (a calibration
+        file that loaded); else stay relaxed, no pulse sent until a `stand` (a "follow" setting then
+        waits for it). Prints one notice line with out; keeps the outcome in self.boot."""
+        if board.get("follow"):
+            self.follow_when_standing(board["follow"])
+        if not calibrated:
+            self.boot = BOOT_UNCALIBRATED
+        elif board.get("boot", "relaxed") != "stand":
+            self.boot = BOOT_RELAXED
+        else:
+            self.boot = BOOT_STOOD
+            self.robot.stand_up()
+        out(BOOT_NOTICES[self.boot])
+        return self.boot
 
     def follow_when_standing(self, setting):
         """Start following once the robot stands (main.py's start-up): setting is a board

@@ -37,11 +37,12 @@ def test_console_runs_in_code_py_and_saves_through_os(rig, monkeypatch, tmp_path
     monkeypatch.setattr(sys, "stdin", stdin)
     monkeypatch.chdir(tmp_path)
     stdin.feed("get 2\r\nfoot 2 130 0 -80\r\ntrim 2 femur 15\r\nsave\r\n\xff\r\n")
-    r = g.code.main(frames=200, clock=g.clock, reader=console.SerialReader())
+    r = g.code.main(frames=200, clock=g.clock, reader=console.SerialReader(), boot="stand", calibrated=True)
     out = capsys.readouterr().out.splitlines()
-    assert out[0] == "cal: no hexapod_cal.txt; the board file's calibration is in use"
+    assert out.pop(0) == "cal: no hexapod_cal.txt; the board file's calibration is in use"
+    assert out[0] == "boot: standing up (the board file's boot setting is stand, the servos are calibrated)"
     assert out[1].startswith("ok leg 2 angles 0.00 ") and " pulses 1500 " in out[1]  # standing up
-    # main() stood the robot up at boot: a jog is refused while the posture move runs
+    # main() stood the robot up at boot (boot stand, calibrated): a jog is refused while the posture move runs
     assert out[2] == "err foot: refused: a posture or pose move is still running"
     assert out[3].startswith("err trim: refused: a posture")
     assert out[4].startswith("ok saved hexapod_cal.txt crc ")

@@ -33,7 +33,7 @@ import boards.pico
 boards.pico.BOARD["on_exit"] = %r
 boards.pico.BOARD["watchdog_ms"] = 4000
 try:
-    r2 = main.main(clock=clock, reader=CtrlC(400))
+    r2 = main.main(clock=clock, reader=CtrlC(400), boot="stand", calibrated=True)
 finally:
     del boards.pico.BOARD["on_exit"]
     del boards.pico.BOARD["watchdog_ms"]
@@ -43,9 +43,11 @@ print(repr((r2 is main.runner, r2.frames, channels(), r2.robot.mode, r2.watchdog
     )
     out = rt.run(src, heapsize="4m").splitlines()
     assert out[0] == "cal: no hexapod_cal.txt; the board file's calibration is in use"
-    assert out[1].startswith("ok leg 1 angles ")  # the console answered while the loop ran
-    assert out[2] == "stopped: servos %s; runner.run() resumes" % ("relaxed" if on_exit == "relax" else "held")
-    same, frames, widths, mode, expired, timeout = ast.literal_eval(out[3])
+    # boot="stand", calibrated=True: the host run vouches for the calibration the file would give
+    assert out[1] == "boot: standing up (the board file's boot setting is stand, the servos are calibrated)"
+    assert out[2].startswith("ok leg 1 angles ")  # the console answered while the loop ran
+    assert out[3] == "stopped: servos %s; runner.run() resumes" % ("relaxed" if on_exit == "relax" else "held")
+    same, frames, widths, mode, expired, timeout = ast.literal_eval(out[4])
     assert same and frames > 5 and not expired and timeout == 4000
     if on_exit == "relax":
         assert widths == [0] * 18 and mode == 0

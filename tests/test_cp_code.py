@@ -110,8 +110,9 @@ def test_stands_walks_and_measures(rig):
 
 def test_main_prints_a_status_line_every_5_s(rig, capsys):
     g = rig()
-    r = g.code.main(frames=500, clock=g.clock)
-    lines = capsys.readouterr().out.splitlines()
+    r = g.code.main(frames=500, clock=g.clock, boot="stand", calibrated=True)
+    notice, *lines = capsys.readouterr().out.splitlines()
+    assert notice == "boot: standing up (the board file's boot setting is stand, the servos are calibrated)"
     assert [line.split()[:2] for line in lines] == [["frames", "250"], ["frames", "500"]]
     assert lines[-1] == runner.status_line(r) and "sonar_faults 0" in lines[-1] and "held 0" in lines[-1]
     assert "dist [%d, " % r.distances[0] in lines[-1]
@@ -122,7 +123,7 @@ def test_main_starts_following_from_the_board_setting(rig, monkeypatch):
     g = rig()
     for k, d in enumerate((9000, 9000, 9000, 900, 900)):
         g.sonar[k].set_distance(d)
-    r = g.code.main(frames=300, clock=g.clock)
+    r = g.code.main(frames=300, clock=g.clock, boot="stand", calibrated=True)
     f = r.follower
     assert (f.mode_name, f.side, f.setpoint, f.used, f.distance, f.yaw) == (
         "following",

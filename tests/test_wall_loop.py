@@ -32,7 +32,8 @@ def test_main_starts_following_from_the_board_setting(both_runtimes):
     src = "from scenarios.wall_loop import main_from_board_setting\nprint(main_from_board_setting())\n"
     cp, mp = both_runtimes(src, heapsize="4m")
     assert cp == mp
-    lines = cp.strip().splitlines()
+    notice, *lines = cp.strip().splitlines()
+    assert notice == "boot: standing up (the board file's boot setting is stand, the servos are calibrated)"
     assert lines[0].startswith("frames 250 ") and " wall left following d 115" in lines[0]
     # 5 mm inside the 12 cm set point: it turns away from the wall (right, clockwise).
     assert eval(lines[-1]) == ("following", "left", 1200, 600, True, 1150, True, 4)  # noqa: S307

@@ -14,8 +14,11 @@ RUNTIMES = ("micropython", "circuitpython")
 LEGS = 6
 
 _TOP = ("name", "runtime", "i2c", "pca9685", "servos", "sensors")
-_OPTIONAL = ("notes", "follow", "watchdog_ms", "on_exit", "walk_timeout_ms")
+_OPTIONAL = ("notes", "follow", "watchdog_ms", "on_exit", "walk_timeout_ms", "boot")
 ON_EXIT = ("relax", "hold")  # what leaving the loop (Ctrl-C) does to the servos
+# What power-up does: stay relaxed (no pulse until `stand`), or stand, and only with a valid
+# calibration file (runner.power_up).
+BOOT = ("relaxed", "stand")
 _FOLLOW = ("side", "setpoint")
 _FOLLOW_OPTIONAL = ("speed", "form")
 _I2C = ("id", "sda", "scl", "freq")
@@ -132,11 +135,14 @@ def _console(ck, board):
     """The console's settings (docs/console.md): watchdog_ms None or 4000..8000 (machine.WDT fed
     every frame; the rp2 allows at most 8388 ms; a gait, pose or height change runs the servo
     guard, 1.5-1.8 s without a frame on an emulated Pico, so less would reset the board),
-    on_exit "relax"/"hold", walk_timeout_ms 200..10000 (a console walk's life without renewal)."""
+    on_exit "relax"/"hold", boot "relaxed"/"stand" (runner.power_up), walk_timeout_ms 200..10000
+    (a console walk's life without renewal)."""
     if board.get("watchdog_ms") is not None:
         ck.int_in("watchdog_ms", board["watchdog_ms"], 4000, 8000, " ms (or None: no watchdog)")
     if board.get("on_exit", "relax") not in ON_EXIT:
         ck.fail("on_exit", "%r, allowed %s" % (board["on_exit"], " or ".join(repr(x) for x in ON_EXIT)))
+    if board.get("boot", "relaxed") not in BOOT:
+        ck.fail("boot", "%r, allowed %s" % (board["boot"], " or ".join(repr(x) for x in BOOT)))
     if board.get("walk_timeout_ms") is not None:
         ck.int_in("walk_timeout_ms", board["walk_timeout_ms"], 200, 10000, " ms")
 

@@ -119,7 +119,7 @@ def main_from_board_setting():
     loop.at(9000, 1150, 1150, 9000, 9000)
     boards.pico.BOARD["follow"] = {"side": "left", "setpoint": 1200, "speed": 600}
     try:
-        r = main.main(frames=300, clock=clock)
+        r = main.main(frames=300, clock=clock, boot="stand", calibrated=True)
     finally:
         boards.pico.BOARD["follow"] = None
     f = r.follower

@@ -72,6 +72,7 @@ def flash_micropython(args):
     if not args.dry_run:
         copied = flash.flash_micropython(args.port, staged, image, full=args.full)
         print("flashed %s on %s: %d of %d files copied" % (args.board, args.port, len(copied), len(image)))
+        print(flash.after_reset(args.board))
         return 0
     print("# probe the board: runtime, free space, its manifest")
     print(shlex.join(flash.probe_command(args.port)))
@@ -87,7 +88,7 @@ def flash_micropython(args):
     for what, cmd in flash.micropython_plan(args.port, staged, copy, stale):
         print("# " + what)
         print(shlex.join(cmd))
-    print("# dry run: the board was not touched")
+    print("# dry run: the board was not touched; " + flash.after_reset(args.board))
     return 0
 
 
@@ -121,4 +122,5 @@ def flash_circuitpython(args):
         "flashed %s on %s: %d of %d files copied, libraries: %s"
         % (args.board, args.drive, len(copy), len(image), " ".join(libs))
     )
+    print(flash.after_reset(args.board).replace("after its reset", "when CircuitPython restarts code.py"))
     return 0

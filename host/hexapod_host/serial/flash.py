@@ -447,6 +447,21 @@ def flash_micropython(port, staged, image, say=print, full=False, probe_s=15):
     return copy
 
 
+def after_reset(board):
+    """What the board does when it restarts on the flashed files (runner.power_up), in a sentence."""
+    from hexapod import board as boards
+
+    if boards.load(board).get("boot", "relaxed") == "stand":
+        return (
+            'after its reset the board stands the robot up (boards/%s.py "boot": "stand") if its calibration '
+            "file hexapod_cal.txt is valid, else it stays relaxed: support the robot before it restarts" % board
+        )
+    return (
+        "after its reset the board stays relaxed: no servo moves until you send `stand` at the console "
+        '(boards/%s.py "boot": "relaxed"; "stand" stands up at boot once a calibration is saved)' % board
+    )
+
+
 def drive_changes(drive, staged, image):
     """Paths whose staged bytes differ from the drive's (missing counts as different)."""
     copy = []

@@ -1,0 +1,87 @@
+"""Power-up on the stub machine: main.main with its console, a calibration file or none, the
+board file's "boot" setting; what the PCA9685 models put out before anyone types `stand`."""
+
+import os
+
+import _stub_clock as clock
+import calstore
+import console
+import main
+import stub_board
+
+from hexapod import board as boards
+
+
+class Lines(console.BufferReader):
+    """Console input fed line by line, one after each `every` frames (a maker typing); it also
+    watches the PCA9685 models once a frame (the console polls it once a frame)."""
+
+    def __init__(self, lines, every, table, chips):
+        console.BufferReader.__init__(self, b"")
+        self.lines = list(lines)
+        self.every = every
+        self.table = table
+        self.chips = chips
+        self.last_ms = -1
+        self.frame = 0
+        self.on = [False] * 18
+        self.first = -1  # the frame (0-based) of the first pulse on any channel
+        self.most = 0  # the most servos that went from no pulse to a pulse in one frame
+
+    def read_byte(self):
+        now = clock.ticks_ms()
+        if now != self.last_ms:
+            self.last_ms = now
+            self.watch()
+            self.frame += 1
+            if self.lines and self.frame % self.every == 0:
+                self.feed(self.lines.pop(0).encode() + b"\n")
+        return console.BufferReader.read_byte(self)
+
+    def watch(self):
+        started = 0
+        for k in range(18):
+            address, ch, _ = self.table[k]
+            on = self.chips[address].pulse_us(ch) > 0
+            if on and not self.on[k]:
+                started += 1
+            self.on[k] = on
+        if started and self.first < 0:
+            self.first = self.frame
+        if started > self.most:
+            self.most = started
+
+
+def boot(folder, cal, setting, frames, typed=(), every=50, calibrated=None):
+    """main.main for `frames` frames in folder (its calibration file: "none", "valid" or
+    "corrupt"), the board file's boot setting (None: not given), `typed` console lines one per
+    `every` frames. Returns (the boot word of `status`, the robot's mode, the frame of the first
+    pulse any PCA9685 channel put out (-1: none), the most servos that went from no pulse to a
+    pulse in one frame)."""
+    board = stub_board.reset("pico")
+    table = boards.servo_table(board)
+    _, chips = stub_board.pca9685_models(board)
+    stub_board.sonar_models(board, [3000 + 1000 * k for k in range(5)])
+    here = os.getcwd()
+    os.chdir(folder)
+    try:
+        for name in (calstore.FILE, calstore.TMP):
+            if name in os.listdir():
+                os.remove(name)
+        if cal != "none":
+            rows = [(0, s[2].direction, s[2].min_us, s[2].max_us) for s in table]
+            text = calstore.encode(rows)
+            if cal == "corrupt":
+                text = text.replace("1 coxa 0", "1 coxa 9", 1)  # the checksum no longer matches
+            with open(calstore.FILE, "w") as f:
+                f.write(text)
+        if setting is not None:
+            board["boot"] = setting
+        reader = Lines(typed, every, table, chips)
+        r = main.main(frames, clock=clock, reader=reader, calibrated=calibrated)
+        status = r.console.do("status")
+    finally:
+        os.chdir(here)
+        board.pop("boot", None)
+    word = status.split(" boot ")[1].split()[0]
+    return word, r.robot.mode, reader.first, reader.most

@@ -1,0 +1,63 @@
+"""Power-up (issue 20, point 1): no pulse before `stand` unless the board file asks for a stand at
+boot and the calibration file is valid. Both runtimes, main.main with its console on the stub
+machine; the PCA9685 models say what reached the servos."""
+
+import pytest
+
+RELAXED, STANDING = 0, 3  # hexapod.tick modes
+
+
+@pytest.mark.parametrize(
+    "cal, setting, word",
+    [
+        ("none", None, "relaxed_uncalibrated"),
+        ("none", "stand", "relaxed_uncalibrated"),
+        ("corrupt", "stand", "relaxed_uncalibrated"),
+        ("corrupt", "relaxed", "relaxed_uncalibrated"),
+        ("valid", None, "relaxed"),
+        ("valid", "relaxed", "relaxed"),
+    ],
+)
+def test_boot_sends_no_pulse_until_stand(rt, tmp_path, cal, setting, word):
+    # 300 frames (6 s): every PCA9685 channel stays off, the robot relaxed, status says why.
+    assert rt.with_heapsize("4m").call("scenarios.power_up:boot", str(tmp_path), cal, setting, 300) == (
+        word,
+        RELAXED,
+        -1,
+        0,
+    )
+
+
+def test_calibrated_board_with_boot_stand_stands(rt, tmp_path):
+    word, mode, first, _ = rt.with_heapsize("4m").call("scenarios.power_up:boot", str(tmp_path), "valid", "stand", 300)
+    assert (word, mode, first) == ("stood", STANDING, 0)  # the very first frame (index 0) drives the servos
+
+
+def test_an_uncalibrated_board_stands_when_told(rt, tmp_path):
+    # `stand` typed at frame 49 (0-based; one line every 50 frames): nothing before it, standing well within the 250 frames after.
+    word, mode, first, _ = rt.with_heapsize("4m").call(
+        "scenarios.power_up:boot", str(tmp_path), "none", None, 300, ["stand"], 50
+    )
+    assert word == "relaxed_uncalibrated" and mode == STANDING and first == 50  # typed in frame 49's poll, sent in frame 50
+
+
+def test_flash_says_what_the_board_does_after_its_reset(monkeypatch):
+    from hexapod import board as boards
+    from hexapod_host.serial import flash
+
+    board = boards.load("pico")
+    assert "boot" not in board  # the shipped board files boot relaxed
+    assert flash.after_reset("pico").startswith("after its reset the board stays relaxed: no servo moves until")
+    monkeypatch.setitem(board, "boot", "stand")
+    assert flash.after_reset("pico").startswith("after its reset the board stands the robot up")
+
+
+@pytest.mark.parametrize("bad", ["Stand", "stood", "", 1, True, None, ("stand",), "relax"])
+def test_bad_boot_settings_are_refused(monkeypatch, bad):
+    from hexapod import board as boards
+
+    board = boards.load("pico")
+    monkeypatch.setitem(board, "boot", bad)
+    with pytest.raises(ValueError) as err:
+        boards.validate(board)
+    assert str(err.value) == "board 'pico': boot: %r, allowed 'relaxed' or 'stand'" % (bad,)
