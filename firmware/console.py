@@ -349,7 +349,8 @@ class Console:
         on = f.mode != follow.OFF
         return (
             "ok %s faults %d mode %s gait %s "
-            "walk_ms %d wall %s wall_mode %s wall_d %s wall_angle %s wall_error %s wall_out %s wall_faults %d cal %s boot %s"
+            "walk_ms %d wall %s wall_mode %s wall_d %s wall_angle %s wall_error %s wall_out %s wall_faults %d "
+            "cal %s boot %s"
             % (
                 counters(r),
                 r.robot.faults,

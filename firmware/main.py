@@ -62,7 +62,8 @@ def main(frames=-1, clock=time, board_name=BOARD, robot_name=ROBOT, reader=None,
     valid calibration file stand up, then follow the board's "follow" wall, if set), run frames
     (for ever when -1) with a status line every 5 s; returns the Runner. boot ("relaxed",
     "stand") overrides the board file's; calibrated (True/False) says whether the servos are
-    calibrated where no calibration file is read (host runs; None: the file, loaded by the console). With a console reader (the
+    calibrated where no calibration file is read (host runs; None: the file, loaded by the
+    console). With a console reader (the
     board entry: console.PollReader on sys.stdin) the console and the calibration file take
     over from the status line (docs/console.md); Ctrl-C relaxes the servos (or holds them,
     the board file's on_exit) and leaves `runner` for the REPL."""

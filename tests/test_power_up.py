@@ -34,11 +34,12 @@ def test_calibrated_board_with_boot_stand_stands(rt, tmp_path):
 
 
 def test_an_uncalibrated_board_stands_when_told(rt, tmp_path):
-    # `stand` typed at frame 49 (0-based; one line every 50 frames): nothing before it, standing well within the 250 frames after.
+    # `stand` typed at frame 49 (0-based; one line every 50 frames): nothing before it, standing
+    # well within the 250 frames after; typed in frame 49's poll, sent in frame 50.
     word, mode, first, _ = rt.with_heapsize("4m").call(
         "scenarios.power_up:boot", str(tmp_path), "none", None, 300, ["stand"], 50
     )
-    assert word == "relaxed_uncalibrated" and mode == STANDING and first == 50  # typed in frame 49's poll, sent in frame 50
+    assert word == "relaxed_uncalibrated" and mode == STANDING and first == 50
 
 
 def test_flash_says_what_the_board_does_after_its_reset(monkeypatch):
