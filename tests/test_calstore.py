@@ -221,7 +221,7 @@ print(repr(say("defaults")))
 print(repr(say("cal 1 coxa")))
 print(repr(say("load")))
 print(repr(say("cal 1 coxa")))
-print(repr(say("status").split()[-2:]))
+print(repr(say("status").split()[-4:-2]))
 """
     )
     out = [ast.literal_eval(x) for x in rt.run(src, heapsize="4m").splitlines()]
