@@ -3,7 +3,9 @@
 Robot.tick(now_ms) runs one frame and hands 18 pulse widths (us; leg 1 coxa, femur, tibia,
 then leg 2 ... leg 6; 0 = no pulse, servo limp) to `frame.write_frame(pulses)`. Any object
 with that method will do: the PCA9685 driver, or FrameBuffer below (a dry run / test double).
-The list passed belongs to the robot: a sink that keeps it must copy it.
+The list passed belongs to the robot: a sink that keeps it must copy it. A move out of RELAXED
+(stand_up, sit_down) soft-starts: the leg groups get their pulses 160 ms apart (WAKE_*), the
+first pose held 480 ms, so 18 servos never start in one frame.
 
 The tick reads no clock: the loop that owns one passes time.ticks_ms() (wrapping at 2**30)
 and the tick counts every interval longer than the 20 ms budget in `overruns` (the worst in
@@ -62,6 +64,13 @@ JOG = const(5)  # single servos or legs placed by hand (console jogging); each f
 MODE_NAMES = ("relaxed", "sitting", "moving", "standing", "walking", "jog")
 
 _WRAP = const(0x3FFFFFFF)  # time.ticks_ms() wraps at 2**30
+# Soft start: a move out of RELAXED switches the servos on a leg group at a time, WAKE_STAGGER
+# frames (160 ms) apart, front pair, middle pair, rear pair, so the supply never sees 18 hobby
+# servos start at once (each jumps to its first pulse at full speed, drawing its stall current);
+# the first pose is held until the last group has had WAKE_STAGGER frames to get there.
+WAKE_STAGGER = const(8)
+WAKE_FRAMES = const(24)  # 3 groups x WAKE_STAGGER: frames the first pose is held
+WAKE_GROUP = (0, 1, 2, 2, 1, 0)  # each leg's group (legs 1 RF .. 6 LF)
 RHO_MIN = const(50)  # a leg needs a reach disc this wide (0.1 mm) to walk
 
 
@@ -134,6 +143,7 @@ class Robot:
         self._rho = [0] * 6
         self.mode = RELAXED
         self.after = RELAXED  # the mode a running posture move ends in
+        self.wake = WAKE_FRAMES  # frames since a move left RELAXED, up to WAKE_FRAMES (soft start)
         self.ticks = 0
         self.overruns = 0
         self.worst_interval_ms = 0
@@ -181,7 +191,9 @@ class Robot:
             self.frame.write_frame(self.pulses)
             return OK
         if m == MOVING:
-            if not self.posture.step(self.walker):
+            if self.wake < WAKE_FRAMES:
+                self.wake += 1  # the first pose held while the leg groups come on
+            elif not self.posture.step(self.walker):
                 self.mode = self.after
         elif m == STANDING or m == WALKING:  # noqa: SIM109 (a tuple test may allocate)
             # A settled pose makes slew() a no-op (its frame is a heap one).
@@ -193,7 +205,7 @@ class Robot:
 
     def _output(self):
         if _output_fast is not None and not _output_fast(self):
-            self.frame.write_frame(self.pulses)
+            self._send()
             self.reason = OK
             return OK
         return self._output_plain()
@@ -216,9 +228,18 @@ class Robot:
         for k in range(18):
             self.angles[k] = a[k]
             self.pulses[k] = p[k]
-        self.frame.write_frame(self.pulses)
+        self._send()
         self.reason = OK
         return OK
+
+    def _send(self):
+        """The frame to the sink; while waking, the leg groups not yet on get no pulse."""
+        if self.wake < WAKE_FRAMES:
+            p = self.pulses
+            for k in range(18):
+                if WAKE_GROUP[k // 3] * WAKE_STAGGER >= self.wake:
+                    p[k] = 0
+        self.frame.write_frame(self.pulses)
 
     def _fault(self, reason, leg, code):
         self.faults += 1
@@ -269,6 +290,8 @@ class Robot:
             return code
         if self.mode == JOG:
             self._feet_from(self.angles)  # the posture move starts where the jog left the feet
+        elif self.mode == RELAXED:
+            self.wake = 0
         self.posture.stand_up(self.walker, self.rest_z)
         self.after = STANDING
         self.mode = MOVING
@@ -281,6 +304,8 @@ class Robot:
             return code
         if self.mode == JOG:
             self._feet_from(self.angles)
+        elif self.mode == RELAXED:
+            self.wake = 0
         self.posture.to_height(self.walker, self.rest_z)
         self.after = SITTING
         self.mode = MOVING

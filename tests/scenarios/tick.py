@@ -269,3 +269,32 @@ def steady_tick_heap():
         rig.run(100)
         rows.append([gait, _walking_heap(rig, _extreme, 300), robot.faults])
     return rows
+
+
+def soft_start(move, before):
+    """A move ("stand_up" or "sit_down") out of RELAXED; before: "power_up" (a new robot) or
+    "relax" (stood, then relaxed). Per frame until the move ends (at most 400 frames): the
+    servos given a pulse, as a bit mask (bit k: servo k), and whether any pulse changed from the
+    frame before. Returns (masks, changed, frames to the mode the move ends in, that mode)."""
+    rig = Rig()
+    robot = rig.robot
+    if before == "relax":
+        rig.stand()
+        robot.relax()
+        while robot.mode != tick.RELAXED:
+            rig.run(1)
+    getattr(robot, move)()
+    masks, changed, last = [], [], None
+    n = 0
+    while robot.mode == tick.MOVING and n < 400:
+        rig.run(1)
+        n += 1
+        p = rig.frame.pulses
+        mask = 0
+        for k in range(18):
+            if p[k]:
+                mask |= 1 << k
+        masks.append(mask)
+        changed.append(last is not None and list(p) != last)
+        last = list(p)
+    return masks, changed, n, robot.mode
