@@ -191,6 +191,9 @@ def test_stand_up_and_walk_frames_equal_the_hosts(fs):
     lines = board.splitlines()
     frames = [[int(v) for v in line.split()] for line in lines[:-1]]
     assert len(frames) == 130 and lines[-1] == "frames 130 held 0 mode 4"  # walking (tick.WALKING)
-    # Every pulse inside the servos' 600..2400 us (seed 001), and the legs really moved.
-    assert all(600 <= p <= 2400 for f in frames for p in f)
+    # Every pulse inside the servos' 600..2400 us (seed 001), and the legs really moved; the
+    # soft start's first 16 frames give the middle and rear pairs no pulse yet (0).
+    assert all(600 <= p <= 2400 for f in frames[16:] for p in f)
+    assert [sum(1 for p in f if p) for f in frames[:17:8]] == [6, 12, 18]
+    assert all(p == 0 or 600 <= p <= 2400 for f in frames[:16] for p in f)
     assert len({tuple(f) for f in frames[60:]}) > 40

@@ -23,7 +23,7 @@ def test_leg_groups_come_on_one_at_a_time(rt, move, ends, before):
     assert masks[: 2 * STAGGER + 1] == want
     assert all(m == servos(1, 2, 3, 4, 5, 6) for m in masks[2 * STAGGER :])
     # At most one group (6 servos) starts in any frame: 18 at once without the soft start.
-    started = [bin(b & ~a).count("1") for a, b in zip([0] + masks, masks)]
+    started = [bin(b & ~a).count("1") for a, b in zip([0] + masks, masks, strict=False)]
     assert max(started) == 6 and sum(started) == 18
     # The first pose is held until the rear pair has had 8 frames too: nothing but the groups
     # coming on changes before frame 24; the posture move starts then.

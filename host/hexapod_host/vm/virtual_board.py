@@ -37,6 +37,7 @@ con = console.start(
     walk_timeout_ms=board.get("walk_timeout_ms") or 1000,
     write=sys.stdout.write,
 )
+r.power_up(board, con.cal_source == "file")  # as main.main: relaxed unless calibrated and "boot": "stand"
 
 
 def model(args):
