@@ -1,5 +1,6 @@
 """`hexapod jog`: the command layer (keys -> console lines, reply lines -> the view) against the real
-board console (firmware/console.py) on the pico board's loop on the stub machine (tests/console_link.py), and the terminal tool driven in tmux as a person would.
+board console (firmware/console.py) on the pico board's loop on the stub machine
+(tests/console_link.py), and the terminal tool driven in tmux as a person would.
 Expected angles come from the float reference IK (hexapod_host.testing.reference), pulses from the pico
 board file's rows worked by hand (centre_us + direction * 10 us per degree)."""
 

@@ -3,6 +3,7 @@ write, close, rename, remove). A cut write leaves half its bytes: open("w") trun
 stub is harsher than littlefs (which keeps the old data until close)."""
 
 import calstore
+from scenarios.refusal import message
 
 
 class PowerCut(Exception):
@@ -128,11 +129,7 @@ def format_checks():
     text = calstore.encode(rows)
 
     def why(t):
-        try:
-            calstore.decode(t)
-            return "accepted"
-        except ValueError as e:
-            return str(e)
+        return message(calstore.decode, t)
 
     body = text[: text.rfind("crc ")].replace("700 2300", "2400 2300")
     return [

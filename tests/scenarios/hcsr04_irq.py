@@ -4,6 +4,7 @@ import _stub_clock as clock
 import _stub_pins as pins
 import hcsr04_model as model
 from machine import Pin, time_pulse_us
+from scenarios.refusal import message
 
 from drivers import hcsr04 as drv
 
@@ -77,12 +78,7 @@ def edges_at_one_instant():
 def bad_irq(args):
     """The message Pin(7).irq(*args) is refused with ("print" stands for a callable)."""
     _reset()
-    p = Pin(7, Pin.IN)
-    try:
-        p.irq(*[print if a == "print" else a for a in args])
-        return "accepted"
-    except ValueError as e:
-        return str(e)
+    return message(Pin(7, Pin.IN).irq, *[print if a == "print" else a for a in args])
 
 
 def distances(temp, targets, irq):

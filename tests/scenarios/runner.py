@@ -8,12 +8,29 @@ import stub_board
 from hexapod import board as boards
 
 
-class Loop:
-    """The board's stub machine, its chips unplugged until plug(); build() makes the runner."""
+def unsafe_outputs(table, bus, chips):
+    """[(servo, ns)] of the servos whose output is neither off nor inside min..max (give or take half a
+    count); servos on a chip not on the bus are not looked at."""
+    bad = []
+    for k in range(18):
+        address, ch, smap = table[k]
+        m = chips[address]
+        if m not in bus._devices:
+            continue
+        ns = m.pulse_ns(ch)
+        half = (m.prescale() + 1) * 500000000 // m.clock_hz() + 1
+        if ns and not smap.min_us * 1000 - half <= ns <= smap.max_us * 1000 + half:
+            bad.append((k, ns))
+    return bad
 
-    def __init__(self, board="pico"):
+
+class Loop:
+    """The board's stub machine (None: pico, and main.build picks its board itself), its chips
+    unplugged until plug(); build() makes the runner."""
+
+    def __init__(self, board=None):
         self.board_name = board
-        self.board = stub_board.reset(board)
+        self.board = stub_board.reset(board or "pico")
         self.table = boards.servo_table(self.board)
         self.bus, self.chips = stub_board.pca9685_models(self.board, attach=False)
         self.sonar = stub_board.sonar_models(self.board, [3000 + 1000 * k for k in range(5)])
@@ -24,22 +41,11 @@ class Loop:
             self.bus.attach(self.chips[a])
 
     def build(self):
-        self.r = main.build(self.board_name, clock=clock)
+        self.r = main.build(self.board_name, clock=clock) if self.board_name else main.build(clock=clock)
         return self.r
 
     def unsafe(self):
-        """Servos whose output is neither off nor inside min..max (give or take half a count)."""
-        bad = []
-        for k in range(18):
-            address, ch, smap = self.table[k]
-            m = self.chips[address]
-            if m not in self.bus._devices:
-                continue
-            ns = m.pulse_ns(ch)
-            half = (m.prescale() + 1) * 500000000 // m.clock_hz() + 1
-            if ns and not smap.min_us * 1000 - half <= ns <= smap.max_us * 1000 + half:
-                bad.append((k, ns))
-        return bad
+        return unsafe_outputs(self.table, self.bus, self.chips)
 
     def frames(self, n):
         """n frames (step, wait); the unsafe outputs seen after each step."""
@@ -54,7 +60,7 @@ class Loop:
         return [self.chips[a].pulse_us(ch) for a, ch, _ in self.table]
 
 
-def _standing_loop(board="pico", frames=0):
+def _standing_loop(board=None, frames=0):
     loop = Loop(board)
     loop.plug(0x40, 0x41)
     loop.build().robot.stand_up()

@@ -1,17 +1,11 @@
 """hexapod.tick.Robot's jog mode on a FrameBuffer, the pico board file's servo rows."""
 
+from scenarios.refusal import message
 from scenarios.rig import TICK_MS
 
 import robots.default as robot_file
 from hexapod import geometry, tick
 from hexapod.board import load, servo_table
-
-
-def _err(fn, *a):
-    try:
-        fn(*a)
-    except ValueError as e:
-        return str(e)
 
 
 def jog_session():
@@ -38,11 +32,11 @@ def jog_session():
     out.append(list(fb.pulses) == out[1][1])
     out.append(
         [
-            _err(robot.jog_foot, 6, 0, 0, 0),
-            _err(robot.jog_joint, 1, 3, 0),
-            _err(robot.jog_pulse, 1, 0, 1500.0),
-            _err(robot.calibrate, 4, 1500, 0, 600, 2400),
-            _err(robot.calibrate, 4, 1500, 1, 2400, 600),
+            message(robot.jog_foot, 6, 0, 0, 0),
+            message(robot.jog_joint, 1, 3, 0),
+            message(robot.jog_pulse, 1, 0, 1500.0),
+            message(robot.calibrate, 4, 1500, 0, 600, 2400),
+            message(robot.calibrate, 4, 1500, 1, 2400, 600),
         ]
     )
     out.append((robot.jog_joint(0, 0, 1000), list(robot.pulses[:6])))
