@@ -7,47 +7,6 @@ BOARDS = ("pico", "esp32_devkit", "feather_rp2040")
 DELETE = "<delete>"
 APPEND = "<append>"
 
-PRELUDE = """
-from hexapod import board as hb
-import boards.pico
-import boards.esp32_devkit
-import boards.feather_rp2040
-GOOD = {"pico": boards.pico.BOARD, "esp32_devkit": boards.esp32_devkit.BOARD,
-        "feather_rp2040": boards.feather_rp2040.BOARD}
-
-
-def thaw(o):
-    if isinstance(o, dict):
-        return dict((k, thaw(v)) for k, v in o.items())
-    if isinstance(o, (tuple, list)):
-        return [thaw(v) for v in o]
-    return o
-
-
-def mutated(name, path, value):
-    b = thaw(GOOD[name])
-    if not path:
-        return value
-    o = b
-    for k in path[:-1]:
-        o = o[k]
-    if value == "<delete>":
-        del o[path[-1]]
-    elif isinstance(value, tuple) and value and value[0] == "<append>":
-        o[path[-1]].append(value[1])
-    else:
-        o[path[-1]] = value
-    return b
-
-
-def check(b):
-    try:
-        hb.validate(b)
-        return "accepted"
-    except ValueError as e:
-        return str(e)
-"""
-
 P, E, F = BOARDS
 # (board, path, new value, fragment the message must contain)
 MUTATIONS = [
@@ -142,31 +101,14 @@ MUTATIONS = [
 HEAP = "512k"
 
 
-def run_mutations(rt, mutations):
-    src = PRELUDE + "print([check(mutated(n, p, v)) for n, p, v in %r])" % ([m[:3] for m in mutations],)
-    return rt.value(src, heapsize=HEAP)
-
-
 def test_the_three_boards_pass_and_unchanged_copies_pass_too(rt):
-    src = (
-        PRELUDE
-        + """
-out = []
-for n in %r:
-    out.append((hb.load(n) is GOOD[n], check(GOOD[n]), check(thaw(GOOD[n])), len(hb.servo_table(GOOD[n]))))
-out.append(check(mutated("pico", ("notes",), "spare servo in the drawer")))
-out.append(check(mutated("pico", ("follow",), {"side": "left", "setpoint": 800})))
-out.append(check(mutated("esp32_devkit", ("follow",), {"side": "right", "setpoint": 1600, "form": "sweeps"})))
-out.append(check(mutated("feather_rp2040", ("follow",), "<delete>")))
-print(out)
-"""
-        % (BOARDS,)
+    assert (
+        rt.call("scenarios.boards:good_boards", BOARDS) == [(True, "accepted", "accepted", 18)] * 3 + ["accepted"] * 4
     )
-    assert rt.value(src) == [(True, "accepted", "accepted", 18)] * 3 + ["accepted"] * 4
 
 
 def test_many_bad_boards_each_fail_with_a_clear_value_error(rt):
-    messages = run_mutations(rt, MUTATIONS)
+    messages = rt.with_heapsize(HEAP).call("scenarios.boards:checks", [m[:3] for m in MUTATIONS])
     for (name, path, value, fragment), msg in zip(MUTATIONS, messages, strict=True):
         assert fragment in msg, (name, path, value, msg)
         if path:
@@ -175,53 +117,20 @@ def test_many_bad_boards_each_fail_with_a_clear_value_error(rt):
 
 
 def test_messages_are_identical_on_both_runtimes(both_runtimes):
-    src = PRELUDE + "print([check(mutated(n, p, v)) for n, p, v in %r])" % ([m[:3] for m in MUTATIONS],)
-    cpython, micropython = both_runtimes(src, heapsize=HEAP)
+    cpython, micropython = both_runtimes.with_heapsize(HEAP).call("scenarios.boards:checks", [m[:3] for m in MUTATIONS])
     assert cpython == micropython
 
 
 @pytest.mark.parametrize("name", BOARDS)
 def test_every_channel_and_pin_mutation_is_caught(rt, name):
     # systematic: each servo moved onto every other servo's channel, each sensor pin onto every other pin
-    src = (
-        PRELUDE
-        + """
-b = GOOD[%r]
-out = []
-for i in range(18):
-    for j in range(18):
-        if i != j:
-            m = mutated(%r, ("servos", i, 2), b["servos"][j][2])
-            m["servos"][i][3] = b["servos"][j][3]
-            out.append("already drives" in check(m))
-pins = [b["i2c"]["sda"], b["i2c"]["scl"]]
-for s in b["sensors"]:
-    pins += [s[1], s[2]]
-for k in range(5):
-    for col in (1, 2):
-        for p in pins:
-            if p != b["sensors"][k][col]:
-                out.append("is already used as" in check(mutated(%r, ("sensors", k, col), p)))
-print((len(out), out.count(True)))
-"""
-        % (name, name, name)
-    )
-    total, caught = rt.value(src)
+    total, caught = rt.call("scenarios.boards:channel_and_pin_moves", name)
     assert total == 18 * 17 + 10 * 11
     assert caught == total
 
 
 def test_a_failing_validation_changes_nothing(rt):
-    src = (
-        PRELUDE
-        + """
-b = mutated("pico", ("servos", 1, 3), 0)
-before = repr(b)
-r = check(b)
-print((repr(b) == before, "already drives" in r, repr(GOOD["pico"]) == repr(boards.pico.BOARD)))
-"""
-    )
-    assert rt.value(src) == (True, True, True)
+    assert rt.call("scenarios.boards:failing_validation") == (True, True, True)
 
 
 @pytest.mark.parametrize(
@@ -229,31 +138,11 @@ print((repr(b) == before, "already drives" in r, repr(GOOD["pico"]) == repr(boar
     [("nope", "board 'nope': no boards/nope.py"), ("../pico", "allowed a file name"), (5, "board name 5")],
 )
 def test_loading_an_unknown_board_is_a_value_error(rt, name, fragment):
-    src = (
-        PRELUDE
-        + """
-try:
-    hb.load(%r)
-    print(repr("accepted"))
-except ValueError as e:
-    print(repr(str(e)))
-"""
-        % (name,)
-    )
-    assert fragment in rt.value(src)
+    assert fragment in rt.call("scenarios.boards:load_error", name)
 
 
 def test_tables_come_out_in_leg_joint_and_driver_order(rt):
-    src = (
-        PRELUDE
-        + """
-from drivers import hcsr04
-b = GOOD["pico"]
-t = hb.servo_table(b)
-print(([(a, c, m.direction, m.min_us) for a, c, m in t], hb.sensor_pins(b), hcsr04.SENSOR_NAMES == hb.SENSORS))
-"""
-    )
-    table, sensor_pins, same_order = rt.value(src)
+    table, sensor_pins, same_order = rt.call("scenarios.boards:pico_tables")
     assert same_order
     assert table[0] == (0x40, 0, 1, 600) and table[17] == (0x41, 8, -1, 600)
     assert [row[:2] for row in table] == [(0x40 if k < 9 else 0x41, k % 9) for k in range(18)]

@@ -7,132 +7,8 @@ import binascii
 
 from tests.console_rig import RIG, clean_stubs  # noqa: F401 (autouse fixture)
 
-# A filesystem that loses power after `budget` operations (open for writing, each write,
-# close, rename, remove). A cut write leaves half its bytes: open("w") truncates at once,
-# so the stub is harsher than littlefs (which keeps the old data until close).
-STUB_FS = """
-class PowerCut(Exception):
-    pass
-
-
-class StubFS:
-    def __init__(self, files=None, budget=-1, fat=False, readonly=False):
-        self.files = dict(files or {})
-        self.budget = budget
-        self.fat = fat
-        self.readonly = readonly
-        self.ops = 0
-
-    def _op(self):
-        if self.budget >= 0 and self.ops >= self.budget:
-            raise PowerCut()
-        self.ops += 1
-
-    def stat(self, name):
-        if name not in self.files:
-            raise OSError(2, "ENOENT")
-        return (0,)
-
-    def rename(self, a, b):
-        if a not in self.files:
-            raise OSError(2, "ENOENT")
-        if self.fat and b in self.files:
-            raise OSError(17, "EEXIST")
-        self._op()
-        self.files[b] = self.files.pop(a)
-
-    def remove(self, name):
-        if name not in self.files:
-            raise OSError(2, "ENOENT")
-        self._op()
-        del self.files[name]
-
-    def open(self, name, mode="r"):
-        if mode == "r":
-            if name not in self.files:
-                raise OSError(2, "ENOENT")
-            return Reader(self.files[name])
-        if self.readonly:
-            raise OSError(30, "EROFS")
-        self._op()
-        self.files[name] = ""
-        return Writer(self, name)
-
-
-class Reader:
-    def __init__(self, text):
-        self.text = text
-
-    def read(self):
-        return self.text
-
-    def close(self):
-        pass
-
-
-class Writer:
-    def __init__(self, fs, name):
-        self.fs = fs
-        self.name = name
-
-    def write(self, s):
-        try:
-            self.fs._op()
-        except PowerCut:
-            self.fs.files[self.name] += s[: len(s) // 2]
-            raise
-        self.fs.files[self.name] += s
-        return len(s)
-
-    def close(self):
-        self.fs._op()
-"""
-
-CUTS = (
-    STUB_FS
-    + """
-import calstore
-
-OLD = [(0, 1, 600, 2400)] * 18
-NEW = [(k - 9, -1 if k % 2 else 1, 700 + k, 2300 - k) for k in range(18)]
-NEWER = [(5, 1, 650, 2350)] * 18
-
-
-def boot(fs):
-    try:
-        return calstore.Store(fs, fs.open).load()[0]
-    except ValueError:
-        return None
-
-
-def save(fs, rows):
-    try:
-        calstore.Store(fs, fs.open).save(rows)
-        return True
-    except PowerCut:
-        return False
-
-
-def cuts(fat, start, nested):
-    seen = {}
-    n = 0
-    for b1 in range(40):
-        fs = StubFS({calstore.FILE: calstore.encode(OLD)} if start else {}, b1, fat)
-        done1 = save(fs, NEW)
-        plans = range(40) if nested and not done1 else [-1]
-        for b2 in plans:
-            fs2 = StubFS(fs.files, b2, fat)
-            done2 = save(fs2, NEWER) if b2 >= 0 else False
-            got = boot(StubFS(fs2.files, -1, fat))
-            name = "old" if got == OLD else "new" if got == NEW else "newer" if got == NEWER else repr(got)[:20]
-            key = (done1, done2, name)
-            seen[key] = seen.get(key, 0) + 1
-            n += 1
-        if done1:
-            break
-    return sorted(seen.items()), n
-"""
-)
+# The stub filesystem that loses power, and the cut saves: tests/scenarios/calstore.py.
+STUB_FS = "import calstore\nfrom scenarios.calstore import StubFS\n"
 
 
 def test_crc16_is_ccitt_false():
@@ -144,26 +20,7 @@ def test_crc16_is_ccitt_false():
 
 
 def test_format_round_trips_and_refuses_damage(rt):
-    src = """
-import calstore
-ROWS = [(k - 9, -1 if k % 2 else 1, 700 + k, 2300 - k) for k in range(18)]
-text = calstore.encode(ROWS)
-print(repr(calstore.decode(text) == ROWS))
-def why(t):
-    try:
-        calstore.decode(t)
-        return "accepted"
-    except ValueError as e:
-        return str(e)
-flip = text.replace("2 femur -5", "2 femur -6")
-print(repr([why(text[:n]) for n in (0, 10, len(text) // 2, len(text) - 1)]))
-print(repr(why(flip)))
-print(repr(why(text.replace("hexapod-cal 1", "hexapod-cal 2"))))
-body = text[: text.rfind("crc ")].replace("700 2300", "2400 2300")
-print(repr(why(body + "crc %04x\\n" % calstore.crc16(body.encode()))))
-print(repr(text.splitlines()[:2] + text.splitlines()[-1:]))
-"""
-    out = [ast.literal_eval(x) for x in rt.run(src).splitlines()]
+    out = rt.call("scenarios.calstore:format_checks")
     assert out[0] is True
     assert out[1] == ["truncated (no checksum line)"] * 4
     assert out[2] == "checksum mismatch (corrupt)"
@@ -173,15 +30,7 @@ print(repr(text.splitlines()[:2] + text.splitlines()[-1:]))
 
 
 def test_a_save_cut_at_every_step_keeps_old_or_new(rt):
-    src = (
-        CUTS
-        + """
-for fat in (False, True):
-    print(repr(cuts(fat, True, False)))
-    print(repr(cuts(fat, False, False)))
-"""
-    )
-    out = [ast.literal_eval(x) for x in rt.run(src, heapsize="4m").splitlines()]
+    out = rt.with_heapsize("4m").call("scenarios.calstore:all_cuts")
     for k, (seen, n) in enumerate(out):
         names = {name for (_, _, name), _ in seen}
         if k % 2 == 0:  # an old file: every cut boots old (before the rename) or new (after)
@@ -195,21 +44,21 @@ for fat in (False, True):
 def test_two_cut_saves_in_a_row_never_lose_the_last_good_file():
     # A first save cut between FAT's remove and rename leaves the good copy only in the temp
     # file; a second save must not overwrite it before making it the file again.
-    ns = {}
-    exec(CUTS, ns)  # noqa: S102 (test source)
+    from scenarios.calstore import cuts
+
     for fat in (False, True):
-        seen, n = ns["cuts"](fat, True, True)
+        seen, n = cuts(fat, True, True)
         names = {name for (_, _, name), _ in seen}
         assert names <= {"old", "new", "newer"}, seen
         assert n > 500
 
 
+# The console tests below run tests/console_rig.py's RIG, source text, with the stub filesystem imported.
 def test_read_only_filesystem_refuses_save_and_keeps_the_file(rt):
     src = (
         RIG
         + STUB_FS
         + """
-import calstore
 fs = StubFS({calstore.FILE: calstore.encode([(0, 1, 600, 2400)] * 18)}, -1, True, True)
 con.store = calstore.Store(fs, fs.open)
 print(repr(say("trim 1 coxa 40")))
@@ -239,7 +88,6 @@ def test_boot_with_missing_or_broken_file_says_so_once_and_uses_the_board_file(r
         RIG
         + STUB_FS
         + """
-import calstore
 good = calstore.encode([(25, 1, 600, 2400)] * 18)
 for files in ({}, {calstore.FILE: good[:40]}, {calstore.FILE: good.replace("25", "26", 1)},
               {calstore.FILE: good}, {calstore.FILE: "x", calstore.TMP: good}):

@@ -17,6 +17,7 @@ import pytest
 import runner
 from i2c_bus import I2CBus
 from pca9685_model import PCA9685Model
+from scenarios.runner import unsafe_outputs
 
 from drivers import cp_clock, hcsr04
 from hexapod import board as boards
@@ -54,17 +55,7 @@ class Rig:
         self.clock = self.cp.clock()
 
     def unsafe(self):
-        """Servos whose output is neither off nor inside min..max (give or take half a count)."""
-        bad = []
-        for k, (address, ch, smap) in enumerate(TABLE):
-            m = self.chips[address]
-            if m not in self.bus._devices:
-                continue
-            ns = m.pulse_ns(ch)
-            half = (m.prescale() + 1) * 500000000 // m.clock_hz() + 1
-            if ns and not smap.min_us * 1000 - half <= ns <= smap.max_us * 1000 + half:
-                bad.append((k, ns))
-        return bad
+        return unsafe_outputs(TABLE, self.bus, self.chips)
 
     def frames(self, r, n):
         bad = []

@@ -65,31 +65,7 @@ def test_to_cdeg_rounds_half_up():
     assert [fixmath.to_cdeg(v) for v in (0, 49, 50, 149, 150, -49, -50, -51)] == [0, 0, 1, 1, 2, 0, 0, -1]
 
 
-# A linear congruential generator, so both runtimes draw the same numbers.
-LCG = """
-seed = 12345
-
-
-def draw(bits):
-    global seed
-    seed = (seed * 1103515245 + 12345) & 0x7FFFFFFF
-    return seed >> (31 - bits)
-"""
-
-VECTORS = (
-    LCG
-    + """
-from hexapod import fixmath as f
-for k in range(3000):
-    y = (draw(30) - (1 << 29)) >> (k % 29)
-    x = (draw(30) - (1 << 29)) >> (k % 23)
-    s = k * 7 - 10000
-    print((f.isqrt(draw(30)), f.atan2(y, x), f.sin(s), f.cos(s), f.mul_q15(y, draw(15))))
-"""
-)
-
-
 def test_fixmath_bit_identical_in_both_runtimes(both_runtimes):
-    cp, mp = both_runtimes(VECTORS)
-    assert len(cp.splitlines()) == 3000
+    cp, mp = both_runtimes.with_heapsize("1m").call("scenarios.fixmath:vectors", 3000)
+    assert len(cp) == 3000
     assert cp == mp

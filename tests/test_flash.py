@@ -11,7 +11,7 @@ import pytest
 from hexapod_host import FIRMWARE, ROOT, STUBS, mpvm
 from hexapod_host.commands import cli
 from hexapod_host.serial import flash
-from tests.test_runner import SETUP
+from hexapod_host.testing.runtimes import TESTS
 
 CORE = sorted("hexapod/" + f for f in os.listdir(os.path.join(FIRMWARE, "hexapod")) if f.endswith(".py"))
 # What main.py and runner.py import (read by hand from them): the MicroPython drivers, and the
@@ -253,20 +253,11 @@ def test_mpremote_failures_read_clearly():
     assert flash.explain_mpremote("/dev/ttyUSB0", full) == "the board's filesystem is full"
 
 
-# The staged image, alone on the path after the stub machine, boots and runs frames: the chip models
-# see every servo inside its calibrated range, the same widths as the firmware sources give on CPython.
+# The staged image, alone on the path after the stub machine (the scenarios last), boots and runs
+# frames: the chip models see every servo inside its calibrated range, the same widths as the firmware
+# sources give on CPython. A raw script: it runs in a VM started on the staged image's own path.
 BOOT = (
-    SETUP
-    + """
-from hexapod import leg
-plug(0x40)
-plug(0x41)
-r = main.build(clock=clock)
-r.robot.stand_up()
-bad = frames(r, 120)
-widths = [chips[a].pulse_us(ch) for a, ch, _ in TABLE]
-print(repr((main.__file__, leg.__file__, main.BOARD, r.frames, r.held, r.robot.mode, bad, widths)))
-"""
+    "import sys\nsys.path.append(%r)\nfrom scenarios.runner import boot_frames\nprint(repr(boot_frames(120)))" % TESTS
 )
 
 

@@ -5,6 +5,7 @@ mirrored for the right one; a scripted tour of them is bit-identical on both run
 import copy
 
 import pytest
+from scenarios.rig import Rig as StandRig
 
 import robots.default
 from drivers import hcsr04
@@ -26,14 +27,9 @@ _STANDING = []
 def standing_robot():
     """A Robot standing at its neutral stance (a copy of one stood up once) and the loop time."""
     if not _STANDING:
-        g = geometry.load(robots.default)
-        robot = tick.Robot(g, tick.default_servos(g), tick.FrameBuffer())
-        robot.stand_up()
-        t = 0
-        while robot.mode != tick.STANDING:
-            robot.tick(t)
-            t += 20
-        _STANDING.append((robot, t))
+        rig = StandRig()
+        rig.stand()
+        _STANDING.append((rig.robot, rig.t))
     robot, t = _STANDING[0]
     return copy.deepcopy(robot), t
 
@@ -430,49 +426,8 @@ def test_bad_mounts_are_refused(mounts, match):
         follow.Follower(robot, mounts)
 
 
-TOUR = """
-import robots.default
-from hexapod import follow, geometry, tick
-
-g = geometry.load(robots.default)
-out = []
-for side in ("left", "right"):
-    robot = tick.Robot(g, tick.default_servos(g), tick.FrameBuffer())
-    robot.stand_up()
-    t = 0
-    while robot.mode != tick.STANDING:
-        robot.tick(t)
-        t += 20
-    f = follow.Follower(robot)
-    f.follow(side, 800)
-    dist = [-1] * 5
-    status = [5] * 5
-    for n in range(1500):
-        # A wall that comes and goes, a corner ahead now and then, noise from a fixed pattern.
-        k = (0, 4, 1, 3, 2)[n % 5]
-        c = n // 5
-        if k == 0:
-            d = 3900 + (c % 40) * 100 if c % 97 < 60 else -1
-        elif (k <= 2) == (side == "left"):
-            d = 800 + ((c * 37) % 23) * 10 - 110 + (30 if k in (1, 3) else 0) * ((c // 13) % 3 - 1)
-            if c % 151 > 140:
-                d = -1
-        else:
-            d = -1
-        status[k] = 0 if d >= 0 else 1
-        dist[k] = d
-        f.update(t, k, dist, status)
-        robot.tick(t)
-        t += 20
-        if n % 50 == 0:
-            out.append((f.mode, f.distance, f.angle, f.error, f.output, f.vx, f.yaw, f.turned, robot.walker.psi))
-print(out)
-"""
-
-
 def test_decisions_are_bit_identical_on_both_runtimes(both_runtimes):
-    cp, mp = both_runtimes(TOUR)
+    cp, mp = both_runtimes.call("scenarios.follow:tour", 1500)
     assert cp == mp
-    rows = eval(cp)  # noqa: S307 (our own printed literal)
-    modes = {r[0] for r in rows}
-    assert {follow.FOLLOWING, follow.CORNER} <= modes and len(rows) == 60
+    modes = {r[0] for r in cp}
+    assert {follow.FOLLOWING, follow.CORNER} <= modes and len(cp) == 60

@@ -3,33 +3,11 @@ the plain path (CPython), and both the counts of the data sheet's formula, on ev
 
 from fractions import Fraction
 
-SRC = """
-import machine
-from i2c_bus import I2CBus
-from pca9685_model import PCA9685Model
-from drivers import pca9685
-bus = I2CBus()
-out = [pca9685._put is not None]
-for osc, freq, stagger in ((25000000, 50, 0), (25750000, 50, 500), (24250000, 60, 333), (29000000, 330, 0)):
-    bus.attach(PCA9685Model(0x40, osc_hz=osc))
-    c = pca9685.PCA9685(machine.I2C(0, bus=bus), 0x40, osc_hz=osc, freq_hz=freq, channels=4, stagger_us=stagger,
-                        sleep_us=bus.sleep_us)
-    counts = []
-    for us in range(pca9685.PULSE_MIN_US, pca9685.PULSE_MAX_US + 1):
-        ch = us % 4
-        c.stage(ch, us)
-        f = c._frame
-        i = 1 + 4 * ch
-        counts.append((f[i] | f[i + 1] << 8, f[i + 2] | f[i + 3] << 8))
-    out.append((osc, freq, c.prescale, counts))
-    bus.detach(0x40)
-print(out)
-"""
+SETTINGS = [(25000000, 50, 0), (25750000, 50, 500), (24250000, 60, 333), (29000000, 330, 0)]
 
 
 def test_viper_stage_bytes_equal_the_plain_path_and_the_data_sheet(both_runtimes):
-    cp, mp = both_runtimes(SRC, heapsize="4m")
-    cp, mp = eval(cp.strip().splitlines()[-1]), eval(mp.strip().splitlines()[-1])  # noqa: S307 (our own repr)
+    cp, mp = both_runtimes.with_heapsize("4m").call("scenarios.pca9685_viper:stage_counts", SETTINGS)
     assert cp[0] is False and mp[0] is True  # CPython stages in Python, the VM in viper
     assert cp[1:] == mp[1:]  # byte for byte, 4 oscillator and frequency settings x 2001 pulse widths
     for osc, _freq, prescale, counts in cp[1:]:
@@ -58,49 +36,10 @@ def bank_cases():
     return cases
 
 
-BANK_SRC = """
-from i2c_bus import I2CBus
-from pca9685_model import PCA9685Model
-from drivers import pca9685
-from hexapod.servo import ServoMap
-import machine
-bus = I2CBus()
-bus.attach(PCA9685Model(0x40, osc_hz=25000000))
-bus.attach(PCA9685Model(0x41, osc_hz=25750000))
-i2c = machine.I2C(0, bus=bus)
-chips = [pca9685.PCA9685(i2c, 0x40, osc_hz=25000000, channels=9, stagger_us=100, sleep_us=bus.sleep_us),
-         pca9685.PCA9685(i2c, 0x41, osc_hz=25750000, channels=9, sleep_us=bus.sleep_us)]
-maps = [ServoMap(centre_us=(lo + hi) // 2, min_us=lo, max_us=hi) for lo, hi in %r]
-B = pca9685.ServoBank(chips, %r, maps)
-out = [pca9685._stage_all is not None]
-def frames():
-    return [bytes(c._frame) for c in chips]
-def err(p):
-    before = frames()
-    try:
-        B.write(p)
-        return ("no error",)
-    except Exception as e:
-        return (type(e).__name__, str(e), frames() == before)
-for k, p in enumerate(%r):
-    if k == 20:
-        B._maps[3] = ServoMap(centre_us=1450, min_us=1400, max_us=1500)  # a swapped ServoMap
-        B._maps[5].min_us = 1000  # a recalibrated one
-    B.write(p)
-    out.append((frames(), B.clamped))
-bad = [1500] * 18
-for v in (True, False, 1500.0, "1500", None, 2 ** 40):
-    p = list(bad)
-    p[7] = v
-    out.append(err(p))
-print(out)
-"""
-
-
 def test_bank_staging_in_one_viper_call_equals_the_plain_path(both_runtimes):
     cases = bank_cases()
-    cp, mp = both_runtimes(BANK_SRC % (LIMITS, CHANNELS, cases), heapsize="4m")
-    cp, mp = eval(cp.strip().splitlines()[-1]), eval(mp.strip().splitlines()[-1])  # noqa: S307 (our own repr)
+    bad = [True, False, 1500.0, "1500", None, 2**40]
+    cp, mp = both_runtimes.with_heapsize("4m").call("scenarios.pca9685_viper:bank_frames", LIMITS, CHANNELS, cases, bad)
     assert cp[0] is False and mp[0] is True  # CPython stages in Python, the VM in one viper call
     assert cp[1:] == mp[1:]  # every frame byte for byte, the clamp counts, the refusals
     # The clamp count by hand: pulses outside each ServoMap's limits (0 is no pulse, not clamped).

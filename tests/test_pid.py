@@ -172,15 +172,5 @@ def test_bad_limits_are_refused(limits):
 
 def test_both_runtimes_bit_identical(both_runtimes):
     seq = sequence(99, 300)
-    src = """
-from hexapod import pid
-out = []
-for gains, om, im in %r:
-    p = pid.PID(*gains, out_max=om, i_max=im)
-    for sp, m, t in %r:
-        out.append(p.update(sp, m, t))
-        out.append(p.i)
-print(out)
-""" % ([(g, o, i) for g, o, i in GAINS], seq)
-    cp, mp = both_runtimes(src)
-    assert cp == mp and len(cp) > 1000
+    cp, mp = both_runtimes.call("scenarios.pid:updates", GAINS, seq)
+    assert cp == mp and len(cp) == 2 * len(GAINS) * len(seq)

@@ -7,8 +7,6 @@ Oracle: the servo guard's per-tick budget from the datasheet numbers in robots/d
 (a yaw reversal at swing tick 21 of 25).
 """
 
-import ast
-
 import pytest
 
 import robots.default as d
@@ -80,30 +78,7 @@ def test_random_follower_commands_stay_inside_the_servo_budget():
 
 def test_a_late_re_aim_is_the_same_on_both_runtimes(both_runtimes):
     # CPython runs the plain swing, the MicroPython VM the viper one (hexapod/_walk_viper.py).
-    cp, mp = both_runtimes(
-        """
-import robots.default as d
-from hexapod import geometry, tick
-g = geometry.load(d)
-robot = tick.Robot(g, tick.default_servos(g), tick.FrameBuffer())
-robot.stand_up()
-t = 0
-while robot.mode != tick.STANDING:
-    robot.tick(t)
-    t += 20
-w = robot.walker
-out = []
-robot.walk(400, 0, 0)
-for n in range(220):
-    if n in (120, 141, 170, 193):  # a yaw or speed change early, mid and late in a swing
-        robot.walk(400 - n, 0, 9000 if n % 2 else -6000)
-    robot.tick(t)
-    t += 20
-    if n >= 110:
-        out.append((list(robot.angles), list(w.fx), list(w.fy), list(w.su)))
-print(out)
-"""
-    )
+    # a yaw or speed change early, mid and late in a swing
+    cp, mp = both_runtimes.call("scenarios.replan:late_re_aims", 220, [120, 141, 170, 193], 110)
     assert cp == mp
-    frames = ast.literal_eval(cp.strip())
-    assert len(frames) == 110 and max(max(f[3]) for f in frames) > 20  # swings ran to their late ticks
+    assert len(cp) == 110 and max(max(f[3]) for f in cp) > 20  # swings ran to their late ticks

@@ -1,299 +1,82 @@
 """Walker._rescale (one function, roots only for a foot that is over, compared as squares) equals
-the plain form it replaced (one half_stance and one _outward call per leg per try, kept here as
-the reference) exactly: scale, command, stance discs and the aim/scratch it leaves, on CPython, the
-MicroPython VM and the emulated Pico, over random commands, gaits, cycle times, steps, reach and
-servo-speed discs (some zero, some tiny) and outward limits (off, tight, loose).
+the plain form it replaced (one half_stance and one _outward call per leg per try, kept as the
+reference in tests/scenarios/rescale.py) exactly: scale, command, stance discs and the aim/scratch it
+leaves, on CPython, the MicroPython VM and the emulated Pico, over random commands, gaits, cycle
+times, steps, reach and servo-speed discs (some zero, some tiny) and outward limits (off, tight, loose).
 """
 
 import ast
+import os
+import shutil
+import tempfile
 
 import pytest
 
 from hexapod_host.pico import emulator as pico
-from tests.test_fixmath import LCG
-
-# The reference: hexapod/walk.py's _rescale, half_stance and _outward as they were at c39d877.
-PLAIN = """
-from hexapod.fixmath import isqrt
-
-
-def half_stance(self, i, vx, vy, w):
-    self.aim_for(vx, vy, w)
-    self.target(i, self._xy)
-    dx = (self._xy[0] - self.nx[i]) >> 4
-    dy = (self._xy[1] - self.ny[i]) >> 4
-    return isqrt(dx * dx + dy * dy)
-
-
-def outward(self, i):
-    g = self.geometry
-    mx = g.mount_x[i]
-    my = g.mount_y[i]
-    tx = self._xy[0] >> 4
-    ty = self._xy[1] >> 4
-    sx = (self.nx[i] >> 4 << 1) - tx
-    sy = (self.ny[i] >> 4 << 1) - ty
-    a = isqrt((tx - mx) * (tx - mx) + (ty - my) * (ty - my))
-    b = isqrt((sx - mx) * (sx - mx) + (sy - my) * (sy - my))
-    return (a if a > b else b) - g.neutral_reach
-
-
-def plain_rescale(self):
-    vx = self.req_vx
-    vy = self.req_vy
-    w = self.req_yaw
-    half_ms = self.clock.stance_ticks * 20 >> 1
-    turn = w * half_ms // 1000
-    k = 1000
-    if turn > 9000 or turn < -9000:
-        k = 9000 * 1000 // (turn if turn > 0 else -turn)
-    g = self.geometry
-    three = self.clock.stance_ticks * 2 <= self.clock.cycle_ticks
-    tries = 0
-    while k > 0:
-        tries += 1
-        worst = -1
-        for i in range(6):
-            e = half_stance(self, i, vx * k // 1000, vy * k // 1000, w * k // 1000)
-            lim = self.rho[i] if self.rho[i] < self.step else self.step
-            if self.srho[i] < lim:
-                lim = self.srho[i]
-            if e > lim:
-                kk = k * lim // e
-                if worst < 0 or kk < worst:
-                    worst = kk
-            out = outward(self, i) if three else 0
-            if out > g.stance_out_max > 0:
-                kk = k * g.stance_out_max // out
-                if worst < 0 or kk < worst:
-                    worst = kk
-        if worst < 0:
-            break
-        k = worst - 1 if worst >= k else worst
-    if k < 0:
-        k = 0
-    for i in range(6):
-        lim = self.rho[i] if self.rho[i] < self.step else self.step
-        if 0 < self.srho[i] < lim:
-            lim = self.srho[i]
-        lim += 16
-        self.stance_rho[i] = lim if lim < self.rho[i] else self.rho[i]
-    self.scale_permille = k
-    self.cmd[0] = vx * k // 1000
-    self.cmd[1] = vy * k // 1000
-    self.cmd[2] = w * k // 1000
-    return tries
-"""
-
-CASES = (
-    LCG
-    + PLAIN
-    + """
-import robots.default as robot_file
-from hexapod import geometry, walk
-
-if not FAST:  # the plain code (CPython's and CircuitPython's) on a MicroPython with viper too
-    walk._rescale_fast = None
-G = geometry.load(robot_file)
-w = walk.Walker(G)
-count = differ = slowed = far = turned = many = zero = 0
-NX = list(w.nx)
-NY = list(w.ny)
-
-
-def state():
-    return (w.scale_permille, list(w.cmd), list(w.stance_rho), list(w._aim), list(w._aim_key), list(w._xy))
-
-
-for n in range(CASES):
-    w.clock.set(draw(2) % 4, 500 + draw(12) % 4000)
-    w.step = 50 + draw(10) % 551
-    # One case in four: feet farther than 2**15 fine units (204.8 mm) from the body's centre.
-    for i in range(6):
-        w.nx[i] = NX[i] * (3 if n % 4 == 1 else 1) + draw(8) - 128
-        w.ny[i] = NY[i] * (3 if n % 4 == 1 else 1) + draw(8) - 128
-    for i in range(6):
-        # Mostly discs as a pose gives them (10..80 mm), now and then none or a tiny one.
-        w.rho[i] = draw(10) % (8, 30, 1024)[draw(2) % 3] if draw(6) == 0 else 100 + draw(10) % 700
-        w.srho[i] = (0, 1, 600)[draw(2) % 3] if draw(6) == 0 else 100 + draw(9)
-    G.stance_out_max = (0, 10, 2000)[draw(2) % 3] if draw(2) == 0 else 10 + draw(7)
-    # Speeds up to the limits, often small ones (found in one try), now and then none at all.
-    w.req_vx = (draw(13) % 6001 - 3000) >> (draw(4) % 8)
-    w.req_vy = (draw(13) % 6001 - 3000) >> (draw(4) % 8)
-    w.req_yaw = (draw(15) % 18001 - 9000) >> (0 if draw(1) else draw(4) % 14)
-    if n % 17 == 0:
-        w.req_vx = w.req_vy = 0
-    if n % 3 == 0:  # the scratch and aim as any earlier tick or try left them
-        w.aim_for(draw(8), draw(8), draw(8))
-        w._xy[0] = draw(16)
-        w._xy[1] = draw(16)
-    keep = (list(w._aim), list(w._aim_key), list(w._xy))
-    tries = plain_rescale(w)
-    want = state()
-    w._aim[:] = walk._words(6)
-    for j in range(4):
-        w._aim[j] = keep[0][j]
-        w._aim_key[j] = keep[1][j]
-    w._xy[0] = keep[2][0]
-    w._xy[1] = keep[2][1]
-    w.scale_permille = -7
-    w._rescale()
-    got = state()
-    if got != want:
-        differ += 1
-        if differ < 4:
-            print("differ", n, want, got)
-    count += 1
-    slowed += w.scale_permille < 1000
-    zero += w.scale_permille == 0
-    many += tries >= 3
-    half_ms = w.clock.stance_ticks * 10
-    turned += w.req_yaw * half_ms // 1000 > 9000 or w.req_yaw * half_ms // 1000 < -9000
-    three = w.clock.stance_ticks * 2 <= w.clock.cycle_ticks
-    if three and G.stance_out_max > 0 and w.scale_permille > 0:
-        # the outward limit set the scale: the plain form without it would have scaled less
-        o = G.stance_out_max
-        G.stance_out_max = 0
-        plain_rescale(w)
-        far += w.scale_permille > want[0]
-        G.stance_out_max = o
-print((count, slowed, far, turned, many, zero, differ))
-"""
-)
+from hexapod_host.testing.runtimes import TESTS
 
 
 def check(result, cases):
-    count, slowed, far, turned, many, zero, differ = result
+    (count, slowed, far, turned, many, zero, differ), samples = result
     assert count == cases
     # Every branch: scaled by the discs, by the outward limit, by the turn bound, after three or
     # more tries, down to nothing (a zero disc).
     assert cases // 3 < slowed < cases - cases // 20, result
     assert far > cases // 50 and turned > cases // 50 and many > cases // 20 and zero > cases // 50, result
-    assert differ == 0, result
+    assert differ == 0 and samples == [], result
 
 
 @pytest.mark.parametrize("fast", [1, 0])
 def test_rescale_equals_the_plain_form_in_both_runtimes(both_runtimes, fast):
     # The VM runs the viper rescale (fast) or the bytecode one; CPython always the bytecode one.
-    cp, mp = both_runtimes("CASES = 3000\nFAST = %d\n" % fast + CASES)
+    cp, mp = both_runtimes.call("scenarios.rescale:rescales", 3000, bool(fast))
     assert cp == mp
-    check(ast.literal_eval(cp.strip().splitlines()[-1]), 3000)
+    check(cp, 3000)
 
 
 def test_the_vm_uses_the_viper_rescale(mp):
-    assert mp.run("from hexapod import walk\nprint(walk._rescale_fast)").startswith("<function")
+    assert mp.call("scenarios.rescale:rescale_fast").startswith("<function")
+
+
+def pico_call(fs, call):
+    """The value `print(repr(scenarios.rescale.<call>))` prints on the emulated Pico (a raw script: the
+    emulator runs files, not calls)."""
+    status, out, err, _ = pico.run_source("import scenarios.rescale as s\nprint(repr(s.%s))" % call, fs=fs, timeout=600)
+    assert status == 0, out + err
+    return ast.literal_eval(out.strip().splitlines()[-1])
 
 
 @pytest.mark.skipif(pico.missing() is not None, reason=pico.missing() or "")
 def test_rescale_equals_the_plain_form_on_the_emulated_pico():
-    with pico.flashed() as fs:
-        status, out, err, _ = pico.run_source("CASES = 300\nFAST = 1\n" + CASES, fs=fs, timeout=600)
-        assert status == 0, out + err
-        check(ast.literal_eval(out.strip().splitlines()[-1]), 300)
-        status, out, err, _ = pico.run_source("CASES = 1000\n" + AIMS, fs=fs, timeout=600)
-        assert status == 0, out + err
-        count, odd, differ = ast.literal_eval(out.strip().splitlines()[-1])
+    with tempfile.TemporaryDirectory() as tmp:
+        tree = pico.stage(os.path.join(tmp, "stage"))
+        for name in ("__init__.py", "lcg.py", "rescale.py"):  # the scenarios this test imports there
+            os.makedirs(os.path.join(tree, "scenarios"), exist_ok=True)
+            shutil.copy(os.path.join(TESTS, "scenarios", name), os.path.join(tree, "scenarios", name))
+        fs = pico.image(tree, os.path.join(tmp, "fs.img"))
+        check(pico_call(fs, "rescales(300, True)"), 300)
+        count, odd, differ = pico_call(fs, "aims(1000)")
         assert count == 1000 and odd > 100 and differ == 0, (count, odd, differ)
-        status, out, err, _ = pico.run_source("CASES = 3000\n" + SINES, fs=fs, timeout=600)
-        assert status == 0, out + err
-        assert ast.literal_eval(out.strip().splitlines()[-1]) == (3000, 0, True)
-
-
-# Walker._aim_at (few names: its frame off the heap; sin(t + 9000) for cos(t)) against the form it
-# replaced, kept here as the reference.
-AIMS = (
-    LCG
-    + """
-import robots.default as robot_file
-from hexapod import geometry, walk
-from hexapod.fixmath import cos, mul_q15, sin
-
-
-def plain_aim_at(self, vx, vy, w):
-    half_ms = self.clock.stance_ticks * 20 >> 1
-    turn = w * half_ms // 1000
-    a = self._aim
-    a[0] = cos(turn)
-    a[1] = sin(turn)
-    sx = vx * half_ms * 16 // 1000
-    sy = vy * half_ms * 16 // 1000
-    c = cos(turn >> 1)
-    s = sin(turn >> 1)
-    a[2] = mul_q15(sx, c) - mul_q15(sy, s)
-    a[3] = mul_q15(sx, s) + mul_q15(sy, c)
-
-
-w = walk.Walker(geometry.load(robot_file))
-count = differ = odd = 0
-for n in range(CASES):
-    w.clock.set(draw(2) % 4, 500 + draw(12) % 4000)
-    vx = (draw(13) % 6001 - 3000) >> (draw(4) % 8)
-    vy = (draw(13) % 6001 - 3000) >> (draw(4) % 8)
-    yaw = (draw(15) % 18001 - 9000) >> (draw(4) % 14)
-    plain_aim_at(w, vx, vy, yaw)
-    want = list(w._aim)
-    for j in range(4):
-        w._aim[j] = draw(16)
-    w._aim_at(vx, vy, yaw)
-    differ += list(w._aim) != want
-    odd += (yaw * w.clock.stance_ticks * 10 // 1000) % 2 == 1 and yaw < 0
-    count += 1
-print((count, odd, differ))
-"""
-)
+        assert pico_call(fs, "sines(3000)") == (3000, 0, True)
 
 
 def test_aim_equals_the_plain_form_in_both_runtimes(both_runtimes):
-    cp, mp = both_runtimes("CASES = 5000\n" + AIMS)
+    cp, mp = both_runtimes.call("scenarios.rescale:aims", 5000)
     assert cp == mp
-    count, odd, differ = ast.literal_eval(cp.strip().splitlines()[-1])
+    count, odd, differ = cp
     assert count == 5000 and odd > 500 and differ == 0, (count, odd, differ)
 
 
 # hexapod/_fixmath_viper.py's sin (walk's sine on a MicroPython with viper) against fixmath.sin, over
 # every table step and its edges, both signs, whole turns away, up to the 2**29 the docstrings allow.
-SINES = (
-    LCG
-    + """
-from hexapod import fixmath, walk
-from hexapod._fixmath_viper import sin as _sin
-
-count = differ = 0
-for n in range(CASES):
-    c = (draw(30) - (1 << 29)) >> (n % 30) if n % 3 else n * 25 - 45000 + (n >> 1) % 3 - 1
-    differ += _sin(c) != fixmath.sin(c)
-    count += 1
-print((count, differ, walk.sin is _sin))
-"""
-)
-
-
 def test_viper_sine_equals_fixmath_on_the_vm(mp):
-    assert mp.value("CASES = 20000\n" + SINES, heapsize="1m") == (20000, 0, True)
+    assert mp.with_heapsize("1m").call("scenarios.rescale:sines", 20000) == (20000, 0, True)
 
 
 # Walker.command checks its own input unless told its caller just did (Robot.walk, which checks
 # first so that a bad command raises whatever the robot's mode): bad input raises and changes nothing.
-BAD = """
-import robots.default as robot_file
-from hexapod import geometry, walk
-
-w = walk.Walker(geometry.load(robot_file))
-for i in range(6):
-    w.rho[i] = 500
-w.command(800, 0, 300)
-before = (w.state, list(w.cmd), w.scale_permille, w.req_vx, w.req_vy, w.req_yaw)
-for args in ((True, 0, 0), (1.5, 0, 0), (3001, 0, 0), (0, -3001, 0), (0, "1", 0), (0, 0, 9001), (0, 0, None)):
-    try:
-        w.command(*args)
-        print("ACCEPTED")
-    except ValueError as e:
-        print(str(e).split(":")[0])
-print((w.state, list(w.cmd), w.scale_permille, w.req_vx, w.req_vy, w.req_yaw) == before)
-"""
-
-
 def test_walker_command_refuses_bad_input_and_changes_nothing(both_runtimes):
-    cp, mp = both_runtimes(BAD)
+    bad = [(True, 0, 0), (1.5, 0, 0), (3001, 0, 0), (0, -3001, 0), (0, "1", 0), (0, 0, 9001), (0, 0, None)]
+    cp, mp = both_runtimes.call("scenarios.rescale:bad_commands", bad)
     assert cp == mp
-    assert cp.split() == ["vx", "vx", "vx", "vy", "vy", "yaw_rate", "yaw_rate", "True"]
+    assert cp == ["vx", "vx", "vx", "vy", "vy", "yaw_rate", "yaw_rate", True]

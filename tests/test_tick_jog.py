@@ -1,57 +1,11 @@
 """The core's jog mode (hexapod.tick.Robot.jog_foot/jog_joint/jog_pulse/calibrate/go_limp) on a
 FrameBuffer, both runtimes: what moves, what is refused and why, leaving the jog."""
 
-import ast
-
-SETUP = """
-import robots.default as robot_file
-from hexapod import geometry, tick
-from hexapod.board import load, servo_table
-g = geometry.load(robot_file)
-fb = tick.FrameBuffer()
-robot = tick.Robot(g, [row[2] for row in servo_table(load("pico"))], fb)
-t = [0]
-def run(n):
-    for _ in range(n):
-        robot.tick(t[0])
-        t[0] += 20
-def err(fn, *a):
-    try:
-        fn(*a)
-    except ValueError as e:
-        return str(e)
-"""
-
 
 def test_jog_api_moves_one_leg_refuses_with_reasons_and_leaves_smoothly(rt):
-    src = (
-        SETUP
-        + """
-out = []
-out.append(robot.jog_foot(1, 1300, 0, -800))          # leg 2, 0.1 mm
-run(2)
-out.append((robot.mode, list(fb.pulses)))
-out.append((robot.jog_foot(1, 4000, 0, -800), robot.jog_code, robot.jog_excess))
-out.append((robot.jog_joint(1, 2, 500), robot.jog_code, robot.jog_excess))     # tibia +5 deg: past 0
-out.append((robot.jog_pulse(1, 1, 2450), robot.jog_servo, robot.jog_code, robot.jog_excess))
-out.append((robot.calibrate(4, 1500, 1, 1600, 2400), robot.jog_servo, robot.jog_code, robot.jog_excess))
-out.append(list(fb.pulses) == out[1][1])
-out.append([err(robot.jog_foot, 6, 0, 0, 0), err(robot.jog_joint, 1, 3, 0), err(robot.jog_pulse, 1, 0, 1500.0),
-            err(robot.calibrate, 4, 1500, 0, 600, 2400), err(robot.calibrate, 4, 1500, 1, 2400, 600)])
-out.append((robot.jog_joint(0, 0, 1000), list(robot.pulses[:6])))
-out.append(robot.stand_up())
-run(1)
-out.append(list(robot.angles[3:6]))
-run(200)
-out.append(robot.mode)
-robot.go_limp()
-out.append((robot.mode, fb.pulses == [0] * 18))
-print(repr(out))
-"""
-    )
     # 512k: the VM compiles the whole core from source here; at 256k the board file's check ran
     # out of heap on some runs (this test measures behaviour, not memory).
-    out = ast.literal_eval(rt.run(src, heapsize="512k").strip().splitlines()[-1])
+    out = rt.with_heapsize("512k").call("scenarios.tick_jog:jog_session")
     assert out[0] == 0
     mode, pulses = out[1]
     # leg 2 only; seed 004 IK of (130, 0, -80) mm: 0, 8.11, -90.83 deg; pico.py leg 2 rows

@@ -5,16 +5,6 @@ import pytest
 from hexapod.servo import ABOVE_MAX, BELOW_MIN, OK, ServoMap
 from hexapod.units import format_fixed, parse_fixed
 
-PARSE = """
-from hexapod.units import parse_fixed, format_fixed
-for text, places in CASES:
-    try:
-        v = parse_fixed(text, places)
-        print(v, format_fixed(v, places))
-    except ValueError as err:
-        print("error", err)
-"""
-
 CASES = [
     ("12.34", 2),
     ("-0.005", 2),
@@ -40,7 +30,7 @@ CASES = [
 
 
 def test_parse_and_format_identical_in_both_runtimes(rt):
-    out = rt.run("CASES = %r\n%s" % (CASES, PARSE)).splitlines()
+    out = rt.call("scenarios.units:parse_and_format", CASES)
     assert out[:9] == [
         "1234 12.34",
         "-1 -0.01",
@@ -119,17 +109,6 @@ def test_bad_leg_geometry_is_refused(kwargs, message):
         Leg(**args)
 
 
-EDGES = """
-from hexapod.units import parse_fixed, shown
-for text, places, limit in CASES:
-    try:
-        print(parse_fixed(text, places, limit, "mm"))
-    except ValueError as err:
-        print("error", err)
-print(shown("a'b\\\\c\\x00\\u00e9\\u20ac\\U0001f600"), shown("x" * 25), shown("x" * 20))
-"""
-
-
 def test_parse_fixed_edges_identical_in_both_runtimes(rt):
     cases = [
         ("\uff11\uff14\uff10", 1, None),  # full-width digits: CPython's isdigit() says yes, MicroPython's no
@@ -147,7 +126,8 @@ def test_parse_fixed_edges_identical_in_both_runtimes(rt):
         ("9" * 60, 1, None),
         ("360.005", 2, 36000),
     ]
-    out = rt.run("CASES = %r\n%s" % (cases, EDGES)).splitlines()
+    shown = ["a'b\\c\x00\u00e9\u20ac\U0001f600", "x" * 25, "x" * 20]
+    out = rt.call("scenarios.units:parse_edges", cases, shown)
     only = "is not a number: only ASCII digits 0-9, '-' and '.' are accepted"
     assert out == [
         "error '\\uff11\\uff14\\uff10' " + only,

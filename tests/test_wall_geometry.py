@@ -10,6 +10,7 @@ perpendicular distance, so the wall sits at n.p = 80 mm + max(n.s) over the two 
 import math
 
 import pytest
+from scenarios.rig import stand
 
 import robots.default
 from hexapod import follow, geometry, tick
@@ -36,11 +37,7 @@ def envelope(commands, ticks=150):
     points = []
     for vx, yaw in commands:
         robot = tick.Robot(G, tick.default_servos(G), tick.FrameBuffer())
-        robot.stand_up()
-        t = 0
-        while robot.mode != tick.STANDING:
-            robot.tick(t)
-            t += 20
+        t = stand(robot)
         assert robot.walk(vx, 0, yaw) == 0
         for _ in range(ticks):
             assert robot.tick(t) == 0

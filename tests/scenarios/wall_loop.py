@@ -3,49 +3,16 @@ models, the virtual clock, main.build's runner and its follower."""
 
 import _stub_clock as clock
 import main
-import stub_board
-
-from hexapod import board as boards
+from scenarios import runner
 
 
-class Loop:
-    """The board's models (both PCA9685s plugged, the five sonars at 300 + 100 k mm) and, after
+class Loop(runner.Loop):
+    """The Pico board's models (both PCA9685s plugged, the five sonars at 300 + 100 k mm) and, after
     build(), main.build's runner on the virtual clock."""
 
     def __init__(self):
-        self.board = stub_board.reset("pico")
-        self.table = boards.servo_table(self.board)
-        self.bus, self.chips = stub_board.pca9685_models(self.board, attach=False)
-        self.sonar = stub_board.sonar_models(self.board, [3000 + 1000 * k for k in range(5)])
-        self.bus.attach(self.chips[0x40])
-        self.bus.attach(self.chips[0x41])
-        self.r = None
-
-    def build(self):
-        self.r = main.build(clock=clock)
-        return self.r
-
-    def unsafe(self):
-        """Servos whose output is neither off nor inside min..max (give or take half a count)."""
-        bad = []
-        for k in range(18):
-            address, ch, smap = self.table[k]
-            m = self.chips[address]
-            ns = m.pulse_ns(ch)
-            half = (m.prescale() + 1) * 500000000 // m.clock_hz() + 1
-            if ns and not smap.min_us * 1000 - half <= ns <= smap.max_us * 1000 + half:
-                bad.append((k, ns))
-        return bad
-
-    def frames(self, n):
-        """n frames of the runner; the unsafe outputs seen."""
-        r = self.r
-        worst = []
-        for _ in range(n):
-            r.step()
-            worst += self.unsafe()
-            r.wait()
-        return worst
+        super().__init__()
+        self.plug(0x40, 0x41)
 
     def at(self, *distances):
         """The five sonars' distances (0.1 mm): front, left front, left rear, right front, right rear."""

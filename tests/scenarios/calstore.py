@@ -1,0 +1,147 @@
+"""calstore.Store on a filesystem that loses power after `budget` operations (open for writing, each
+write, close, rename, remove). A cut write leaves half its bytes: open("w") truncates at once, so the
+stub is harsher than littlefs (which keeps the old data until close)."""
+
+import calstore
+from scenarios.refusal import message
+
+
+class PowerCut(Exception):
+    pass
+
+
+class StubFS:
+    def __init__(self, files=None, budget=-1, fat=False, readonly=False):
+        self.files = dict(files or {})
+        self.budget = budget
+        self.fat = fat
+        self.readonly = readonly
+        self.ops = 0
+
+    def _op(self):
+        if self.budget >= 0 and self.ops >= self.budget:
+            raise PowerCut()
+        self.ops += 1
+
+    def stat(self, name):
+        if name not in self.files:
+            raise OSError(2, "ENOENT")
+        return (0,)
+
+    def rename(self, a, b):
+        if a not in self.files:
+            raise OSError(2, "ENOENT")
+        if self.fat and b in self.files:
+            raise OSError(17, "EEXIST")
+        self._op()
+        self.files[b] = self.files.pop(a)
+
+    def remove(self, name):
+        if name not in self.files:
+            raise OSError(2, "ENOENT")
+        self._op()
+        del self.files[name]
+
+    def open(self, name, mode="r"):
+        if mode == "r":
+            if name not in self.files:
+                raise OSError(2, "ENOENT")
+            return Reader(self.files[name])
+        if self.readonly:
+            raise OSError(30, "EROFS")
+        self._op()
+        self.files[name] = ""
+        return Writer(self, name)
+
+
+class Reader:
+    def __init__(self, text):
+        self.text = text
+
+    def read(self):
+        return self.text
+
+    def close(self):
+        pass
+
+
+class Writer:
+    def __init__(self, fs, name):
+        self.fs = fs
+        self.name = name
+
+    def write(self, s):
+        try:
+            self.fs._op()
+        except PowerCut:
+            self.fs.files[self.name] += s[: len(s) // 2]
+            raise
+        self.fs.files[self.name] += s
+        return len(s)
+
+    def close(self):
+        self.fs._op()
+
+
+OLD = [(0, 1, 600, 2400)] * 18
+NEW = [(k - 9, -1 if k % 2 else 1, 700 + k, 2300 - k) for k in range(18)]
+NEWER = [(5, 1, 650, 2350)] * 18
+
+
+def boot(fs):
+    try:
+        return calstore.Store(fs, fs.open).load()[0]
+    except ValueError:
+        return None
+
+
+def save(fs, rows):
+    try:
+        calstore.Store(fs, fs.open).save(rows)
+        return True
+    except PowerCut:
+        return False
+
+
+def cuts(fat, start, nested):
+    seen = {}
+    n = 0
+    for b1 in range(40):
+        fs = StubFS({calstore.FILE: calstore.encode(OLD)} if start else {}, b1, fat)
+        done1 = save(fs, NEW)
+        plans = range(40) if nested and not done1 else [-1]
+        for b2 in plans:
+            fs2 = StubFS(fs.files, b2, fat)
+            done2 = save(fs2, NEWER) if b2 >= 0 else False
+            got = boot(StubFS(fs2.files, -1, fat))
+            name = "old" if got == OLD else "new" if got == NEW else "newer" if got == NEWER else repr(got)[:20]
+            key = (done1, done2, name)
+            seen[key] = seen.get(key, 0) + 1
+            n += 1
+        if done1:
+            break
+    return sorted(seen.items()), n
+
+
+def format_checks():
+    """Round trip and the refusals of a truncated, flipped, versioned and out-of-range file; see the test."""
+    rows = [(k - 9, -1 if k % 2 else 1, 700 + k, 2300 - k) for k in range(18)]
+    text = calstore.encode(rows)
+
+    def why(t):
+        return message(calstore.decode, t)
+
+    body = text[: text.rfind("crc ")].replace("700 2300", "2400 2300")
+    return [
+        calstore.decode(text) == rows,
+        [why(text[:n]) for n in (0, 10, len(text) // 2, len(text) - 1)],
+        why(text.replace("2 femur -5", "2 femur -6")),
+        why(text.replace("hexapod-cal 1", "hexapod-cal 2")),
+        why(body + "crc %04x\n" % calstore.crc16(body.encode())),
+        text.splitlines()[:2] + text.splitlines()[-1:],
+    ]
+
+
+def all_cuts():
+    """cuts() of a first save on littlefs and FAT, with an old file and without."""
+    return [cuts(fat, start, False) for fat in (False, True) for start in (True, False)]
