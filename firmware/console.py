@@ -615,6 +615,7 @@ class Console:
                 for j in range(k):
                     t, d, lo, hi = old[j]
                     self.robot.calibrate(j, self.base[j][0] + t, d, lo, hi)
+                    self.trims[j] = t  # all or none: the trims too
                 return code
             self.trims[k] = t
         return 0
