@@ -271,7 +271,7 @@ class Run:
             if self.held_run > self.worst_held_run:
                 self.worst_held_run = self.held_run
             if self.held_run == HELD_FRAMES + 1:
-                self.fail("frames held for more than %d frames: %s" % (HELD_FRAMES, b.con.held_line()))
+                self.fail("frames held for more than %d frames: %s" % (HELD_FRAMES, tick.describe(b.robot.reason)))
         else:
             self.held_run = 0
         self.check_target()
