@@ -281,13 +281,17 @@ class Run:
             return
         name, modes, deadline, since = self.target
         mode = self.b.robot.mode
-        if mode in modes and not (mode == tick.STANDING and not self.settled()):
+        # There: in the mode, following no wall, and the frame sent (a held frame is not a pose reached).
+        if mode in modes and self.b.robot.reason == 0 and not (mode == tick.STANDING and not self.settled()):
             took = self.frames - since
             if took > self.worst.get(name, 0):
                 self.worst[name] = took
             self.target = None
         elif self.frames > deadline:
-            self.fail("%s answered ok, still %s after %d frames" % (name, MODES[mode], self.frames - since))
+            self.fail(
+                "%s answered ok, still %s (%s) after %d frames"
+                % (name, MODES[mode], tick.describe(self.b.robot.reason), self.frames - since)
+            )
             self.target = None
 
     def settled(self):
