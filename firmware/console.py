@@ -113,6 +113,7 @@ class Console:
         self._cr = False
         self._walking = False  # a console walk runs, expiring at _deadline (ticks_ms)
         self._deadline = 0
+        self._held = False  # a held frame was announced (once, until frames are sent again)
         self.lines = 0  # lines answered
         # The board file's calibration: (centre_us, direction, min_us, max_us) per servo.
         self.base = tuple((s.centre_us, s.direction, s.min_us, s.max_us) for s in self.robot.servos)
@@ -148,7 +149,14 @@ class Console:
     # -- the frame's part ---------------------------------------------------------------
 
     def poll(self):
-        """Once per frame: take waiting bytes, run a complete line, expire a stale walk."""
+        """Once per frame: announce a held frame once, take waiting bytes, run a complete line,
+        expire a stale walk."""
+        if self.robot.reason:
+            if not self._held:
+                self._held = True
+                self.out(self.held_line())
+        elif self._held:
+            self._held = False
         if self._walking:
             clock = self.runner.clock
             if clock.ticks_diff(clock.ticks_ms(), self._deadline) >= 0:
@@ -322,7 +330,46 @@ class Console:
                 s.min_us,
                 s.max_us,
             )
+        if code == tick.PATH_IK:
+            return "err leg %d would not get there: %s on the way; place it with 'foot' first" % (
+                r.path_leg + 1,
+                leg_describe(r.jog_code, r.jog_excess),
+            )
+        if code == tick.PATH_SERVO:
+            k = r.jog_servo
+            s = r.servos[k]
+            return "err leg %d %s would not get there: its pulse would go %d us %s its calibrated %d..%d us" % (
+                k // 3 + 1,
+                JOINTS[k % 3],
+                r.jog_excess,
+                "below" if r.jog_code == 1 else "above",
+                s.min_us,
+                s.max_us,
+            )
         return "err " + tick.describe(code)
+
+    def held_line(self):
+        """The notice for a held frame (the robot's reason, fault_leg, ...): never 'ok' or 'err'."""
+        r = self.robot
+        if r.reason == tick.FRAME_SERVO:
+            k = r.fault_servo
+            s = r.servos[k]
+            why = "%s pulse %d us %s its calibrated %d..%d us" % (
+                JOINTS[k % 3],
+                r.fault_excess,
+                "below" if r.fault_code == 1 else "above",
+                s.min_us,
+                s.max_us,
+            )
+        elif r.reason == tick.FRAME_IK:
+            why = leg_describe(r.fault_code, r.fault_excess)
+        else:
+            why = tick.describe(r.reason)
+        return "held: leg %d: %s; the servos keep the last frame until it clears (mode %s)" % (
+            r.fault_leg,
+            why,
+            tick.MODE_NAMES[r.mode],
+        )
 
     def _mode_reply(self, code):
         if code:
@@ -570,6 +617,7 @@ class Console:
                 for j in range(k):
                     t, d, lo, hi = old[j]
                     self.robot.calibrate(j, self.base[j][0] + t, d, lo, hi)
+                    self.trims[j] = t  # all or none: the trims too
                 return code
             self.trims[k] = t
         return 0

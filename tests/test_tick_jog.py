@@ -24,7 +24,9 @@ def test_jog_api_moves_one_leg_refuses_with_reasons_and_leaves_smoothly(rt):
     ]
     assert out[8] == (0, [1600, 0, 0, 1500, 1581, 1492])  # one servo of a limp leg: only it
     assert out[9] == 0
-    # leaving the jog: the posture starts where the jog put leg 2 (within the FK/IK round trip)
-    assert all(abs(a - b) <= 30 for a, b in zip(out[10], (0, 811, -9083), strict=True)), out[10]
+    # leaving the jog: the posture starts where the jog put leg 2; its first frame moves the foot
+    # one posture step (at most 2 mm: 1.3 deg here) up from there
+    assert all(abs(a - b) <= 150 for a, b in zip(out[10], (0, 811, -9083), strict=True)), out[10]
     assert out[11] == 3  # standing
     assert out[12] == (0, True)
+    assert out[13] == 0  # no frame held on the way (leg 1's stretched limp joints included)

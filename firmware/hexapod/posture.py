@@ -6,7 +6,11 @@ POSTURE_STEP (0.1 mm) per tick, so no servo jumps far in one frame.
 
 - stand up: feet rise to just above the ground the body rests on (the body sits down
   first if it was up), slide over to the neutral stance, then push the body up.
-- sit down: feet rise until the body rests on the ground and they lift FOOT_CLEARANCE off it.
+- sit down: feet rise until the body rests on the ground and they lift FOOT_CLEARANCE off it;
+  a foot that is not at its neutral place then (a jogged leg) slides there, just clear of the ground.
+Both come in two variants (`straight`: a foot above the resting height comes down to it before
+the slide, or stays up and comes down along the slide): hexapod.tick tries the path of one,
+then the other, frame by frame before it queues a move.
 - relax: sit down, then the servos go limp (the tick sends pulse 0).
 """
 
@@ -38,21 +42,34 @@ class Posture:
         self.n = 0
         self.k = 0
 
-    def stand_up(self, walker, rest_z):
-        """Queue: clear the ground at rest_z (fine), slide to neutral, lower to walker.ground."""
+    def stand_up(self, walker, rest_z, straight=False):
+        """Queue: clear the ground at rest_z (fine), slide to neutral, lower to walker.ground.
+        straight: a foot above rest_z comes down to it first too (else it stays up until the slide)."""
+        self._to_rest(walker, rest_z, straight)
+        w = self.way
+        for i in range(6):
+            b = 3 * i
+            w[36 + b] = walker.nx[i]
+            w[37 + b] = walker.ny[i]
+            w[38 + b] = walker.ground
+        self._begin(walker, 3)
+
+    def sit_down(self, walker, rest_z, straight=True):
+        """Queue: every foot straight up or down to rest_z (fine), then to the neutral stance at
+        rest_z. straight False: a foot above rest_z stays up until the slide."""
+        self._to_rest(walker, rest_z, straight)
+        self._begin(walker, 2)
+
+    def _to_rest(self, walker, rest_z, straight):
         w = self.way
         for i in range(6):
             b = 3 * i
             w[b] = walker.fx[i]
             w[b + 1] = walker.fy[i]
-            w[b + 2] = walker.fz[i] if walker.fz[i] > rest_z else rest_z
+            w[b + 2] = walker.fz[i] if walker.fz[i] > rest_z and not straight else rest_z
             w[18 + b] = walker.nx[i]
             w[19 + b] = walker.ny[i]
             w[20 + b] = rest_z
-            w[36 + b] = walker.nx[i]
-            w[37 + b] = walker.ny[i]
-            w[38 + b] = walker.ground
-        self._begin(walker, 3)
 
     def to_height(self, walker, z):
         """Queue: every foot straight up or down to body-frame z (fine)."""

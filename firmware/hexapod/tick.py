@@ -14,8 +14,12 @@ is skipped, and nothing jumps to catch up. A steady tick allocates no heap memor
 
 Commands change state between ticks. Bad values raise ValueError (naming the value and the
 allowed range); a command the robot cannot carry out now returns a reason code (below) and
-changes nothing. A frame whose IK or pulse check fails is not sent: the servos keep the last
-frame, `faults` counts it and `reason` says why (the planner is built never to get there).
+changes nothing. A posture move (stand_up, sit_down, relax, set_height) is checked frame by
+frame before it starts: one that would pass a point out of reach or a pulse outside its servo's
+range is refused (PATH_IK, PATH_SERVO; path_leg, jog_code, jog_excess, jog_servo say where and
+why). A frame whose IK or pulse check fails is not sent: the servos keep the last frame,
+`faults` counts it and `reason`, `fault_leg`, `fault_code`, `fault_servo`, `fault_excess` say
+why (the planner is built never to get there).
 """
 
 import sys
@@ -24,10 +28,10 @@ from array import array
 from micropython import const
 
 from hexapod.body import FINE_SHIFT, Body
-from hexapod.fixmath import cos, mul_q15, sin
+from hexapod.fixmath import cos, isqrt, mul_q15, sin
 from hexapod.gait import TICK_MS, TRIPOD, check_cycle_ms, check_gait
 from hexapod.leg import OK
-from hexapod.posture import Posture
+from hexapod.posture import POSTURE_STEP, Posture
 from hexapod.reach import disc_radii
 from hexapod.servo import ServoMap
 from hexapod.turns import sweep_command
@@ -54,6 +58,9 @@ FRAME_IK = const(24)
 FRAME_SERVO = const(25)
 JOG_IK = const(26)  # a jog refused by the leg: jog_code (hexapod.leg code), jog_excess (0.1 mm or cdeg)
 JOG_SERVO = const(27)  # a jog or calibration refused by a servo: jog_servo, jog_code (servo code), jog_excess (us)
+# 28 is hexapod.walk.SERVO_SPEED.
+PATH_IK = const(30)  # a posture move refused: on its way leg path_leg would fail its IK (jog_code, _excess)
+PATH_SERVO = const(31)  # a posture move refused: on its way servo jog_servo would leave its range (jog_code, _excess)
 
 RELAXED = const(0)
 SITTING = const(1)
@@ -86,6 +93,8 @@ def describe(code):
         FRAME_SERVO: "frame held: a pulse was outside its servo's calibrated range",
         JOG_IK: "refused: that foot is out of reach or a joint past its limit",
         JOG_SERVO: "refused: that pulse is outside the servo's calibrated range",
+        PATH_IK: "refused: on the way a foot would leave its reach or a joint pass its limit",
+        PATH_SERVO: "refused: on the way a pulse would leave its servo's calibrated range",
         SERVO_SPEED: "refused: the servos are too slow for this gait's swing (longer cycle or lower lift)",
     }.get(code, "unknown reason %d" % code)
 
@@ -115,6 +124,26 @@ class FrameBuffer:
         self.frames += 1
 
 
+class _Feet:
+    """Scratch feet (body frame, fine) a posture move is tried on before it is queued."""
+
+    def __init__(self, walker):
+        self.fx = array("i", [0] * 6)
+        self.fy = array("i", [0] * 6)
+        self.fz = array("i", [0] * 6)
+        self.nx = walker.nx  # the posture moves read the neutral stance and the ground, never write them
+        self.ny = walker.ny
+        self.ground = walker.ground
+
+
+# The posture moves Robot._move plans (each stand or sit has two variants: Posture's `straight`).
+_STAND = const(0)
+_STAND_STRAIGHT = const(1)
+_SIT = const(2)
+_SIT_LIFTED = const(3)
+_HEIGHT = const(4)
+
+
 class Robot:
     """Geometry + servo calibration + frame sink: commands in, one frame out per tick()."""
 
@@ -134,6 +163,8 @@ class Robot:
         self._probe = Body(geometry)  # the target pose, for checks made before moving
         self.walker = Walker(geometry)
         self.posture = Posture()
+        self._trial = Posture()  # a posture move tried frame by frame before it is queued
+        self._feet = _Feet(self.walker)
         self.rest_z = -(geometry.sit_height - geometry.foot_clearance) << FINE_SHIFT
         self.angles = [0] * 18  # last joint angles sent, cdeg
         self.pulses = [0] * 18 if pulses is None else pulses  # last pulses sent, us
@@ -151,6 +182,9 @@ class Robot:
         self.reason = OK
         self.fault_leg = 0
         self.fault_code = OK
+        self.fault_servo = 0  # the servo (0..17) of a FRAME_SERVO hold
+        self.fault_excess = 0  # how far the held frame missed (0.1 mm, cdeg or us)
+        self.path_leg = 0  # the leg (0..5) a PATH_IK / PATH_SERVO refusal is about
         self._last_ms = 0
         self._timed = False
         self.jog_servo = 0  # why the last jog or calibration was refused (JOG_IK, JOG_SERVO)
@@ -186,9 +220,11 @@ class Robot:
             for k in range(18):
                 p[k] = 0
             self.frame.write_frame(p)
+            self.reason = OK
             return OK
         if m == JOG:
             self.frame.write_frame(self.pulses)
+            self.reason = OK
             return OK
         if m == MOVING:
             if self.wake < WAKE_FRAMES:
@@ -219,12 +255,13 @@ class Robot:
             self.body.to_leg(i, w.fx[i], w.fy[i], w.fz[i], leg, 0)
             code = legs[i].ik(leg[0], leg[1], leg[2], a, 3 * i)
             if code != OK:
-                return self._fault(FRAME_IK, i, code)
+                return self._fault(FRAME_IK, i, code, legs[i].excess)
         p = self._pulses
         for k in range(18):
             code = self.servos[k].pulse(a[k], p, k)
             if code != OK:
-                return self._fault(FRAME_SERVO, k // 3, code)
+                self.fault_servo = k
+                return self._fault(FRAME_SERVO, k // 3, code, self.servos[k].excess)
         for k in range(18):
             self.angles[k] = a[k]
             self.pulses[k] = p[k]
@@ -241,11 +278,12 @@ class Robot:
                     p[k] = 0
         self.frame.write_frame(self.pulses)
 
-    def _fault(self, reason, leg, code):
+    def _fault(self, reason, leg, code, excess):
         self.faults += 1
         self.reason = reason
         self.fault_leg = leg + 1
         self.fault_code = code
+        self.fault_excess = excess
         return reason
 
     # -- commands (between ticks) ------------------------------------------------------
@@ -256,14 +294,15 @@ class Robot:
             return NOT_STANDING if self.mode != WALKING else WALKING_NOW
         if len(angles) != 18:
             raise ValueError("angles: need 18 values (cdeg), got %d" % len(angles))
-        self._feet_from(angles)
+        self._feet_from(angles, self.walker)
         return OK
 
-    def _feet_from(self, angles):
-        """The walker's feet (body frame) where the 18 joint angles (cdeg) put them."""
+    def _feet_from(self, angles, out):
+        """out's feet (fx, fy, fz: body frame, fine) where the 18 joint angles (cdeg) put them."""
         feet = [0] * 18
         for i in range(6):
             self.geometry.legs[i].fk(angles[3 * i], angles[3 * i + 1], angles[3 * i + 2], self._leg, 0)
+            self._inside(i, self._leg)
             x = self._leg[0]
             y = self._leg[1]
             c = self.geometry.mount_cos[i]
@@ -272,9 +311,32 @@ class Robot:
             feet[3 * i + 1] = self.geometry.mount_y[i] + ((x * s + y * c + 16384) >> 15)
             feet[3 * i + 2] = self._leg[2]
         for i in range(6):
-            self.walker.fx[i] = feet[3 * i] << FINE_SHIFT
-            self.walker.fy[i] = feet[3 * i + 1] << FINE_SHIFT
-            self.walker.fz[i] = feet[3 * i + 2] << FINE_SHIFT
+            out.fx[i] = feet[3 * i] << FINE_SHIFT
+            out.fy[i] = feet[3 * i + 1] << FINE_SHIFT
+            out.fz[i] = feet[3 * i + 2] << FINE_SHIFT
+
+    def _inside(self, i, foot):
+        """Leg i's foot (leg frame, 0.1 mm) from forward kinematics, moved at most one posture
+        frame's travel toward its resting place until its IK solves: angles at a limit or a
+        stretched leg round to a point just outside (0.1 mm, 0.01 deg), which no frame could send."""
+        lg = self.geometry.legs[i]
+        x = foot[0]
+        y = foot[1]
+        z = foot[2]
+        dx = self.geometry.neutral_reach - x
+        dz = (self.rest_z >> FINE_SHIFT) - z
+        d = isqrt(dx * dx + y * y + dz * dz)
+        if d == 0:
+            return
+        for s in range(0, POSTURE_STEP + 1, 2):
+            foot[0] = x + dx * s // d
+            foot[1] = y - y * s // d
+            foot[2] = z + dz * s // d
+            if lg.ik(foot[0], foot[1], foot[2], self._angles, 0) == OK:
+                return
+        foot[0] = x  # still outside: the posture move's check refuses it, naming the leg
+        foot[1] = y
+        foot[2] = z
 
     def _can_move(self):
         if self.mode == WALKING:
@@ -285,30 +347,86 @@ class Robot:
 
     def stand_up(self):
         """From wherever the feet are: clear the ground, go to neutral, raise the body."""
+        return self._move(_STAND, _STAND_STRAIGHT, STANDING)
+
+    def sit_down(self):
+        """Lower the body onto the ground, lift the feet just clear of it and bring any foot that
+        is not at its neutral place (a jogged leg) there."""
+        return self._move(_SIT, _SIT_LIFTED, SITTING)
+
+    def _plan(self, posture, feet, plan):
+        if plan in (_STAND, _STAND_STRAIGHT):
+            posture.stand_up(feet, self.rest_z, plan == _STAND_STRAIGHT)
+        elif plan in (_SIT, _SIT_LIFTED):
+            posture.sit_down(feet, self.rest_z, plan == _SIT)
+        else:
+            posture.to_height(feet, feet.ground)
+
+    def _move(self, plan, other, after):
+        """Start a posture move ending in mode `after` along plan's path, else along other's,
+        else refuse it changing nothing (the reason is other's)."""
         code = self._can_move()
         if code != OK:
             return code
+        w = self.walker
+        self._start_feet()
+        if self._path_clear(plan) != OK:
+            plan = other
+            self._start_feet()  # the trial moved the scratch feet
+            code = self._path_clear(plan)
+            if code != OK:
+                return code
         if self.mode == JOG:
-            self._feet_from(self.angles)  # the posture move starts where the jog left the feet
+            self._feet_from(self.angles, w)
         elif self.mode == RELAXED:
-            self.wake = 0
-        self.posture.stand_up(self.walker, self.rest_z)
-        self.after = STANDING
+            self.wake = 0  # the soft start
+        self._plan(self.posture, w, plan)
+        self.after = after
         self.mode = MOVING
         return OK
 
-    def sit_down(self):
-        """Lower the body onto the ground and lift the feet just clear of it."""
-        code = self._can_move()
-        if code != OK:
-            return code
+    def _start_feet(self):
+        """The scratch feet where a posture move starts: the walker's, or where the jog left them."""
+        w = self.walker
+        f = self._feet
         if self.mode == JOG:
-            self._feet_from(self.angles)
-        elif self.mode == RELAXED:
-            self.wake = 0
-        self.posture.to_height(self.walker, self.rest_z)
-        self.after = SITTING
-        self.mode = MOVING
+            self._feet_from(self.angles, f)
+        else:
+            for i in range(6):
+                f.fx[i] = w.fx[i]
+                f.fy[i] = w.fy[i]
+                f.fz[i] = w.fz[i]
+        f.ground = w.ground
+
+    def _path_clear(self, plan):
+        """Try the posture move `plan` on the scratch feet (already where the move starts), frame
+        by frame as the tick would send it: OK, or PATH_IK / PATH_SERVO for its first bad frame."""
+        f = self._feet
+        trial = self._trial
+        self._plan(trial, f, plan)
+        legs = self.geometry.legs
+        a = self._angles
+        p = self._pulses
+        leg = self._leg
+        more = True
+        while more:  # every frame of the move, then the pose it ends in (once more: it is held there)
+            more = trial.step(f)
+            for i in range(6):
+                self.body.to_leg(i, f.fx[i], f.fy[i], f.fz[i], leg, 0)
+                code = legs[i].ik(leg[0], leg[1], leg[2], a, 3 * i)
+                if code != OK:
+                    self.path_leg = i
+                    self.jog_code = code
+                    self.jog_excess = legs[i].excess
+                    trial.clear()
+                    return PATH_IK
+            for k in range(18):
+                code = self.servos[k].pulse(a[k], p, k)
+                if code != OK:
+                    self.path_leg = k // 3
+                    self._servo_refused(k, code, self.servos[k].excess)
+                    trial.clear()
+                    return PATH_SERVO
         return OK
 
     def relax(self):
@@ -336,6 +454,12 @@ class Robot:
         if self.mode == STANDING and not self._feet_reachable(self.body):
             w.ground = old
             return UNREACHABLE
+        if self.mode == STANDING:
+            self._start_feet()
+            code = self._path_clear(_HEIGHT)
+            if code != OK:
+                w.ground = old
+                return code
         disc_radii(w, self.body, w.lift, self._rho)
         code = w.configure(self.gait, self.cycle_ms, w.lift, w.step, self._rho, False)
         if code != OK:

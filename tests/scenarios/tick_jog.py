@@ -47,4 +47,5 @@ def jog_session():
     out.append(robot.mode)
     robot.go_limp()
     out.append((robot.mode, fb.pulses == [0] * 18))
+    out.append(robot.faults)
     return out
