@@ -8,9 +8,8 @@ standing (hexapod.follow). Edit BOARD and ROBOT to match yours (files in boards/
 Needs adafruit_pca9685, adafruit_bus_device and adafruit_register in lib/ (docs/wiring.md).
 """
 
-from runner import Runner
+from runner import Runner, release
 
-from hexapod import board as boards
 from hexapod import geometry
 
 BOARD = "feather_rp2040"
@@ -35,6 +34,8 @@ def board_pin(board, name, where):
 def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000, samples=SONAR_SAMPLES):
     """The Runner for a CircuitPython board and robot file (max_range: 0.1 mm; samples: pings per
     median, drivers.hcsr04 order); clock: cp_clock.Clock."""
+    from hexapod import board as boards  # boot only: main() releases it (runner.release)
+
     board = boards.load(board_name)
     if board["runtime"] != "circuitpython":
         raise ValueError(
@@ -93,6 +94,7 @@ def main(frames=-1, clock=None, board_name=BOARD, robot_name=ROBOT, reader=None,
     the status line (docs/console.md); Ctrl-C relaxes the servos (or holds, on_exit)."""
     global runner
     r = runner = build(board_name, robot_name, clock)
+    release("hexapod.board", "robots." + robot_name)  # boot-only code: its heap back to the loop
     if reader is not None:
         import os
         import sys

@@ -9,10 +9,9 @@ ROBOT to match yours (files in boards/ and robots/).
 import time
 
 from machine import I2C, Pin, time_pulse_us
-from runner import Runner
+from runner import Runner, release
 
 from drivers import hcsr04, pca9685
-from hexapod import board as boards
 from hexapod import geometry
 
 BOARD = "pico"
@@ -28,6 +27,8 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=time, max_range=10000, sampl
     """The Runner for a board and robot on this machine's I2C and pins (max_range: 0.1 mm;
     samples: pings per median for each sensor, drivers.hcsr04 order; bank: where frames go,
     None for the board's PCA9685s on its I2C)."""
+    from hexapod import board as boards  # boot only: main() releases it (runner.release)
+
     board = boards.load(board_name)
     robot_module = __import__("robots." + robot_name, None, None, ("NAME",))
     table = boards.servo_table(board)
@@ -69,6 +70,7 @@ def main(frames=-1, clock=time, board_name=BOARD, robot_name=ROBOT, reader=None,
     the board file's on_exit) and leaves `runner` for the REPL."""
     global runner
     r = runner = build(board_name, robot_name, clock)
+    release("hexapod.board", "robots." + robot_name)  # boot-only code: its heap back to the loop
     if reader is not None:
         import os
         import sys

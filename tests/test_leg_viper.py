@@ -4,7 +4,8 @@ Run inside the MicroPython VM, where the viper emitter exists: 150,000+ feet ove
 and ordinary legs, every result compared: reason code, excess and the three angles.
 """
 
-from tests.test_fixmath import LCG
+# draw(bits): the LCG both runtimes share (tests/scenarios/lcg.py), for the VM sources below
+LCG = "from scenarios.lcg import Lcg\n\ndraw = Lcg().draw\n"
 
 EQUAL = (
     LCG

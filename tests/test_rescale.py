@@ -6,14 +6,11 @@ times, steps, reach and servo-speed discs (some zero, some tiny) and outward lim
 """
 
 import ast
-import os
-import shutil
-import tempfile
 
 import pytest
+from scenarios import on_board
 
 from hexapod_host.pico import emulator as pico
-from hexapod_host.testing.runtimes import TESTS
 
 
 def check(result, cases):
@@ -48,12 +45,7 @@ def pico_call(fs, call):
 
 @pytest.mark.skipif(pico.missing() is not None, reason=pico.missing() or "")
 def test_rescale_equals_the_plain_form_on_the_emulated_pico():
-    with tempfile.TemporaryDirectory() as tmp:
-        tree = pico.stage(os.path.join(tmp, "stage"))
-        for name in ("__init__.py", "lcg.py", "rescale.py"):  # the scenarios this test imports there
-            os.makedirs(os.path.join(tree, "scenarios"), exist_ok=True)
-            shutil.copy(os.path.join(TESTS, "scenarios", name), os.path.join(tree, "scenarios", name))
-        fs = pico.image(tree, os.path.join(tmp, "fs.img"))
+    with pico.flashed(extra=on_board("lcg.py", "rescale.py")) as fs:
         check(pico_call(fs, "rescales(300, True)"), 300)
         count, odd, differ = pico_call(fs, "aims(1000)")
         assert count == 1000 and odd > 100 and differ == 0, (count, odd, differ)

@@ -9,9 +9,12 @@ The walker's steps (hexapod/_walk_viper.py: swings, stance, move, begin, aim) an
 import ast
 
 import pytest
+from scenarios import on_board
 
 from hexapod_host.pico import emulator as pico
-from tests.test_fixmath import LCG
+
+# draw(bits): the LCG both runtimes share (tests/scenarios/lcg.py), for the VM sources below
+LCG = "from scenarios.lcg import Lcg\n\ndraw = Lcg().draw\n"
 
 CASES = (
     LCG
@@ -443,7 +446,7 @@ def test_robot_on_the_vm_uses_the_viper_frame_swing_and_stance(mp):
 @pytest.mark.skipif(pico.missing() is not None, reason=pico.missing() or "")
 def test_viper_paths_equal_plain_code_on_the_emulated_pico():
     # 1,000 frames (6,000 leg solves, 18,000 pulses), 2,000 swings, 1,000 stances, moves and starts.
-    with pico.flashed() as fs:
+    with pico.flashed(extra=on_board("lcg.py")) as fs:
         for path in sorted(PATHS):
             script, checks, _, cases = PATHS[path]
             status, out, err, _ = pico.run_source("CASES = %d\n" % cases + script, fs=fs, timeout=600)

@@ -85,3 +85,11 @@ def boot(folder, cal, setting, frames, typed=(), every=50, calibrated=None):
         board.pop("boot", None)
     word = status.split(" boot ")[1].split()[0]
     return word, r.robot.mode, reader.first, reader.most
+
+
+def released(folder):
+    """After main.main: which of the boot-only modules are still imported (hexapod.board, robots.default)."""
+    import sys
+
+    boot(folder, "none", None, 1)
+    return ["hexapod.board" in sys.modules, "robots.default" in sys.modules]

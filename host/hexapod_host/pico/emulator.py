@@ -174,11 +174,15 @@ def run(files=(), *, fs=None, firmware_path=None, devices=None, trace=None, main
 
 
 @contextlib.contextmanager
-def flashed(board="pico", robot="default", image_dir=None):
-    """A littlefs image of the staged firmware (staged into image_dir when given): yields its path."""
+def flashed(board="pico", robot="default", image_dir=None, extra=()):
+    """A littlefs image of the staged firmware (staged into image_dir when given) plus extra, (file
+    on the host, path on the board) pairs (the tests' scenario modules): yields its path."""
     with tempfile.TemporaryDirectory() as tmp:
         tree = image_dir or os.path.join(tmp, "stage")
         stage(tree, board, robot)
+        for src, dest in extra:
+            os.makedirs(os.path.dirname(os.path.join(tree, dest)), exist_ok=True)
+            shutil.copy(src, os.path.join(tree, dest))
         yield image(tree, os.path.join(tmp, "fs.img"))
 
 
