@@ -400,7 +400,8 @@ class Console:
         )
 
     def _battery_ok(self):
-        """ValueError naming the battery and its voltage while it is below its cutoff."""
+        """ValueError naming the battery and its voltage while it is cut off: every command that
+        would drive a servo (stand, sit, walk, wall, the jog) waits for a charged pack."""
         b = self.runner.battery
         if b is not None and b.state == batteries.CUTOFF:
             v = batteries.volts
@@ -465,6 +466,7 @@ class Console:
     def _sit(self, args):
         self._args(args, 0, "no arguments")
         self._no_follow()
+        self._battery_ok()
         return self._mode_reply(self.robot.sit_down())
 
     def _relax(self, args):
@@ -479,6 +481,7 @@ class Console:
         y = self._num("y", args[2], 1, -5000, 5000, "mm")
         z = self._num("z", args[3], 1, -5000, 5000, "mm")
         self._no_follow()
+        self._battery_ok()
         return self._jogged(leg, self.robot.jog_foot(leg, x, y, z))
 
     def _jogged(self, leg, code):
@@ -492,6 +495,7 @@ class Console:
         leg = self._leg(args[0])
         d = [self._num(n, args[k + 1], 1, -1000, 1000, "mm") for k, n in enumerate(("dx", "dy", "dz"))]
         self._no_follow()
+        self._battery_ok()
         r = self.robot
         k = 3 * leg
         if not (r.pulses[k] and r.pulses[k + 1] and r.pulses[k + 2]):
@@ -506,6 +510,7 @@ class Console:
         j = self._joint_of(args[1])
         a = self._num("angle", args[2], 2, -18000, 18000, "degrees")
         self._no_follow()
+        self._battery_ok()
         return self._jogged(leg, self.robot.jog_joint(leg, j, a))
 
     def _pulse(self, args):
@@ -515,6 +520,7 @@ class Console:
         s = self.robot.servos[3 * leg + j]
         us = self._whole("pulse", args[2], s.min_us, s.max_us, "us (this servo's calibrated range)")
         self._no_follow()
+        self._battery_ok()
         return self._jogged(leg, self.robot.jog_pulse(leg, j, us))
 
     def _get(self, args):

@@ -315,12 +315,15 @@ def test_the_battery_scenario(rt):
     assert replies[460] == "err walk: battery 6.39 V, " + why  # the next walk renewal is refused
     assert replies[700] == "err stand: battery 7.09 V, " + why
     assert replies[701] == "err wall: battery 7.09 V, " + why
+    assert replies[703] == "err sit: battery 7.09 V, " + why  # nothing that drives a servo
+    assert replies[704] == "err joint: battery 7.09 V, " + why
+    assert replies[705] == "ok mode relaxed"
     assert replies[825] == "err stand: battery 7.29 V, " + why  # 7300 since 16000 ms, not yet 1 s
     assert replies[900] == "ok mode moving"
     # status: the window's maximum, within 5 mV (2.42 mV ADC steps, the divider's rounding)
     assert " boot stood battery cutoff battery_mv " in replies[640] and abs(_mv(replies[640]) - 7100) <= 5
     assert " battery ok battery_mv " in replies[1000] and abs(_mv(replies[1000]) - 7300) <= 5
-    assert [line for f, line in said if line.startswith("err") and f not in (460, 700, 701, 825)] == [
+    assert [line for f, line in said if line.startswith("err") and f not in (460, 700, 701, 703, 704, 825)] == [
         "err walk: battery %s V, %s" % (v, why) for v in ["6.39"] * 5 + ["7.09"] * 4
     ]
 
