@@ -56,4 +56,8 @@ BOARD = {
     # Wall following at power-up (hexapod.follow): None, or e.g. {"side": "left", "setpoint": 800}
     # (set point 0.1 mm, the side sonar's reading; optional "speed" 0.1 mm/s, "form" "yaw"/"sweeps").
     "follow": None,
+    # Battery monitor (hexapod.battery): None, or the pack through a divider on an ADC pin, e.g.
+    # {"pin": 28, "divider_permille": 333} (2S LiPo through 20k over 10k, docs/wiring.md "Battery";
+    # optional "cells" and per-cell "cell_warn_mv", "cell_cutoff_mv", "cell_resume_mv").
+    "battery": None,
 }

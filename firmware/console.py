@@ -15,6 +15,7 @@ from micropython import const
 from runner import BOOT_WORDS, counters
 
 from drivers import hcsr04
+from hexapod import battery as batteries
 from hexapod import follow, gait, tick
 from hexapod.leg import describe as leg_describe
 from hexapod.units import format_fixed, parse_fixed
@@ -114,6 +115,7 @@ class Console:
         self._walking = False  # a console walk runs, expiring at _deadline (ticks_ms)
         self._deadline = 0
         self._held = False  # a held frame was announced (once, until frames are sent again)
+        self._battery = batteries.OK  # the battery state last announced (a notice at each change)
         self.lines = 0  # lines answered
         # The board file's calibration: (centre_us, direction, min_us, max_us) per servo.
         self.base = tuple((s.centre_us, s.direction, s.min_us, s.max_us) for s in self.robot.servos)
@@ -157,6 +159,10 @@ class Console:
                 self.out(self.held_line())
         elif self._held:
             self._held = False
+        b = self.runner.battery
+        if b is not None and b.state != self._battery:
+            self._battery = b.state
+            self.out(self.battery_line())
         if self._walking:
             clock = self.runner.clock
             if clock.ticks_diff(clock.ticks_ms(), self._deadline) >= 0:
@@ -371,6 +377,39 @@ class Console:
             tick.MODE_NAMES[r.mode],
         )
 
+    def battery_line(self):
+        """The notice for a battery state change: never 'ok' or 'err'."""
+        b = self.runner.battery
+        v = batteries.volts
+        if b.state == batteries.LOW:
+            return "battery: low, %s V (below %s V for 1 s): walking capped at %d mm/s and %d deg/s; charge soon" % (
+                v(b.level_mv),
+                v(b.warn_mv),
+                batteries.LOW_SPEED // 10,
+                batteries.LOW_YAW // 100,
+            )
+        if b.state == batteries.CUTOFF:
+            return "battery: cutoff, %s V (below %s V for 1 s): sitting down, then relaxed; %s" % (
+                v(b.level_mv),
+                v(b.cutoff_mv),
+                "stand, walk and wall refused until above %s V" % v(b.resume_mv),
+            )
+        return "battery: ok, %s V (above %s V for 1 s): stand, walk and wall allowed, no speed cap" % (
+            v(b.low_mv),
+            v(b.resume_mv),
+        )
+
+    def _battery_ok(self):
+        """ValueError naming the battery and its voltage while it is cut off: every command that
+        would drive a servo (stand, sit, walk, wall, the jog) waits for a charged pack."""
+        b = self.runner.battery
+        if b is not None and b.state == batteries.CUTOFF:
+            v = batteries.volts
+            raise ValueError(
+                "battery %s V, cut off below %s V (%d cells); charge it: allowed again after 1 s above %s V"
+                % (v(b.mv), v(b.cutoff_mv), b.cells, v(b.resume_mv))
+            )
+
     def _mode_reply(self, code):
         if code:
             return self._refused(code)
@@ -397,7 +436,7 @@ class Console:
         return (
             "ok %s faults %d mode %s gait %s "
             "walk_ms %d wall %s wall_mode %s wall_d %s wall_angle %s wall_error %s wall_out %s wall_faults %d "
-            "cal %s boot %s"
+            "cal %s boot %s battery %s battery_mv %s"
             % (
                 counters(r),
                 r.robot.faults,
@@ -413,17 +452,21 @@ class Console:
                 f.fault_total if on else 0,
                 self.cal_source,
                 BOOT_WORDS[r.boot],
+                "n/a" if r.battery is None else batteries.STATE_NAMES[r.battery.state],
+                "n/a" if r.battery is None else r.battery.level_mv,
             )
         )
 
     def _stand(self, args):
         self._args(args, 0, "no arguments")
         self._no_follow()
+        self._battery_ok()
         return self._mode_reply(self.robot.stand_up())
 
     def _sit(self, args):
         self._args(args, 0, "no arguments")
         self._no_follow()
+        self._battery_ok()
         return self._mode_reply(self.robot.sit_down())
 
     def _relax(self, args):
@@ -438,6 +481,7 @@ class Console:
         y = self._num("y", args[2], 1, -5000, 5000, "mm")
         z = self._num("z", args[3], 1, -5000, 5000, "mm")
         self._no_follow()
+        self._battery_ok()
         return self._jogged(leg, self.robot.jog_foot(leg, x, y, z))
 
     def _jogged(self, leg, code):
@@ -451,6 +495,7 @@ class Console:
         leg = self._leg(args[0])
         d = [self._num(n, args[k + 1], 1, -1000, 1000, "mm") for k, n in enumerate(("dx", "dy", "dz"))]
         self._no_follow()
+        self._battery_ok()
         r = self.robot
         k = 3 * leg
         if not (r.pulses[k] and r.pulses[k + 1] and r.pulses[k + 2]):
@@ -465,6 +510,7 @@ class Console:
         j = self._joint_of(args[1])
         a = self._num("angle", args[2], 2, -18000, 18000, "degrees")
         self._no_follow()
+        self._battery_ok()
         return self._jogged(leg, self.robot.jog_joint(leg, j, a))
 
     def _pulse(self, args):
@@ -474,6 +520,7 @@ class Console:
         s = self.robot.servos[3 * leg + j]
         us = self._whole("pulse", args[2], s.min_us, s.max_us, "us (this servo's calibrated range)")
         self._no_follow()
+        self._battery_ok()
         return self._jogged(leg, self.robot.jog_pulse(leg, j, us))
 
     def _get(self, args):
@@ -486,6 +533,7 @@ class Console:
         vy = self._num("vy", args[1], 1, -3000, 3000, "mm/s")
         wz = self._num("wz", args[2], 2, -9000, 9000, "deg/s")
         self._no_follow()
+        self._battery_ok()
         code = self.robot.walk(vx, vy, wz)
         if code:
             return self._refused(code)
@@ -536,6 +584,7 @@ class Console:
         if args[0] not in follow.SIDES:
             raise ValueError("side %r, allowed left, right or off" % (args[0][:20],))
         cm = self._num("set point", args[1], 2, follow.SETPOINT_MIN, follow.SETPOINT_MAX, "cm")
+        self._battery_ok()
         self._walking = False
         code = self.runner.follow(args[0], cm)
         if code:

@@ -2,7 +2,8 @@
 
 Loads the board file and the robot file named below, builds the loop (runner.Runner), stands
 the robot up and runs 50 Hz frames for ever, printing a status line every 5 s; with a "follow"
-setting in the board file it follows that wall once standing (hexapod.follow). Edit BOARD and
+setting in the board file it follows that wall once standing (hexapod.follow); with a
+"battery" setting it watches the pack on that ADC pin (hexapod.battery). Edit BOARD and
 ROBOT to match yours (files in boards/ and robots/).
 """
 
@@ -51,8 +52,23 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=time, max_range=10000, sampl
                 irq=True,  # the echo timed by its pin's IRQ: nothing waits for it (drivers/hcsr04.py)
             )
         )
+    monitor = adc = None
+    if board.get("battery") is not None:  # the pack through its divider on an ADC pin (docs/wiring.md)
+        from machine import ADC
+
+        from hexapod import battery
+
+        monitor = battery.Monitor(*boards.battery_args(board["battery"]))
+        adc = ADC(Pin(board["battery"]["pin"]))
     r = Runner(
-        geometry.load(robot_module), [row[2] for row in table], bank, sensors, clock, boards.sensor_mounts(board)
+        geometry.load(robot_module),
+        [row[2] for row in table],
+        bank,
+        sensors,
+        clock,
+        boards.sensor_mounts(board),
+        battery=monitor,
+        adc=adc,
     )
     r.board = board
     return r

@@ -16,6 +16,7 @@ State for a reply or the status line: runner.follower.mode_name, .used, .distanc
 """
 
 from drivers import hcsr04
+from hexapod import battery as batteries
 from hexapod import follow, tick
 
 FRAME_MS = 20
@@ -27,24 +28,27 @@ BOOT_NOT_YET = 0
 BOOT_STOOD = 1  # the board file's "boot": "stand", with a valid calibration file
 BOOT_RELAXED = 2  # the board file's "boot": "relaxed" (the default)
 BOOT_UNCALIBRATED = 3  # no valid calibration file: relaxed, whatever the board file's "boot"
-BOOT_WORDS = ("none", "stood", "relaxed", "relaxed_uncalibrated")
+BOOT_BATTERY = 4  # the battery was below its cutoff at power-up: relaxed, whatever the board file's "boot"
+BOOT_WORDS = ("none", "stood", "relaxed", "relaxed_uncalibrated", "relaxed_battery")
 BOOT_NOTICES = (
     "",
     "boot: standing up (the board file's boot setting is stand, the servos are calibrated)",
     "boot: relaxed, no pulse until `stand` (the board file's boot setting)",
     "boot: relaxed, no pulse until `stand`: no valid calibration file (calibrate, `save`: docs/jog.md)",
+    "boot: relaxed, no pulse: the battery is below its cutoff (charge it; `stand` is refused until then)",
 )
 
 
 class Runner:
     """Robot + servo bank + sonars -> a loop of 20 ms frames; step() runs one."""
 
-    def __init__(self, geometry, servo_maps, bank, sensors, clock, mounts=None):
+    def __init__(self, geometry, servo_maps, bank, sensors, clock, mounts=None, battery=None, adc=None):
         """geometry: hexapod.geometry.load(...); servo_maps: 18 ServoMaps (leg/joint order);
         bank: has write_frame(pulses), failed_frames, reinits; sensors: hcsr04 rangers in
         drivers.hcsr04 order; clock: ticks_ms/ticks_us/ticks_add/ticks_diff/sleep_ms/sleep_us; mounts: the five
         sensors' (x, y, heading), 0.1 mm and cdeg (hexapod.board.sensor_mounts; default: the
-        shipped board files')."""
+        shipped board files'); battery: a hexapod.battery.Monitor (None: no monitor) and adc
+        what it reads (machine.ADC: read_u16()), read once now and every SAMPLE_FRAMES frames."""
         self.clock = clock
         self.bank = bank
         self.robot = tick.Robot(geometry, servo_maps, bank)
@@ -60,6 +64,13 @@ class Runner:
         self.console = None  # console.Console: polled once a frame when set (console.start)
         self.watchdog = None  # machine.WDT (the board file's watchdog_ms): fed once a frame
         self.boot = BOOT_NOT_YET  # what power_up did (BOOT_WORDS)
+        self.battery = battery
+        self.adc = adc
+        self._battery_n = 0  # frames since the last battery reading
+        if battery is not None:
+            if adc is None or not hasattr(adc, "read_u16"):
+                raise ValueError("adc: a battery monitor needs an ADC with read_u16(), got %r" % (adc,))
+            self._battery_changed(battery.update(adc.read_u16()))
 
     def follow(self, side, setpoint, speed=None, form="yaw"):
         """Follow the `side` ("left" or "right") wall at `setpoint` (0.1 mm, the side sonar's
@@ -83,7 +94,10 @@ class Runner:
         waits for it). Prints one notice line with out; keeps the outcome in self.boot."""
         if board.get("follow"):
             self.follow_when_standing(board["follow"])
-        if not calibrated:
+        if self.battery is not None and self.battery.state == batteries.CUTOFF:
+            self._start = None
+            self.boot = BOOT_BATTERY
+        elif not calibrated:
             self.boot = BOOT_UNCALIBRATED
         elif board.get("boot", "relaxed") != "stand":
             self.boot = BOOT_RELAXED
@@ -102,6 +116,14 @@ class Runner:
     def step(self):
         """One frame now: ping, tick, write. Returns the tick's code (0 = frame sent)."""
         now = self.clock.ticks_ms()  # the frame's start: a ping's variable length must not look like jitter
+        b = self.battery
+        if b is not None:
+            self._battery_n += 1
+            if self._battery_n >= batteries.SAMPLE_FRAMES:
+                self._battery_n = 0
+                self._battery_changed(b.update(self.adc.read_u16()))
+            if b.state == batteries.CUTOFF and self.robot.mode != tick.RELAXED:
+                self._shut_down()
         i = self.sonar.tick(self.distances, self.sonar_status)
         if i >= 0:
             st = self.sonar_status[i]
@@ -118,6 +140,36 @@ class Runner:
         if code:
             self.held += 1
         return code
+
+    def _battery_changed(self, state):
+        """A battery state change (hexapod.battery: NO_CHANGE, OK, LOW, CUTOFF) -> the speed cap,
+        the wall follower. The console announces it (console.Console.poll)."""
+        if state == batteries.NO_CHANGE:
+            return
+        if state == batteries.OK:
+            self.robot.cap_speed(0, 0)
+            return
+        self.robot.cap_speed(batteries.LOW_SPEED, batteries.LOW_YAW)
+        if state == batteries.CUTOFF:
+            self._start = None  # a board file's follow waiting for a stand waits no more
+            if self.follower.mode:
+                self.follower.off()
+
+    def _shut_down(self):
+        """Below the cutoff: stop walking, then sit and relax (one step a frame, as each becomes
+        possible). A relax the posture check refuses (a jogged leg that cannot get home) lets
+        the servos go limp at once: the battery comes first."""
+        r = self.robot
+        m = r.mode
+        if m == tick.WALKING:
+            if r.asked_vx or r.asked_vy or r.asked_yaw:
+                r.stop()  # the feet come down within a cycle, then the robot stands
+            return
+        if m == tick.MOVING:
+            return  # a posture move finishes first (at most a few hundred frames)
+        code = r.relax()
+        if code == tick.PATH_IK or code == tick.PATH_SERVO:
+            r.go_limp()
 
     def wait(self):
         """Sleep until the next 20 ms frame boundary, to the us: whole ms, then the rest in

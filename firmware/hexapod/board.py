@@ -14,11 +14,15 @@ RUNTIMES = ("micropython", "circuitpython")
 LEGS = 6
 
 _TOP = ("name", "runtime", "i2c", "pca9685", "servos", "sensors")
-_OPTIONAL = ("notes", "follow", "watchdog_ms", "on_exit", "walk_timeout_ms", "boot")
+_OPTIONAL = ("notes", "follow", "watchdog_ms", "on_exit", "walk_timeout_ms", "boot", "battery")
 ON_EXIT = ("relax", "hold")  # what leaving the loop (Ctrl-C) does to the servos
 # What power-up does: stay relaxed (no pulse until `stand`), or stand, and only with a valid
 # calibration file (runner.power_up).
 BOOT = ("relaxed", "stand")
+# The battery monitor (hexapod.battery): the ADC pin and the divider's ratio; the cell count
+# and the per-cell thresholds default to a 2S LiPo's (hexapod.battery says where they come from).
+_BATTERY = ("pin", "divider_permille")
+_BATTERY_OPTIONAL = ("cells", "cell_warn_mv", "cell_cutoff_mv", "cell_resume_mv")
 _FOLLOW = ("side", "setpoint")
 _FOLLOW_OPTIONAL = ("speed", "form")
 _I2C = ("id", "sda", "scl", "freq")
@@ -128,7 +132,42 @@ def validate(board):
     _sensors(ck, ck.seq("sensors", board["sensors"], -1, "of sensor tuples"), runtime, claim)
     _follow(ck, board)
     _console(ck, board)
+    _battery(ck, board, runtime, claim)
     return board
+
+
+def _battery(ck, board, runtime, claim):
+    """The optional battery monitor: None (no monitor), or {"pin", "divider_permille"[, "cells",
+    "cell_warn_mv", "cell_cutoff_mv", "cell_resume_mv"]}; MicroPython boards only (main.py reads
+    machine.ADC; code.py has no ADC driver yet)."""
+    setting = board.get("battery")
+    if setting is None:
+        return
+    ck.dict_of("battery", setting, _BATTERY, _BATTERY_OPTIONAL)
+    if runtime != "micropython":
+        ck.fail("battery", "a battery monitor runs on MicroPython boards only (code.py has no ADC driver); remove it")
+    claim("battery.pin", ck.pin("battery.pin", setting["pin"], runtime))
+    from hexapod import battery
+
+    try:
+        battery.check(*battery_args(setting))
+    except ValueError as e:
+        key, _, msg = str(e).partition(": ")
+        ck.fail("battery." + key, msg)
+
+
+def battery_args(setting):
+    """A board file's "battery" dict -> hexapod.battery.Monitor's arguments, defaults filled in:
+    (cells, divider_permille, cell_warn_mv, cell_cutoff_mv, cell_resume_mv)."""
+    from hexapod import battery
+
+    return (
+        setting.get("cells", battery.CELLS),
+        setting["divider_permille"],
+        setting.get("cell_warn_mv", battery.CELL_WARN_MV),
+        setting.get("cell_cutoff_mv", battery.CELL_CUTOFF_MV),
+        setting.get("cell_resume_mv", battery.CELL_RESUME_MV),
+    )
 
 
 def _console(ck, board):

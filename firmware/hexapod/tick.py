@@ -191,6 +191,11 @@ class Robot:
         self.jog_code = OK
         self.jog_excess = 0
         self.gait = TRIPOD
+        self.speed_cap = 0  # walking capped at this planar speed (0.1 mm/s; 0: no cap), cap_speed
+        self.yaw_cap = 0  # and this yaw rate (cdeg/s)
+        self.asked_vx = 0  # the last walk command as asked, before the cap
+        self.asked_vy = 0
+        self.asked_yaw = 0
         # Each gait keeps its own cycle time (ms): the robot file's until set_params sets one.
         self.cycles = list(geometry.gait_cycle_ms)
         self.cycle_ms = self.cycles[TRIPOD]
@@ -535,7 +540,8 @@ class Robot:
         return code
 
     def walk(self, vx, vy, yaw_rate):
-        """Walk at vx, vy (0.1 mm/s) turning at yaw_rate (cdeg/s); scaled down to what reach allows."""
+        """Walk at vx, vy (0.1 mm/s) turning at yaw_rate (cdeg/s); scaled down to what reach allows
+        (and to the speed cap, cap_speed)."""
         self.walker.check_command(vx, vy, yaw_rate)
         if self.mode != STANDING and self.mode != WALKING:
             return BUSY if self.mode == MOVING else NOT_STANDING
@@ -545,10 +551,45 @@ class Robot:
             return UNREACHABLE  # this pose or lift leaves a leg no room to step
         if (vx or vy or yaw_rate) and not self._roomy(self.walker.srho):
             return SERVO_SPEED  # this pose or height makes the swing too fast for the servos
-        self.walker.command(vx, vy, yaw_rate, True)
+        self.asked_vx = vx
+        self.asked_vy = vy
+        self.asked_yaw = yaw_rate
+        self._command()
         if self.walker.state != STOPPED:
             self.mode = WALKING
         return OK
+
+    def _command(self):
+        """The walker's command: the one asked, scaled by one factor (the path keeps its
+        curvature) until the planar speed is at most speed_cap and the yaw rate yaw_cap."""
+        vx = self.asked_vx
+        vy = self.asked_vy
+        w = self.asked_yaw
+        if self.speed_cap:
+            k = 1000
+            v = isqrt(vx * vx + vy * vy)  # < 4243 (|vx|, |vy| <= 3000): small integers
+            if v > self.speed_cap:
+                k = self.speed_cap * 1000 // v
+            a = w if w >= 0 else -w
+            if a > self.yaw_cap and self.yaw_cap * 1000 // a < k:
+                k = self.yaw_cap * 1000 // a
+            vx = vx * k // 1000 if vx >= 0 else -(-vx * k // 1000)  # toward 0: never above the cap
+            vy = vy * k // 1000 if vy >= 0 else -(-vy * k // 1000)
+            w = w * k // 1000 if w >= 0 else -(-w * k // 1000)
+        self.walker.command(vx, vy, w, True)
+
+    def cap_speed(self, speed=0, yaw_rate=0):
+        """Cap walking at speed (0.1 mm/s, planar) and yaw_rate (cdeg/s), both > 0; cap_speed()
+        lifts the cap. A walk under way is re-commanded at once (the walker ramps to it)."""
+        for name, v, top in (("speed", speed, 3000), ("yaw_rate", yaw_rate, 9000)):
+            if not isinstance(v, int) or isinstance(v, bool) or v < 0 or v > top:
+                raise ValueError("%s: %r, allowed 0..%d (0: no cap)" % (name, v, top))
+        if (speed == 0) != (yaw_rate == 0):
+            raise ValueError("speed %r, yaw_rate %r: cap both or neither (0, 0)" % (speed, yaw_rate))
+        self.speed_cap = speed
+        self.yaw_cap = yaw_rate
+        if self.mode == WALKING and self.walker.state != STOPPED:
+            self._command()
 
     def _roomy(self, rho):
         for i in range(6):  # noqa: SIM110 (walk() runs every tick: no generator)
@@ -577,6 +618,7 @@ class Robot:
 
     def stop(self):
         """Finish the steps under way and set every foot down at neutral."""
+        self.asked_vx = self.asked_vy = self.asked_yaw = 0
         if self.mode == WALKING:
             self.walker.stop()
         return OK
@@ -701,6 +743,7 @@ class Robot:
 
     def go_limp(self):
         """At once: every servo limp (a frame of zeros sent now), mode RELAXED; the loop is leaving."""
+        self.asked_vx = self.asked_vy = self.asked_yaw = 0
         self.walker.stop()
         self.walker.state = STOPPED
         self.mode = RELAXED

@@ -3,6 +3,7 @@ buses, the board's PCA9685 models on its bus and HC-SR04 models on its sonar pin
 host's rigs (hexapod_host.wall.rig, hexapod_host.pico.loop) and the tests' source-text rigs; runs on CPython and in the
 MicroPython VM."""
 
+import _stub_adc
 import _stub_clock as clock
 import _stub_i2c
 import _stub_pins
@@ -18,6 +19,7 @@ def reset(board_name="pico"):
     clock.reset(0)
     _stub_pins.reset()
     _stub_i2c.reset()
+    _stub_adc.reset()
     return boards.load(board_name)
 
 

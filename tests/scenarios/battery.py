@@ -1,0 +1,254 @@
+"""Battery awareness (hexapod.battery) on both runtimes: the core state machine fed readings, and
+the whole board (main.main with its console) on the stub machine with a pack voltage profile
+on the stub ADC (_stub_adc: pack mV through the divider, the rp2 port's read_u16)."""
+
+import _stub_adc
+import _stub_clock as clock
+import console
+import main
+import stub_board
+
+from hexapod import battery
+from hexapod import board as boards
+
+PIN = 28
+DIVIDER = 333  # 1:3 (20k over 10k: 10 / 30 = 333 permille)
+SETTING = {"pin": PIN, "divider_permille": DIVIDER}  # 2 cells, 3.5 / 3.3 / 3.6 V a cell
+
+
+def raw_for(mv, divider=DIVIDER):
+    """What the stub ADC's read_u16 answers for a pack at mv (the stub's conversion, not the core's)."""
+    c = _stub_adc.code12(mv * divider // 1000)
+    return c << 4 | c >> 8
+
+
+def to_mv(raws, cells=2, divider=DIVIDER):
+    """The core's mV for each read_u16 value."""
+    m = battery.Monitor(cells, divider)
+    return [m.to_mv(r) for r in raws]
+
+
+def trace(samples_mv, cells=2, divider=DIVIDER, warn=3500, cutoff=3300, resume=3600):
+    """Feed the monitor one reading per pack mV in samples_mv (200 ms apart); the state after each."""
+    m = battery.Monitor(cells, divider, warn, cutoff, resume)
+    out = []
+    for mv in samples_mv:
+        m.update(raw_for(mv, divider))
+        out.append(m.state)
+    return out
+
+
+def dip(dip_ms, start_ms, level, low, total_ms, period=200):
+    """Pack mV sampled every period ms from t = 0: level, with a dip to low over
+    [start_ms, start_ms + dip_ms)."""
+    return [low if start_ms <= t < start_ms + dip_ms else level for t in range(0, total_ms, period)]
+
+
+def dip_states(dip_ms, total_ms=4000):
+    """For every phase of the dip against the 200 ms samples (20 ms steps): the states seen while
+    a 7600 mV pack dips to 6000 mV (below the 6600 mV cutoff) for dip_ms from 1000 ms + phase."""
+    seen = []
+    for phase in range(0, 200, 20):
+        states = trace(dip(dip_ms, 1000 + phase, 7600, 6000, total_ms))
+        for s in states:
+            if s not in seen:
+                seen.append(s)
+    return sorted(seen)
+
+
+def bad_setting(setting, runtime=None):
+    """validate() of the pico board with its "battery" set: the message, or None when accepted."""
+    board = boards.load("pico")
+    saved = dict(board)
+    board["battery"] = setting
+    if runtime is not None:
+        board["runtime"] = runtime
+    try:
+        boards.validate(board)
+        return None
+    except ValueError as e:
+        return str(e)
+    finally:
+        board.clear()
+        board.update(saved)
+
+
+class Script(console.BufferReader):
+    """The console's reader for main.main: types lines at given frames and, once a frame (the
+    console polls it once a frame, after the step), logs every change of the robot's mode, the
+    battery state and the walker's requested speed; the console's lines are kept with their frame."""
+
+    def __init__(self, typed):
+        console.BufferReader.__init__(self, b"")
+        self.typed = typed  # {frame: line}
+        self.last_ms = -1
+        self.log = []  # (frame, what, value)
+        self.said = []  # (frame, line) the console printed
+        self.seen = {}
+
+    def read_byte(self):
+        now = clock.ticks_ms()
+        if now != self.last_ms:
+            self.last_ms = now
+            self.watch(now // 20)
+        return console.BufferReader.read_byte(self)
+
+    def watch(self, frame):
+        r = main.runner
+        for what, value in (
+            ("mode", r.robot.mode),
+            ("battery", r.battery.state),
+            ("req_vx", r.robot.walker.req_vx),
+        ):
+            if self.seen.get(what) != value:
+                self.seen[what] = value
+                self.log.append((frame, what, value))
+        line = self.typed.get(frame)
+        if line is not None:
+            self.feed(line.encode() + b"\n")
+
+    def say(self, line):
+        self.said.append((clock.ticks_ms() // 20, line))
+
+
+# The pack's voltage over the scenario (from_ms, mV), 2S, thresholds 7000 warn, 6600 cutoff,
+# 7200 resume (tests/test_battery.py works the frames out by hand).
+PROFILE = [
+    (0, 8000),  # full
+    (2000, 7600),  # sagging under load ...
+    (2400, 6000),  # ... an inrush dip 600 ms long, far below the cutoff
+    (3000, 7600),
+    (3600, 6000),  # ... and one 900 ms long
+    (4500, 7600),
+    (5000, 6900),  # below warn (7000)
+    (6600, 6000),  # a 600 ms dip while low
+    (7200, 6900),
+    (8000, 6400),  # below cutoff (6600)
+    (12000, 7100),  # rested: above warn but below resume (7200)
+    (14000, 7500),  # a 600 ms blip above resume
+    (14600, 7100),
+    (16000, 7300),  # charged: above resume
+]
+
+
+def walk_lines(first, last, every=25):
+    return {f: "walk 100 0 0" for f in range(first, last, every)}
+
+
+def whole(frames, typed, profile=PROFILE, setting=SETTING, boot="stand"):
+    """main.main on the pico board with a battery setting, the pack following profile on the stub
+    ADC, `typed` console lines ({frame: line}); returns (log, said)."""
+    board = stub_board.reset("pico")
+    bus, chips = stub_board.pca9685_models(board)
+    stub_board.sonar_models(board, [3000 + 1000 * k for k in range(5)])
+    _stub_adc.battery(setting["pin"], setting["divider_permille"], profile)
+    board["battery"] = setting
+    reader = Script(typed)
+    start = console.start
+
+    def start_here(runner, reader, os=None, opener=open, out=print, **kw):
+        return start(runner, reader, os, opener, reader.say, **kw)  # the console's lines kept
+
+    console.start = start_here
+    try:
+        main.main(frames, clock=clock, reader=reader, boot=boot, calibrated=True)
+    finally:
+        console.start = start
+        board["battery"] = None  # as shipped
+    return reader.log, reader.said
+
+
+def scenario(frames=1050):
+    typed = walk_lines(60, 700)
+    typed[640] = "status"
+    typed[700] = "stand"
+    typed[701] = "wall left 30"
+    typed[702] = "status"
+    typed[703] = "sit"
+    typed[704] = "joint 2 femur 10"
+    typed[705] = "relax"  # allowed (the robot is relaxed already)
+    typed[825] = "stand"  # the pack is at 7300 mV since 16000 ms, but not yet for a whole window
+    typed[900] = "stand"
+    typed[1000] = "status"
+    return whole(frames, typed)
+
+
+def boot_at_cutoff(frames=100):
+    """Power-up on a pack below its cutoff with "boot": "stand": (log, said)."""
+    return whole(frames, {50: "stand", 60: "status"}, profile=[(0, 6400)])
+
+
+def no_setting_status():
+    """The pico board as shipped (no battery setting): its status line."""
+    stub_board.reset("pico")
+    board = boards.load("pico")
+    bus, chips = stub_board.pca9685_models(board)
+    stub_board.sonar_models(board, [3000 + 1000 * k for k in range(5)])
+    r = main.build(clock=clock)
+    c = console.start(r, console.BufferReader(), None, out=lambda line: None)
+    return (r.battery, c.do("status"))
+
+
+def steady_frame_heap():
+    """MicroPython only: heap bytes 300 walking frames (30 battery readings) leave allocated, with
+    a battery setting and the pack at 7600 mV; (bytes, frames, held, battery state, mode)."""
+    import gc
+
+    board = stub_board.reset("pico")
+    bus, chips = stub_board.pca9685_models(board)
+    stub_board.sonar_models(board, [3000 + 1000 * k for k in range(5)])
+    _stub_adc.battery(PIN, DIVIDER, [(0, 7600)])
+    board["battery"] = SETTING
+    try:
+        r = main.build(clock=clock)
+    finally:
+        board["battery"] = None  # as shipped
+    r.robot.stand_up()
+
+    def run(n):
+        for _ in range(n):
+            r.step()
+            r.wait()
+
+    run(100)
+    r.robot.walk(1200, 300, 1500)
+    run(300)
+    gc.collect()
+    gc.disable()
+    before = gc.mem_alloc()
+    run(300)
+    after = gc.mem_alloc()
+    gc.enable()
+    return (after - before, r.frames, r.held, r.battery.state, r.robot.mode)
+
+
+def low_heap():
+    """MicroPython only: the same in LOW (the speed cap in force, 6900 mV): heap bytes, state, req_vx."""
+    import gc
+
+    board = stub_board.reset("pico")
+    bus, chips = stub_board.pca9685_models(board)
+    stub_board.sonar_models(board, [3000 + 1000 * k for k in range(5)])
+    _stub_adc.battery(PIN, DIVIDER, [(0, 6900)])
+    board["battery"] = SETTING
+    try:
+        r = main.build(clock=clock)
+    finally:
+        board["battery"] = None  # as shipped
+    r.robot.stand_up()
+
+    def run(n):
+        for _ in range(n):
+            r.step()
+            r.wait()
+
+    run(100)
+    r.robot.walk(1200, 300, 1500)
+    run(300)
+    gc.collect()
+    gc.disable()
+    before = gc.mem_alloc()
+    run(300)
+    after = gc.mem_alloc()
+    gc.enable()
+    return (after - before, r.battery.state, r.robot.walker.req_vx, r.robot.mode)
