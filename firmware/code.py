@@ -94,7 +94,7 @@ def main(frames=-1, clock=None, board_name=BOARD, robot_name=ROBOT, reader=None,
     the status line (docs/console.md); Ctrl-C relaxes the servos (or holds, on_exit)."""
     global runner
     r = runner = build(board_name, robot_name, clock)
-    release("hexapod.board", "robots." + robot_name)  # boot-only code: its heap back to the loop
+    release("hexapod.board", "hexapod.robotfile", "robots." + robot_name)  # boot-only: its heap back to the loop
     if reader is not None:
         import os
         import sys

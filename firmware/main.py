@@ -86,7 +86,7 @@ def main(frames=-1, clock=time, board_name=BOARD, robot_name=ROBOT, reader=None,
     the board file's on_exit) and leaves `runner` for the REPL."""
     global runner
     r = runner = build(board_name, robot_name, clock)
-    release("hexapod.board", "robots." + robot_name)  # boot-only code: its heap back to the loop
+    release("hexapod.board", "hexapod.robotfile", "robots." + robot_name)  # boot-only: its heap back to the loop
     if reader is not None:
         import os
         import sys

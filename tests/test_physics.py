@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 import robots.default as d
-from hexapod import geometry
+from hexapod import geometry, robotfile
 from hexapod.body import FINE_SHIFT, Body
 from hexapod.leg import OK
 from hexapod_host.commands import cli
@@ -250,7 +250,7 @@ def test_bad_servo_spec_is_refused_naming_it(servo, word):
 def test_servo_limits_at_the_edges_load():
     data = {k: getattr(d, k) for k in dir(d) if k.isupper()}
     for lo_hi in ((50, 20, 1, 100, 0, 50, 10), (100000, 2000, 1000, 10000000, 10000000, 1000, 2000)):
-        data["SERVO"] = dict(zip([f[0] for f in geometry.SERVO_FIELDS], lo_hi, strict=True))
+        data["SERVO"] = dict(zip([f[0] for f in robotfile.SERVO_FIELDS], lo_hi, strict=True))
         assert geometry.from_data("default", data).servo == data["SERVO"]
 
 

@@ -141,13 +141,18 @@ def test_every_module_imports_as_mpy_with_the_heap_left(fs):
 import gc
 gc.collect()
 print("free", gc.mem_free())
-for name in %r:
-    m = __import__(name, None, None, ("x",))
-    gc.collect()
-    print(name, getattr(m, "__file__", "?"), gc.mem_free())
+def load(names):
+    for name in names:
+        m = __import__(name, None, None, ("x",))
+        gc.collect()
+        print(name, getattr(m, "__file__", "?"), gc.mem_free())
+
+
+# In a function: its frame is gone by the release, so no stale pointer on the VM's stack keeps a
+# released module alive for the conservative collector.
+load(%r)
 import runner
-m = None
-runner.release("hexapod.board", "robots.default")  # as main.main does once the runner is built
+runner.release("hexapod.board", "hexapod.robotfile", "robots.default")  # as main.main does
 gc.collect()
 print("resident", gc.mem_free())
 """ % (names,)

@@ -88,8 +88,9 @@ def boot(folder, cal, setting, frames, typed=(), every=50, calibrated=None):
 
 
 def released(folder):
-    """After main.main: which of the boot-only modules are still imported (hexapod.board, robots.default)."""
+    """After main.main: which boot-only modules are still imported (hexapod.board, hexapod.robotfile,
+    robots.default)."""
     import sys
 
     boot(folder, "none", None, 1)
-    return ["hexapod.board" in sys.modules, "robots.default" in sys.modules]
+    return ["hexapod.board" in sys.modules, "hexapod.robotfile" in sys.modules, "robots.default" in sys.modules]

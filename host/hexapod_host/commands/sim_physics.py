@@ -5,7 +5,7 @@ import json
 import math
 import sys
 
-from hexapod import geometry as geometry_mod
+from hexapod import robotfile
 from hexapod.gait import NAMES, TRIPOD, gait_number
 from hexapod_host.commands.cli import UsageError
 from hexapod_host.physics.sim import TABLE_GAITS, format_table, report, simulate, table
@@ -14,7 +14,7 @@ from hexapod_host.physics.sim import TABLE_GAITS, format_table, report, simulate
 def parse_servo_spec(text):
     """'key=value,key=value' (SERVO keys, integers) -> dict; ValueError names the bad part."""
     out = {}
-    names = [f[0] for f in geometry_mod.SERVO_FIELDS]
+    names = [f[0] for f in robotfile.SERVO_FIELDS]
     for part in text.split(","):
         part = part.strip()
         if not part:

@@ -16,7 +16,7 @@ motor inertia is the joint armature. Only the feet and the body box touch the fl
 import math
 import os
 
-from hexapod.geometry import LEG_NAMES, check_table
+from hexapod.robotfile import LEG_NAMES, check_table
 
 PHYSICS_FIELDS = (
     ("body_g", 10, 100000, "g"),
