@@ -114,6 +114,19 @@ class Store:
         except (OSError, ValueError):
             raise ValueError(why) from None
 
+    def check(self):
+        """The CRC of FILE as it is on the flash now (a self-test; the calibration in force is not
+        touched); ValueError says why the file cannot be used."""
+        try:
+            text = self._read(self.path)
+        except OSError as e:
+            raise ValueError("no %s" % self.path if _errno(e) == 2 else "%s unreadable (%s)" % (self.path, e)) from None
+        try:
+            decode(text)
+        except ValueError as e:
+            raise ValueError("%s %s" % (self.path, e)) from None
+        return int(text[text.rfind("crc ") + 4 :].strip(), 16)
+
     def save(self, rows):
         """Write rows atomically; OSError (the old file kept) when the filesystem refuses."""
         text = encode(rows)

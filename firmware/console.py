@@ -10,6 +10,8 @@ Readers hand over one byte at a time: PollReader (MicroPython: select.poll on sy
 SerialReader (CircuitPython: supervisor.runtime.serial_bytes_available), BufferReader (tests).
 """
 
+import sys
+
 from calstore import TRIM_MAX, Store
 from micropython import const
 from runner import BOOT_WORDS, counters
@@ -26,7 +28,7 @@ WALK_TIMEOUT_MS = const(1000)
 JOINTS = ("coxa", "femur", "tibia")
 COMMANDS = (
     "help status stand sit relax foot nudge joint pulse get walk stop gait sonar wall pid "
-    "cal trim dir range save load defaults echo"
+    "cal trim dir range save load defaults echo selftest"
 )
 _STATUS_WORDS = ("ok", "out_of_range", "no_echo", "stuck", "too_close", "wait")
 
@@ -117,6 +119,7 @@ class Console:
         self._held = False  # a held frame was announced (once, until frames are sent again)
         self._battery = batteries.OK  # the battery state last announced (a notice at each change)
         self.lines = 0  # lines answered
+        self._job = None  # a multi-line reply under way (selftest): step() once a frame, abort(), done
         # The board file's calibration: (centre_us, direction, min_us, max_us) per servo.
         self.base = tuple((s.centre_us, s.direction, s.min_us, s.max_us) for s in self.robot.servos)
         self.trims = [0] * 18
@@ -146,6 +149,7 @@ class Console:
             "load": self._load,
             "defaults": self._defaults,
             "echo": self._echo,
+            "selftest": self._selftest,
         }
 
     # -- the frame's part ---------------------------------------------------------------
@@ -169,6 +173,8 @@ class Console:
                 self._walking = False
                 if self.robot.mode == tick.WALKING and not self.runner.follower.mode:
                     self.robot.stop()
+        if self._job is not None:
+            self._job_step()
         reader = self.reader
         if reader is None:
             return
@@ -221,6 +227,8 @@ class Console:
         elif n == 0:
             return
         else:
+            if self._job is not None:  # a new line ends a multi-line reply under way, with its end line
+                self._job_end(self._job.abort())
             reply = self.do(bytes(self._buf[:n]).decode())
             if reply is None:
                 return
@@ -245,6 +253,8 @@ class Console:
             return "err %s: %s" % (words[0], e)
         except Exception as e:  # the loop must go on whatever a command hits
             return "err %s: internal error %s %s" % (words[0], type(e).__name__, e)
+        if reply is None:  # a multi-line reply started: poll() prints its lines, the end line last
+            return None
         if reply[:4] == "err " and not reply.startswith("err " + words[0] + ":"):
             reply = "err %s: %s" % (words[0], reply[4:])  # every err names its command
         return reply
@@ -712,6 +722,45 @@ class Console:
         if args:
             self.echo = args[0] == "on"
         return "ok echo " + ("on" if self.echo else "off")
+
+    # -- multi-line replies (selftest) ------------------------------------------------------
+
+    def _selftest(self, args):
+        import selftest  # only now: the module leaves the heap again when the job ends
+
+        try:
+            job = selftest.start(self, args)
+        except Exception:
+            sys.modules.pop("selftest", None)
+            raise
+        if self._job is not None:
+            self._job_end(self._job.abort())
+        self._job = job
+        return None
+
+    def _job_step(self):
+        """Once a frame while a multi-line reply is under way: its lines, then (done) the end."""
+        job = self._job
+        try:
+            lines = job.step()
+        except Exception as e:  # the loop must go on: the reply still ends with its end line
+            try:  # noqa: SIM105 (no contextlib on MicroPython)
+                job.abort()  # puts back what the job borrowed (the sonar round robin)
+            except Exception:
+                pass
+            self._job_end("err selftest: internal error %s %s" % (type(e).__name__, e))
+            return
+        for line in lines:
+            self.out(line)
+        if job.done:
+            self._job_end(None)
+
+    def _job_end(self, line):
+        if line is not None:
+            self.out(line)
+        self._job = None
+        self.lines += 1
+        sys.modules.pop("selftest", None)  # its heap goes back once the job is dropped
 
     def _defaults(self, args):
         self._args(args, 0, "no arguments")

@@ -347,6 +347,15 @@ class PCA9685:
             return REINIT
         return REINIT | FAILED
 
+    def read_back(self):
+        """(MODE1, PRE_SCALE) read from the chip now, -1 for one that did not answer (a self-test's
+        look: register reads only, nothing written; not for the tick)."""
+        return self._read_reg(_MODE1), self._read_reg(_PRE_SCALE)
+
+    def mode1_written(self):
+        """MODE1 as start-up left it (AI, plus EXTCLK with an external clock): what read_back should see."""
+        return _AI | self._ext
+
     def off(self, channel):
         """Channel full OFF now (and in later frames until staged again); status bits."""
         self.stage_off(channel)

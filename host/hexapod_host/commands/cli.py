@@ -20,6 +20,7 @@ COMMAND_MODULES = (
     "hexapod_host.commands.flash",
     "hexapod_host.commands.jog",
     "hexapod_host.commands.console",
+    "hexapod_host.commands.doctor",
     "hexapod_host.commands.pico",
 )
 

@@ -54,9 +54,10 @@ def send(args):
     try:
         with Link.open(args.port, timeout=args.timeout) as link:
             for line in args.lines:
-                reply = link.request(line)
-                print(reply)
-                if not reply.startswith("ok"):
+                lines = link.request_lines(line)  # a multi-line reply (selftest): all, the end line last
+                for reply in lines:
+                    print(reply)
+                if not lines[-1].startswith("ok"):
                     status = 1
     except LinkError as e:
         print("hexapod: error: %s" % e, file=sys.stderr)

@@ -2,6 +2,11 @@
 
     with Link.open("/dev/ttyACM0") as link:
         reply = link.request("get 2")        # 'ok leg 2 angles ...' or 'err ...'
+        lines = link.request_lines("selftest")   # a multi-line reply: every line, the end line last
+
+A command in MULTI_LINE answers with several `ok`/`err` lines and then its end line, the one whose
+second word is the command itself (`ok selftest 14 checks, 0 failed`, `err selftest: ...`);
+request() returns that end line and keeps the lines before it in `link.body`.
 
 Lines from the board that start with neither `ok` nor `err` (boot text, a calibration notice,
 a traceback) are kept in `link.other` and skipped. Errors are LinkError with a sentence a
@@ -15,6 +20,11 @@ import time
 import serial
 from serial.tools import list_ports
 
+# Commands whose reply is several lines, ended by the line `ok|err <command>...` (docs/console.md).
+MULTI_LINE = ("selftest",)
+# Each line of a multi-line reply may take this much longer than a one-line reply (a `selftest
+# servos L` joint sweeps for 2 s before its line).
+MULTI_LINE_EXTRA_S = 5.0
 BAUD = 115200  # USB CDC ignores it; a USB-serial bridge (ESP32 DevKit) needs it
 TIMEOUT_S = 2.0
 # USB vendor ids of the boards this project runs on: Raspberry Pi (Pico), Adafruit (Feather),
@@ -52,6 +62,7 @@ class Link:
         self.timeout = timeout
         self.name = name
         self.other = []  # lines that were not replies
+        self.body = []  # the lines before the end line of the last multi-line reply
 
     @classmethod
     def open(cls, device, timeout=TIMEOUT_S, baud=BAUD):
@@ -76,7 +87,29 @@ class Link:
             self.port.close()
 
     def request(self, line):
-        """Send one command line; return its reply line ('ok ...' or 'err ...'), stripped."""
+        """Send one command line; return its reply line ('ok ...' or 'err ...'), stripped (for a
+        multi-line reply its end line; the lines before it in self.body)."""
+        lines = self.request_lines(line)
+        self.body = lines[:-1]
+        return lines[-1]
+
+    def request_lines(self, line):
+        """Send one command line; return every line of its reply, the end line last (one line
+        unless the command is in MULTI_LINE)."""
+        words = line.split()
+        word = words[0] if words else ""
+        self._send(line)
+        if word not in MULTI_LINE:
+            return [self.read_reply(line)]
+        lines = []
+        while True:
+            text = self.read_reply(line, self.timeout + MULTI_LINE_EXTRA_S)
+            lines.append(text)
+            w = text.split(None, 2)
+            if len(w) > 1 and w[1].rstrip(":") == word:
+                return lines
+
+    def _send(self, line):
         if "\n" in line or "\r" in line:
             raise LinkError("one command per request: %r holds a line break" % line)
         try:
@@ -84,10 +117,11 @@ class Link:
             self.port.flush()
         except PORT_ERRORS as e:
             raise LinkError("lost the board on %s while sending (%s): unplugged?" % (self.name, e)) from None
-        return self.read_reply(line)
 
-    def read_reply(self, line=""):
-        deadline = time.monotonic() + self.timeout
+    def read_reply(self, line="", timeout=None):
+        """The next line starting with `ok` or `err`, within timeout seconds (default self.timeout)."""
+        timeout = self.timeout if timeout is None else timeout
+        deadline = time.monotonic() + timeout
         buf = b""
         while True:
             try:
@@ -109,5 +143,5 @@ class Link:
                     hint = " (the board is at the REPL: run main.py or reset it)"
                 raise LinkError(
                     "no answer to %r from %s within %.1f s: is the hexapod firmware running?%s"
-                    % (line, self.name, self.timeout, hint)
+                    % (line, self.name, timeout, hint)
                 )

@@ -6,7 +6,8 @@
 # Virtual time drives the models (sonar echoes, the PCA9685's clock); after each frame the
 # script sleeps until the real clock has caught up with the virtual one, so a client sees a
 # 50 Hz board. One command beyond the firmware's: `model` answers the PCA9685 models' pulse
-# widths (us, chip 0x40 channels 0-15 then 0x41), for tests and the curious.
+# widths (us, chip 0x40 channels 0-15 then 0x41), for tests and the curious; and `fault unplug
+# 0x41` / `fault no_echo K`, which break a model for `selftest` and `hexapod doctor` to find.
 import os
 import sys
 import time
@@ -49,7 +50,20 @@ def model(args):
     return " ".join(parts)
 
 
+def fault(args):
+    # `fault unplug 0x41` takes a chip off the bus (as if unplugged or unpowered); `fault no_echo K`
+    # makes sonar K (0..4, drivers.hcsr04 order) hear nothing: for `hexapod doctor`'s tests.
+    if len(args) == 2 and args[0] == "unplug" and args[1] in ("0x40", "0x41"):
+        bus.detach(int(args[1], 16))
+        return "ok fault unplug " + args[1]
+    if len(args) == 2 and args[0] == "no_echo" and args[1] in ("0", "1", "2", "3", "4"):
+        sonars[int(args[1])].missing_echo = True
+        return "ok fault no_echo " + args[1]
+    raise ValueError("need unplug 0x40|0x41 or no_echo 0..4")
+
+
 con._table["model"] = model
+con._table["fault"] = fault
 print("virtual board %s (robot %s) ready: 50 Hz, console on this line; 'help' lists commands" % (BOARD, ROBOT))
 
 t0 = time.ticks_ms()

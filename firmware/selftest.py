@@ -1,0 +1,442 @@
+"""The console's `selftest` (docs/console.md): hardware checks, and one leg's servos swept.
+
+Imported by console.py only when the command runs, and dropped from sys.modules when it ends, so
+the board's heap carries none of this in normal running. Nothing here runs in the 50 Hz tick: a
+job's step() runs in Console.poll(), after the frame was sent.
+
+Checks (one reply line each, `ok <check> ...` or `err <check> ...: <hint>`), then the end line
+`ok selftest N checks, M failed` (`err selftest ...` when M > 0):
+  board, version, i2c (the bus's scan), pca9685 <address> for each chip of the board file (it
+  answers; MODE1 and PRE_SCALE read back as the driver wrote them), sonar <name> for each of
+  the five (the loop's own round robin pings each once while the test watches: no extra ping,
+  no blocking), calibration (the file and its CRC), reset_cause, heap, supply.
+The hardware checks send no servo pulse and write no PCA9685 register (register reads only).
+
+`selftest servos L` sweeps leg L's coxa, femur and tibia one after the other, each +-10 degrees
+around the angle it holds and back, at SWEEP_CDEG_PER_S, every step through Robot.jog_joint
+(the robot file's joint limits and each servo's calibrated range apply); only while sitting.
+"""
+
+import gc
+
+from drivers import hcsr04
+from hexapod import VERSION, tick
+from hexapod import board as boards
+from hexapod.units import format_fixed
+
+FRAME_MS = 20
+SWEEP_CDEG = 1000  # +-10 degrees around the present angle
+SWEEP_CDEG_PER_S = 2000  # 20 deg/s: 0.4 degree a frame
+STEP_CDEG = SWEEP_CDEG_PER_S * FRAME_MS // 1000
+HEAP_LOW = 16384  # bytes free below which the heap check fails
+JOINTS = ("coxa", "femur", "tibia")
+_SONAR_WORDS = ("ok", "out_of_range", "no_echo", "stuck", "too_close", "wait")
+_RESETS = ("PWRON_RESET", "HARD_RESET", "WDT_RESET", "DEEPSLEEP_RESET", "SOFT_RESET")
+_RESET_WORDS = ("power_on", "hard", "watchdog", "deepsleep", "soft")
+_GROUND = "common ground with the Pico?"
+
+
+def _hex(a):
+    return "0x%02x" % a
+
+
+def jumper_hint(address):
+    """Which address jumpers a PCA9685 board at address (0x40..0x7f) has bridged."""
+    bits = address - 0x40
+    if not 0 <= bits < 64:
+        return "is it a PCA9685 at all?"
+    if not bits:
+        return "are all its address jumpers (A0-A5) open?"
+    on = ["A%d" % i for i in range(6) if bits >> i & 1]
+    return "is its %s jumper bridged (and no other)?" % "+".join(on)
+
+
+def no_answer_hint(address):
+    return "%s is its VCC on 3V3? SDA and SCL wired through? %s" % (jumper_hint(address), _GROUND)
+
+
+class _Watch:
+    """Stands in for the runner's sonar round robin while the test watches: the first result of
+    each sensor is kept (status, distance), everything else passes through unchanged."""
+
+    def __init__(self, inner, n):
+        self.inner = inner
+        self.status = [-1] * n
+        self.distance = [hcsr04.NO_DISTANCE] * n
+        self.left = n
+
+    def tick(self, dist, status):
+        i = self.inner.tick(dist, status)
+        if i >= 0 and self.status[i] < 0:
+            self.status[i] = status[i]
+            self.distance[i] = dist[i]
+            self.left -= 1
+        return i
+
+
+class Checks:
+    """The hardware checks as a console job: step() once a frame returns the lines ready."""
+
+    def __init__(self, console):
+        self.con = console
+        self.runner = console.runner
+        self.count = 0
+        self.failed = 0
+        self.done = False
+        self.frames = 0
+        r = self.runner
+        n = len(r.distances)
+        self.watch = _Watch(r.sonar, n)
+        # every sensor fired and collected inside the window: a round robin cycle and one tick more
+        self.limit = len(getattr(r.sonar, "slots", ())) + 2
+        r.sonar = self.watch
+
+    def _line(self, out, ok, text):
+        self.count += 1
+        if not ok:
+            self.failed += 1
+        out.append(("ok " if ok else "err ") + text)
+
+    def step(self):
+        out = []
+        if self.frames == 0:
+            self._instant(out)
+        self.frames += 1
+        w = self.watch
+        if w.left == 0 or self.frames >= self.limit:
+            self._restore()
+            self._sonars(out)
+            out.append(self.end())
+            self.done = True
+        return out
+
+    def _restore(self):
+        if self.runner.sonar is self.watch:
+            self.runner.sonar = self.watch.inner
+
+    def abort(self):
+        """A new line came in: the end line now (the checks done so far were printed)."""
+        self._restore()
+        self.done = True
+        return "err selftest: cut short by a new line after %d checks, %d failed" % (self.count, self.failed)
+
+    def end(self):
+        return "%s selftest %d checks, %d failed" % ("err" if self.failed else "ok", self.count, self.failed)
+
+    # -- the checks ---------------------------------------------------------------------------
+
+    def _instant(self, out):
+        r = self.runner
+        board = getattr(r, "board", None)
+        self._line(
+            out,
+            True,
+            "board %s robot %s" % (board["name"] if board else "n/a", getattr(r.robot.geometry, "name", "n/a")),
+        )
+        self._line(out, True, "version " + VERSION)
+        chips = getattr(r.bank, "chips", None) or []
+        self._i2c(out, board, chips)
+        for c in chips:
+            self._chip(out, c)
+        self._calibration(out)
+        self._reset(out)
+        self._heap(out)
+        self._supply(out, getattr(r, "battery", None))
+
+    def _supply(self, out, b):
+        """The battery monitor's pack voltage and state (hexapod.battery), when the board has one."""
+        if b is None:
+            self._line(out, True, "supply n/a (no battery monitor configured)")
+            return
+        from hexapod import battery
+
+        text = "supply %s V, %d cells, %s" % (battery.volts(b.level_mv), b.cells, battery.STATE_NAMES[b.state])
+        if b.state == battery.OK:
+            self._line(out, True, text)
+        else:
+            self._line(out, False, text + ": charge the pack (cut off below %s V)" % battery.volts(b.cutoff_mv))
+
+    def _i2c(self, out, board, chips):
+        if not chips:
+            self._line(out, True, "i2c n/a (no PCA9685 bank on this loop)")
+            return
+        for c in chips:
+            c.sync()  # a background burst (rp2) finishes before the bus is scanned
+        i2c = chips[0].i2c
+        try:
+            locked = hasattr(i2c, "try_lock")  # busio.I2C (CircuitPython) is scanned under its lock
+            while locked and not i2c.try_lock():
+                pass
+            try:
+                found = i2c.scan()
+            finally:
+                if locked:
+                    i2c.unlock()
+        except OSError as e:
+            self._line(out, False, "i2c scan failed (%s): SDA or SCL held low? pull-ups? %s" % (e, _GROUND))
+            return
+        want = [c.address for c in chips]
+        missing = [a for a in want if a not in found]
+        extra = [a for a in found if a not in want]
+        names = " ".join(_hex(a) for a in found) if found else "nothing"
+        text = "i2c found " + names
+        if extra:
+            text += " (not in the board file: %s%s)" % (
+                " ".join(_hex(a) for a in extra),
+                "; 0x70 is a PCA9685's power-on ALLCALL address" if 0x70 in extra else "",
+            )
+        if not found:
+            pins = board["i2c"] if board else {}
+            self._line(
+                out,
+                False,
+                "%s: no chip answers: SDA on %s and SCL on %s? the PCA9685 boards powered (VCC on 3V3)? %s"
+                % (text, pins.get("sda", "?"), pins.get("scl", "?"), _GROUND),
+            )
+        elif missing:
+            self._line(
+                out,
+                False,
+                "%s, missing %s: %s" % (text, " ".join(_hex(a) for a in missing), no_answer_hint(missing[0])),
+            )
+        else:
+            self._line(out, True, text)
+
+    def _chip(self, out, c):
+        name = "pca9685 " + _hex(c.address)
+        mode1, pre = c.read_back()
+        want1 = c.mode1_written()
+        if mode1 < 0 or pre < 0:
+            self._line(out, False, "%s: no answer: %s" % (name, no_answer_hint(c.address)))
+            return
+        got = "MODE1 %s PRE_SCALE %s" % (_hex(mode1), _hex(pre))
+        if mode1 != want1 or pre != c.prescale:
+            self._line(
+                out,
+                False,
+                "%s %s, the driver wrote MODE1 %s PRE_SCALE %s: it reset since start-up (a brownout: servo "
+                "power sagging into its VCC? VCC on 3V3, not on the servo supply) or another I2C master "
+                "writes it; the loop sets it up again within %d frames"
+                % (name, got, _hex(want1), _hex(c.prescale), c._check_every),
+            )
+            return
+        self._line(out, True, "%s %s (%d Hz at osc %d Hz)" % (name, got, c.freq_hz, c.osc_hz))
+
+    def _sonars(self, out):
+        r = self.runner
+        w = self.watch
+        board = getattr(r, "board", None)
+        pins = boards.sensor_pins(board) if board else None
+        for k in range(len(w.status)):
+            st = w.status[k]
+            name = "sonar " + hcsr04.SENSOR_NAMES[k]
+            if st == hcsr04.OK:
+                self._line(out, True, "%s ok %s mm" % (name, format_fixed(w.distance[k], 1)))
+                continue
+            word = _SONAR_WORDS[st] if 0 <= st < len(_SONAR_WORDS) else "wait"
+            wires = "trigger on pin %s, echo on pin %s" % pins[k] if pins else "its trigger and echo pins"
+            if st == hcsr04.NO_ECHO:
+                why = "the echo never rose: module on 5 V? %s? the echo's 1k/2k divider in place? %s" % (wires, _GROUND)
+            elif st == hcsr04.STUCK:
+                why = "the echo was high before the trigger: echo shorted high, or the divider's ground leg open"
+                why += " (%s)" % wires
+            elif st == hcsr04.OUT_OF_RANGE:
+                why = (
+                    "nothing within %s mm: point it at a wall 10-50 cm away (a soft or slanted target "
+                    % (format_fixed(r.sonar.sensors[k].max_range, 1),)
+                    + "returns no echo)"
+                )
+            elif st == hcsr04.TOO_CLOSE:
+                why = "closer than 20.0 mm: something on the transducers, or a bent one hearing its own burst"
+            else:
+                why = "no result while the test watched (%d frames): is the loop's round robin running?" % self.frames
+            self._line(out, False, "%s %s: %s" % (name, word, why))
+
+    def _calibration(self, out):
+        store = self.con.store
+        src = self.con.cal_source
+        if store is None:
+            self._line(out, True, "calibration n/a (no filesystem on this console; in force: %s)" % src)
+            return
+        try:
+            crc = store.check()
+        except ValueError as e:
+            self._line(
+                out,
+                False,
+                "calibration %s: the board file's defaults are in use at boot (in force now: %s): calibrate and "
+                "'save' (docs/jog.md)" % (e, src),
+            )
+            return
+        self._line(out, True, "calibration %s crc %04x (in force: %s)" % (store.path, crc, src))
+
+    def _reset(self, out):
+        try:
+            import machine
+
+            cause = machine.reset_cause()
+        except (ImportError, AttributeError):
+            self._line(out, True, "reset_cause n/a (no machine.reset_cause on this port)")
+            return
+        word = "code_%d" % cause
+        for i in range(len(_RESETS)):
+            if getattr(machine, _RESETS[i], None) == cause:
+                word = _RESET_WORDS[i]
+        if word == "watchdog":
+            self._line(
+                out,
+                False,
+                "reset_cause watchdog: the loop stalled past the board file's watchdog_ms and the watchdog reset "
+                "the board: a traceback at the REPL shows why (run with watchdog_ms None to see it)",
+            )
+            return
+        self._line(out, True, "reset_cause " + word)
+
+    def _heap(self, out):
+        if not hasattr(gc, "mem_free"):
+            self._line(out, True, "heap n/a (no gc.mem_free on this runtime)")
+            return
+        gc.collect()
+        free = gc.mem_free()
+        if free < HEAP_LOW:
+            self._line(
+                out,
+                False,
+                "heap free %d bytes, below %d: a line or a walk may fail for memory: flash compiled .mpy "
+                "files (hexapod flash does) and remove extra files from the board" % (free, HEAP_LOW),
+            )
+            return
+        self._line(out, True, "heap free %d bytes" % free)
+
+
+class Sweep:
+    """`selftest servos L` as a console job: leg L's joints one after the other, +-SWEEP_CDEG around
+    the present angle and back, STEP_CDEG a frame, through Robot.jog_joint; then `sit` again."""
+
+    def __init__(self, console, leg):
+        self.con = console
+        self.robot = console.robot
+        self.leg = leg
+        self.joint = 0
+        self.count = 0
+        self.failed = 0
+        self.done = False
+        self._begin()
+
+    def _begin(self):
+        k = 3 * self.leg + self.joint
+        self.a0 = self.robot.angles[k]
+        self.offset = 0
+        self.turns = 0  # 0: going up, 1: going down, 2: coming back
+        self.lo = self.hi = self.robot.pulses[k]
+
+    def step(self):
+        out = []
+        r = self.robot
+        j = self.joint
+        if self.turns == 0:
+            self.offset += STEP_CDEG
+            if self.offset >= SWEEP_CDEG:
+                self.offset = SWEEP_CDEG
+                self.turns = 1
+        elif self.turns == 1:
+            self.offset -= STEP_CDEG
+            if self.offset <= -SWEEP_CDEG:
+                self.offset = -SWEEP_CDEG
+                self.turns = 2
+        else:
+            self.offset += STEP_CDEG
+            if self.offset >= 0:
+                self.offset = 0
+                self.turns = 3
+        code = r.jog_joint(self.leg, j, self.a0 + self.offset)
+        k = 3 * self.leg + j
+        if code:
+            why = self.con._refused(code)[4:]
+            back = r.jog_joint(self.leg, j, self.a0)
+            self.count += 1
+            self.failed += 1
+            out.append(
+                "err servo %d %s: refused at %s deg (%s); %s"
+                % (
+                    self.leg + 1,
+                    JOINTS[j],
+                    format_fixed(self.a0 + self.offset, 2),
+                    why,
+                    "it went back to %s deg" % format_fixed(self.a0, 2) if not back else "it stays where it was",
+                )
+            )
+            self._next(out)
+            return out
+        p = r.pulses[k]
+        self.lo = p if p < self.lo else self.lo
+        self.hi = p if p > self.hi else self.hi
+        if self.turns == 3:
+            self.count += 1
+            out.append(
+                "ok servo %d %s swept %s..%s deg at %d deg/s, pulses %d..%d us"
+                % (
+                    self.leg + 1,
+                    JOINTS[j],
+                    format_fixed(self.a0 - SWEEP_CDEG, 2),
+                    format_fixed(self.a0 + SWEEP_CDEG, 2),
+                    SWEEP_CDEG_PER_S // 100,
+                    self.lo,
+                    self.hi,
+                )
+            )
+            self._next(out)
+        return out
+
+    def _next(self, out):
+        if self.joint < 2:
+            self.joint += 1
+            self._begin()
+            return
+        code = self.robot.sit_down()  # every pulse is back where it was: the leg's jog ends at once
+        if code:
+            self.failed += 1
+            why = self.con._refused(code)[4:]
+            out.append("err selftest servos %d: 'sit' afterwards refused: %s" % (self.leg + 1, why))
+        else:
+            out.append(self.end())
+        self.done = True
+
+    def abort(self):
+        self.done = True
+        return (
+            "err selftest servos %d: cut short by a new line during the %s; the leg stays where it is ('sit' "
+            % (
+                self.leg + 1,
+                JOINTS[self.joint],
+            )
+            + "brings it home)"
+        )
+
+    def end(self):
+        return "%s selftest servos %d: %d joints swept, %d failed" % (
+            "err" if self.failed else "ok",
+            self.leg + 1,
+            self.count,
+            self.failed,
+        )
+
+
+def start(console, args):
+    """The job for `selftest` args (a list of words); ValueError (nothing changed) for bad ones."""
+    if not args:
+        return Checks(console)
+    if args[0] != "servos":
+        raise ValueError("%r, allowed nothing (the hardware checks) or 'servos L' (leg 1..6)" % (args[0][:20],))
+    if len(args) != 2:
+        raise ValueError("need servos L (leg 1..6), got %d argument%s" % (len(args) - 1, "" if len(args) == 2 else "s"))
+    leg = console._leg(args[1])
+    r = console.robot
+    if console.runner.follower.mode:
+        raise ValueError("the robot is following a wall; 'wall off' first")
+    if r.mode != tick.SITTING:
+        raise ValueError(
+            "the robot is %s; servos are swept only while it sits (body on the ground, no leg carries it): 'sit' first"
+            % tick.MODE_NAMES[r.mode]
+        )
+    return Sweep(console, leg)
