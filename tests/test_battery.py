@@ -357,3 +357,21 @@ def test_a_capped_frame_allocates_nothing(mp):
     # 1500 * 485 // 1000 = 727 is under its cap.
     assert (state, req_vx, mode) == (LOW, 582, WALKING)
     assert heap == 0
+
+
+@pytest.mark.parametrize(
+    "pack_mv, state, ok",
+    [
+        (8000, "ok", True),
+        (6900, "low: charge the pack (cut off below 6.60 V)", False),
+        (6400, "cutoff: charge the pack (cut off below 6.60 V)", False),
+    ],
+)
+def test_selftest_reports_the_pack(rt, pack_mv, state, ok):
+    # 2S thresholds by hand: warn 2 x 3.5 = 7.0 V, cutoff 2 x 3.3 = 6.6 V.
+    [line] = rt.with_heapsize("4m").call("scenarios.battery:selftest_supply", pack_mv)
+    word, check, volts, unit, rest = line.split(" ", 4)
+    assert (word, check, unit, rest) == ("ok" if ok else "err", "supply", "V,", "2 cells, " + state)
+    # Shown to 10 mV (cut, not rounded) of a reading one 12-bit ADC count wide: 3.3 V / 4096 at the
+    # pin, x 3 through the divider = 2.4 mV of pack.
+    assert abs(pack_mv - 1000 * float(volts)) < 10 + 2.5, line

@@ -252,3 +252,10 @@ def low_heap():
     after = gc.mem_alloc()
     gc.enable()
     return (after - before, r.battery.state, r.robot.walker.req_vx, r.robot.mode)
+
+
+def selftest_supply(pack_mv):
+    """The selftest's supply line on a board whose pack holds pack_mv from power-up (relaxed; the
+    command typed at frame 60, after the monitor's 1 s window has filled)."""
+    _, said = whole(120, {60: "selftest"}, profile=[(0, pack_mv)], boot="relaxed")
+    return [line for _, line in said if line.split()[1:2] == ["supply"]]
