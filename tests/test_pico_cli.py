@@ -21,7 +21,7 @@ def hexapod(*args, env=None):
     [
         (("run", "no/such/file.py"), "no such file: no/such/file.py"),
         (("run", "x.py", "--firmware", "/nonexistent/fw.uf2"), "no Pico firmware at /nonexistent/fw.uf2"),
-        (("bench", "nope"), "no Pico benchmark 'nope'; there are: frame, ik, tick"),
+        (("bench", "nope"), "no Pico benchmark 'nope'; there are: boot, frame, ik, tick"),
         (("bench", "ik", "--firmware", "/nonexistent.uf2"), "no Pico firmware at /nonexistent.uf2"),
         # each count one past its ends, zero and negative (a negative --frames reached the board's
         # summary as an IndexError; 0 silently became the default)

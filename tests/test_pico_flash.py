@@ -51,9 +51,10 @@ def test_flash_the_emulated_pico_over_a_pty_then_boot_it(tmp_path, capsys):
 
     # Power-up from what the board wrote: the image's own main.py, with no calibration file,
     # boots relaxed (every channel full-off), burst for burst as on the host's stub machine (as
-    # tests/test_pico_loop.py does from a packed image). 5 emulated seconds: ~3.7 s of imports
-    # and build (the servo guard's ~2,400 IK solves among them, docs/physics.md), then 20 ms frames.
-    status, out, bursts = pico_loop.boot_main(5, saved)
+    # tests/test_pico_loop.py does from a packed image). 6 emulated seconds: ~4.2 s of imports
+    # and build (the servo guard's ~2,400 IK solves among them, docs/physics.md; `hexapod pico
+    # bench boot`), then 20 ms frames.
+    status, out, bursts = pico_loop.boot_main(6, saved)
     assert status == 0 and "Traceback" not in out, out
     frames = len(bursts) // 2
     assert frames > 50, (frames, out)

@@ -2,6 +2,7 @@
 Runner) on real MicroPython rp2 firmware, talking to emulated PCA9685s over the RP2040's I2C block
 and to emulated HC-SR04s on its GPIOs, gives the very bursts the host's stub machine gives."""
 
+import json
 import re
 
 import pytest
@@ -54,17 +55,17 @@ def test_stand_up_and_walk_bursts_equal_the_stub_machines(fs):
 
 
 def test_main_py_unmodified_boots_relaxed_and_sends_no_pulse(fs):
-    # Power-up with the image's own main.py (no REPL, no script): 5 emulated seconds. No
+    # Power-up with the image's own main.py (no REPL, no script): 6 emulated seconds. No
     # calibration file on the board: it stays relaxed (issue 20), every channel full-off.
-    status, out, bursts = pico_loop.boot_main(5, fs)
+    status, out, bursts = pico_loop.boot_main(6, fs)
     assert status == 0 and "Traceback" not in out, out
     assert "boot: relaxed, no pulse until `stand`: no valid calibration file" in out, out
     frames = len(bursts) // 2
-    # ~3.7 s of imports and build (the servo guard's ~2,400 IK solves at the first configure,
-    # docs/physics.md), then 20 ms frames, each a burst per chip.
+    # ~4.2 s of imports and build (the servo guard's ~2,400 IK solves at the first configure,
+    # docs/physics.md; `hexapod pico bench boot` measures it), then 20 ms frames, a burst per chip.
     assert frames > 50, frames
     assert {c for _, counts in bursts for c in counts} == {-1}  # full-off (LEDn_OFF_H bit 4) only
-    print("main.py on the emulated Pico: %d frames in 5 emulated s" % frames)
+    print("main.py on the emulated Pico: %d frames in 6 emulated s" % frames)
     _, host_bursts = pico_loop.host_main(frames)
     assert bursts[: 2 * frames] == host_bursts[: 2 * frames]  # bit-identical on the stub machine
 
@@ -87,3 +88,14 @@ print((r.sonar_status, r.distances, r.sonar_faults))
     assert st == [0, 1, 1, 0, 0]
     assert dist[1:3] == [-1, -1] and abs(dist[0] - 3000) <= 2 and abs(dist[3] - 6000) <= 2 and abs(dist[4] - 7000) <= 2
     assert faults == 4  # two out-of-range pings each of the two sensors
+
+
+def test_boot_bench_reports_the_first_burst(fs, capsys):
+    from hexapod_host.commands import cli
+
+    assert cli.main(["pico", "bench", "boot", "--json"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    # The first burst after imports and the guard's solves; then 50 Hz frames. (The trace's clock,
+    # the runner's cycle count at 125 MHz, reads the board's 20 ms frames as 19.8 ms: within 2 %.)
+    assert 2.0 < result["first_burst_s"] < 6.0 and abs(result["frame_period_ms"] - 20) < 0.4, result
+    assert result["frames_in_6s"] > 50, result

@@ -165,6 +165,24 @@ def bench_frame(args, fs, tmp):
     return result
 
 
+def bench_boot(args, fs, tmp):
+    """Power-up to main.py's first PCA9685 burst (imports, the board and robot files, the servo
+    guard's IK solves at the first configure), main.py unmodified, on the emulated clock."""
+    from hexapod_host.pico import loop as pico_loop
+
+    times = []
+    status, out, bursts = pico_loop.boot_main(6, fs, times)
+    if status != 0 or not bursts:
+        raise UsageError("the emulated Pico did not reach its first frame in 6 s:\n" + out)
+    frames = [t for t in times[::2]]
+    return {
+        "bench": "boot",
+        "first_burst_s": round(times[0] / 1e6, 4),
+        "frame_period_ms": round((frames[-1] - frames[0]) / (len(frames) - 1) / 1000, 3),
+        "frames_in_6s": len(frames),
+    }
+
+
 def _write(tmp, name, text):
     path = os.path.join(tmp, name)
     with open(path, "w") as f:
@@ -172,7 +190,7 @@ def _write(tmp, name, text):
     return path
 
 
-BENCHES = {"ik": bench_ik, "tick": bench_tick, "frame": bench_frame}
+BENCHES = {"ik": bench_ik, "tick": bench_tick, "frame": bench_frame, "boot": bench_boot}
 
 
 def register(sub):
