@@ -70,7 +70,8 @@ print(repr(say("defaults")))
 print(repr(say("cal 1 coxa")))
 print(repr(say("load")))
 print(repr(say("cal 1 coxa")))
-print(repr(say("status").split()[-4:-2]))
+_w = say("status").split()
+print(repr(_w[_w.index("cal") : _w.index("cal") + 2]))
 """
     )
     out = [ast.literal_eval(x) for x in rt.run(src, heapsize="4m").splitlines()]

@@ -97,5 +97,6 @@ def test_run_streams_output_and_returns_the_boards_status(tmp_path):
         "main.py",
         "robots",
         "runner.mpy",
+        "selftest.mpy",
     ]
     assert os.path.getsize(str(image) + ".img") == pico.FS_BLOCKS * pico.FS_BLOCK_SIZE

@@ -13,12 +13,13 @@ import main
 import stub_board
 from scenarios.calstore import StubFS
 
+from hexapod import board as boards
 from hexapod import tick
 
 
 def rows(board):
     """The board file's calibration as calibration-file rows (trim 0)."""
-    return [(0, m.direction, m.min_us, m.max_us) for _, _, m in main.boards.servo_table(board)]
+    return [(0, m.direction, m.min_us, m.max_us) for _, _, m in boards.servo_table(board)]
 
 
 class Board:
@@ -167,7 +168,7 @@ def sweep(leg=2):
         b.frame()
     for _ in range(3):
         b.frame()
-    table = main.boards.servo_table(b.r.board)
+    table = boards.servo_table(b.r.board)
     k0 = 3 * (leg - 1)
 
     def outputs():
