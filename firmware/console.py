@@ -336,33 +336,26 @@ class Console:
         if code == tick.JOG_IK:
             return "err " + leg_describe(r.jog_code, r.jog_excess)
         if code == tick.JOG_SERVO:
-            k = r.jog_servo
-            s = r.servos[k]
-            return "err leg %d %s: the pulse would be %d us %s its calibrated %d..%d us" % (
-                k // 3 + 1,
-                JOINTS[k % 3],
-                r.jog_excess,
-                "below" if r.jog_code == 1 else "above",
-                s.min_us,
-                s.max_us,
-            )
+            return "err leg %d %s: the pulse would be %d us %s its calibrated %d..%d us" % self._servo_past()
         if code == tick.PATH_IK:
             return "err leg %d would not get there: %s on the way; place it with 'foot' first" % (
                 r.path_leg + 1,
                 leg_describe(r.jog_code, r.jog_excess),
             )
         if code == tick.PATH_SERVO:
-            k = r.jog_servo
-            s = r.servos[k]
-            return "err leg %d %s would not get there: its pulse would go %d us %s its calibrated %d..%d us" % (
-                k // 3 + 1,
-                JOINTS[k % 3],
-                r.jog_excess,
-                "below" if r.jog_code == 1 else "above",
-                s.min_us,
-                s.max_us,
+            return (
+                "err leg %d %s would not get there: its pulse would go %d us %s its calibrated %d..%d us"
+                % self._servo_past()
             )
         return "err " + tick.describe(code)
+
+    def _servo_past(self):
+        """(leg, joint, us, below|above, min_us, max_us): the servo the last jog or posture check
+        refused, how far past its range it would have gone, and the range."""
+        r = self.robot
+        k = r.jog_servo
+        s = r.servos[k]
+        return (k // 3 + 1, JOINTS[k % 3], r.jog_excess, "below" if r.jog_code == 1 else "above", s.min_us, s.max_us)
 
     def held_line(self):
         """The notice for a held frame (the robot's reason, fault_leg, ...): never 'ok' or 'err'."""

@@ -87,31 +87,12 @@ def main(frames=-1, clock=time, board_name=BOARD, robot_name=ROBOT, reader=None,
     global runner
     r = runner = build(board_name, robot_name, clock)
     release("hexapod.board", "hexapod.robotfile", "robots." + robot_name)  # boot-only: its heap back to the loop
-    if reader is not None:
-        import os
-        import sys
-
-        import console
-
-        console.start(
-            r,
-            reader,
-            os,
-            walk_timeout_ms=r.board.get("walk_timeout_ms") or console.WALK_TIMEOUT_MS,
-            write=sys.stdout.write,
-        )
-    if calibrated is None:  # the board entry: the calibration file decides
-        calibrated = r.console is not None and r.console.cal_source == "file"
-    r.power_up(r.board if boot is None else dict(r.board, boot=boot), calibrated)
+    r.bring_up(reader, boot, calibrated)
     if reader is not None and r.board.get("watchdog_ms"):
         from machine import WDT
 
         r.watchdog = WDT(timeout=r.board["watchdog_ms"])
-    try:
-        r.run(frames, 0 if reader is not None else STATUS_FRAMES)
-    except KeyboardInterrupt:
-        r.leave(r.board.get("on_exit") == "hold")
-        print("stopped: servos %s; runner.run() resumes" % ("held" if r.board.get("on_exit") == "hold" else "relaxed"))
+    r.serve(frames, 0 if reader is not None else STATUS_FRAMES)
     return r
 
 

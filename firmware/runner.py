@@ -87,6 +87,37 @@ class Runner:
         self._start = None
         return self.follower.off()
 
+    def bring_up(self, reader=None, boot=None, calibrated=None):
+        """The board entry once built (main.py, code.py): a console on reader, which loads the
+        calibration file, then power_up. boot ("relaxed", "stand") overrides the board file's;
+        calibrated (True/False) stands in for the file where none is read (host runs; None: the
+        file decides)."""
+        if reader is not None:
+            import os
+            import sys
+
+            import console
+
+            console.start(
+                self,
+                reader,
+                os,
+                walk_timeout_ms=self.board.get("walk_timeout_ms") or console.WALK_TIMEOUT_MS,
+                write=sys.stdout.write,
+            )
+        if calibrated is None:
+            calibrated = self.console is not None and self.console.cal_source == "file"
+        return self.power_up(self.board if boot is None else dict(self.board, boot=boot), calibrated)
+
+    def serve(self, frames, status_every):
+        """run(); Ctrl-C leaves the loop with the servos relaxed, or held (the board file's on_exit)."""
+        try:
+            self.run(frames, status_every)
+        except KeyboardInterrupt:
+            hold = self.board.get("on_exit") == "hold"
+            self.leave(hold)
+            print("stopped: servos %s; runner.run() resumes" % ("held" if hold else "relaxed"))
+
     def power_up(self, board, calibrated, out=print):
         """What a board does at power-up (main.py, code.py): stand, and then follow the board's
         "follow" wall, only when the board file's "boot" is "stand" and calibrated (a calibration

@@ -7,6 +7,7 @@ import _stub_clock as clock
 import console
 import main
 import stub_board
+from scenarios.runner import walking_heap
 
 from hexapod import battery
 from hexapod import board as boards
@@ -189,69 +190,37 @@ def no_setting_status():
     return (r.battery, c.do("status"))
 
 
-def steady_frame_heap():
-    """MicroPython only: heap bytes 300 walking frames (30 battery readings) leave allocated, with
-    a battery setting and the pack at 7600 mV; (bytes, frames, held, battery state, mode)."""
-    import gc
-
+def _walking_heap(pack_mv):
+    """(heap bytes 300 walking frames leave allocated, the runner): the pico board with a battery
+    setting, the pack at pack_mv, standing then walking."""
     board = stub_board.reset("pico")
-    bus, chips = stub_board.pca9685_models(board)
+    stub_board.pca9685_models(board)
     stub_board.sonar_models(board, [3000 + 1000 * k for k in range(5)])
-    _stub_adc.battery(PIN, DIVIDER, [(0, 7600)])
+    _stub_adc.battery(PIN, DIVIDER, [(0, pack_mv)])
     board["battery"] = SETTING
     try:
         r = main.build(clock=clock)
     finally:
         board["battery"] = None  # as shipped
     r.robot.stand_up()
-
-    def run(n):
-        for _ in range(n):
-            r.step()
-            r.wait()
-
-    run(100)
+    for _ in range(100):
+        r.step()
+        r.wait()
     r.robot.walk(1200, 300, 1500)
-    run(300)
-    gc.collect()
-    gc.disable()
-    before = gc.mem_alloc()
-    run(300)
-    after = gc.mem_alloc()
-    gc.enable()
-    return (after - before, r.frames, r.held, r.battery.state, r.robot.mode)
+    return walking_heap(r), r
+
+
+def steady_frame_heap():
+    """MicroPython only: heap bytes 300 walking frames (30 battery readings) leave allocated, with
+    a battery setting and the pack at 7600 mV; (bytes, frames, held, battery state, mode)."""
+    heap, r = _walking_heap(7600)
+    return (heap, r.frames, r.held, r.battery.state, r.robot.mode)
 
 
 def low_heap():
     """MicroPython only: the same in LOW (the speed cap in force, 6900 mV): heap bytes, state, req_vx."""
-    import gc
-
-    board = stub_board.reset("pico")
-    bus, chips = stub_board.pca9685_models(board)
-    stub_board.sonar_models(board, [3000 + 1000 * k for k in range(5)])
-    _stub_adc.battery(PIN, DIVIDER, [(0, 6900)])
-    board["battery"] = SETTING
-    try:
-        r = main.build(clock=clock)
-    finally:
-        board["battery"] = None  # as shipped
-    r.robot.stand_up()
-
-    def run(n):
-        for _ in range(n):
-            r.step()
-            r.wait()
-
-    run(100)
-    r.robot.walk(1200, 300, 1500)
-    run(300)
-    gc.collect()
-    gc.disable()
-    before = gc.mem_alloc()
-    run(300)
-    after = gc.mem_alloc()
-    gc.enable()
-    return (after - before, r.battery.state, r.robot.walker.req_vx, r.robot.mode)
+    heap, r = _walking_heap(6900)
+    return (heap, r.battery.state, r.robot.walker.req_vx, r.robot.mode)
 
 
 def selftest_supply(pack_mv):

@@ -124,26 +124,32 @@ def faults_while_running():
 def steady_frame_heap():
     """MicroPython only (gc.mem_alloc): (heap bytes 300 walking frames left allocated, frames, held,
     failed frames, mode)."""
-    import gc
-
     loop, _ = _standing_loop(frames=100)
     r = loop.r
     r.robot.walk(1200, 300, 1500)
     loop.frames(100)
+
+    return (walking_heap(r), r.frames, r.held, r.bank.failed_frames, r.robot.mode)
+
+
+def walking_heap(r, settle=300, frames=300):
+    """MicroPython only (gc.mem_alloc): heap bytes `frames` frames of the runner r leave allocated,
+    after `settle` frames that are not counted."""
+    import gc
 
     def run(n):
         for _ in range(n):
             r.step()
             r.wait()
 
-    run(300)
+    run(settle)
     gc.collect()
     gc.disable()
     before = gc.mem_alloc()
-    run(300)
+    run(frames)
     after = gc.mem_alloc()
     gc.enable()
-    return (after - before, r.frames, r.held, r.bank.failed_frames, r.robot.mode)
+    return after - before
 
 
 def board_runs(board, n):
