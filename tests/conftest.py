@@ -14,3 +14,31 @@ def pytest_sessionstart(session):
         reason = pico.missing()
         if reason:
             raise pytest.UsageError("CI runs every Pico test, but the emulated Pico cannot start: " + reason)
+
+
+@pytest.fixture
+def virtual_board():
+    """start(cal_dir) -> (pty path, an open Link): `hexapod virtual-board` for pico/default in the
+    MicroPython VM (cal_dir "": no calibration filesystem); every board started is stopped after."""
+    from hexapod_host.commands.console import start_virtual_board
+    from hexapod_host.serial.link import Link
+    from hexapod_host.testing.runtimes import micropython_missing
+
+    if micropython_missing():
+        pytest.skip(micropython_missing())
+    started = []
+
+    def start(cal_dir):
+        proc, path, master, slave = start_virtual_board("pico", "default", cal_dir)
+        link = Link.open(path, timeout=10)
+        started.append((proc, master, slave, link))
+        link.request("help")  # the VM is up
+        return path, link
+
+    yield start
+    for proc, master, slave, link in started:
+        link.close()
+        proc.terminate()
+        proc.wait(10)
+        os.close(master)
+        os.close(slave)

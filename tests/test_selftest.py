@@ -19,9 +19,7 @@ import pytest
 
 from hexapod_host import ROOT
 from hexapod_host.commands import cli, doctor
-from hexapod_host.commands.console import start_virtual_board
 from hexapod_host.serial.link import Link
-from hexapod_host.testing.runtimes import micropython_missing
 from tests.console_rig import clean_stubs  # noqa: F401 (autouse fixture)
 
 HINT_0x41 = "is its A0 jumper bridged (and no other)? is its VCC on 3V3? SDA and SCL wired through? common ground"
@@ -286,24 +284,9 @@ def test_doctor_report_from_a_recorded_reply():
 
 
 @pytest.fixture
-def vboard():
-    if micropython_missing():
-        pytest.skip(micropython_missing())
-    started = []
-
-    def start():
-        proc, path, master, slave = start_virtual_board("pico", "default", "")
-        started.append((proc, master, slave))
-        with Link.open(path, timeout=10) as link:
-            link.request("help")  # the VM is up
-        return path
-
-    yield start
-    for proc, master, slave in started:
-        proc.terminate()
-        proc.wait(10)
-        os.close(master)
-        os.close(slave)
+def vboard(virtual_board):
+    """start() -> pty path of a virtual board with no calibration filesystem (conftest's)."""
+    return lambda: virtual_board("")[0]
 
 
 def test_doctor_against_the_virtual_board(vboard, capsys):

@@ -12,7 +12,6 @@ import tty
 import pytest
 
 from hexapod_host.commands import cli
-from hexapod_host.commands.console import start_virtual_board
 from hexapod_host.serial.link import Link, LinkError
 from hexapod_host.testing import reference
 from hexapod_host.testing.runtimes import micropython_missing
@@ -22,24 +21,9 @@ HALF_COUNT_US = 20000 / 4096 / 2  # the PCA9685 at 50 Hz: 4.88 us a count
 
 
 @pytest.fixture
-def board(tmp_path):
-    if micropython_missing():
-        pytest.skip(micropython_missing())
-    started = []
-
-    def start(cal_dir=str(tmp_path)):
-        proc, path, master, slave = start_virtual_board("pico", "default", cal_dir)
-        started.append((proc, master, slave))
-        link = Link.open(path, timeout=10)
-        link.request("help")  # the VM is up
-        return path, link
-
-    yield start
-    for proc, master, slave in started:
-        proc.terminate()
-        proc.wait(10)
-        os.close(master)
-        os.close(slave)
+def board(tmp_path, virtual_board):
+    """start(cal_dir=a temporary folder) -> (pty path, link): conftest's virtual_board."""
+    return lambda cal_dir=str(tmp_path): virtual_board(cal_dir)
 
 
 def model(link):

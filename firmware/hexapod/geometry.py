@@ -11,21 +11,23 @@ from hexapod.fixmath import cos, sin
 from hexapod.leg import Leg
 
 
+def leg_from(data):
+    """One Leg from a robot file's COXA, FEMUR, TIBIA, FEMUR_OFFSET and LIMITS (ValueError if bad)."""
+    return Leg(
+        coxa=data["COXA"],
+        femur=data["FEMUR"],
+        tibia=data["TIBIA"],
+        femur_offset=data["FEMUR_OFFSET"],
+        limits=data["LIMITS"],
+    )
+
+
 class Geometry:
     """A checked robot build; legs[i] is leg i + 1 (1 RF ... 6 LF)."""
 
     def __init__(self, name, data):
         self.name = name
-        self.legs = [
-            Leg(
-                coxa=data["COXA"],
-                femur=data["FEMUR"],
-                tibia=data["TIBIA"],
-                femur_offset=data["FEMUR_OFFSET"],
-                limits=data["LIMITS"],
-            )
-            for _ in range(6)
-        ]
+        self.legs = [leg_from(data) for _ in range(6)]
         m = data["MOUNTS"]
         self.mount_x = [m[i][0] for i in range(6)]
         self.mount_y = [m[i][1] for i in range(6)]

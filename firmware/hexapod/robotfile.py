@@ -6,8 +6,8 @@ robots/default.py: lengths 0.1 mm, angles cdeg.
 
 from hexapod.fixmath import sin
 from hexapod.gait import CYCLE_MS_MAX, CYCLE_MS_MIN, NAMES
-from hexapod.geometry import Geometry
-from hexapod.leg import OK, Leg, describe
+from hexapod.geometry import Geometry, leg_from
+from hexapod.leg import OK, describe
 
 LEG_NAMES = ("RF", "RM", "RR", "LR", "LM", "LF")
 MOUNT_MAX = 5000  # largest |x|, |y| of a coxa axis, 0.1 mm
@@ -59,13 +59,7 @@ def from_data(name, data):
     """A Geometry from a dict of the robots/ fields; ValueError names what is wrong."""
     pre = "robot %r: " % (name,)
     try:
-        Leg(
-            coxa=data["COXA"],
-            femur=data["FEMUR"],
-            tibia=data["TIBIA"],
-            femur_offset=data["FEMUR_OFFSET"],
-            limits=data["LIMITS"],
-        )
+        leg_from(data)
     except ValueError as err:
         raise ValueError(pre + str(err)) from None
     _check_mounts(pre, data["MOUNTS"])
