@@ -99,3 +99,20 @@ def test_boot_bench_reports_the_first_burst(fs, capsys):
     # the runner's cycle count at 125 MHz, reads the board's 20 ms frames as 19.8 ms: within 2 %.)
     assert 2.0 < result["first_burst_s"] < 6.0 and abs(result["frame_period_ms"] - 20) < 0.4, result
     assert result["frames_in_6s"] > 50, result
+
+
+def test_main_py_with_a_calibration_file_boots_relaxed_too(tmp_path):
+    # A valid hexapod_cal.txt on the board, the shipped board file (no "boot": "stand"): still
+    # no pulse before `stand` (issue 20), only the notice says why differently.
+    import calstore
+
+    from hexapod import board as boards
+
+    rows = [(0, m.direction, m.min_us, m.max_us) for _, _, m in boards.servo_table(boards.load("pico"))]
+    cal = tmp_path / calstore.FILE
+    cal.write_text(calstore.encode(rows))
+    with pico.flashed(extra=[(str(cal), calstore.FILE)]) as fs:
+        status, out, bursts = pico_loop.boot_main(6, fs)
+    assert status == 0 and "Traceback" not in out, out
+    assert "boot: relaxed, no pulse until `stand` (the board file's boot setting)" in out, out
+    assert len(bursts) > 100 and {c for _, counts in bursts for c in counts} == {-1}
