@@ -17,10 +17,12 @@ CONSOLE_SCRIPT = os.path.join(VM_DIR, "bench_console.py")
 CONSOLE_HEAP = "512k"
 # The gait rows: the walker's servo guard (physics) and jog mode (console) outgrew 128 KB beside
 # the script and its 20 KB timing buffer. At 160 KB the wall row's Follower() hit MemoryError in
-# some heap layouts (158 KB failed, 150/154/162 ran, 2026-11-23): 192 KB leaves room. The heap's
-# size does not change a tick's cost or its 0 bytes; a Pico has ~109 KB free after boot.
-WALL_HEAP = "192k"
-GAIT_HEAP = "192k"
+# some heap layouts (158 KB failed, 150/154/162 ran, 2026-11-23): 192 KB left room until the
+# posture moves' frame-by-frame trial and the battery cap grew the core (2026-11-27: the wall row
+# hit MemoryError at 192 KB): 256 KB. The heap's size does not change a tick's cost or its
+# 0 bytes; a Pico has ~92 KB free once running.
+WALL_HEAP = "256k"
+GAIT_HEAP = "256k"
 
 
 def build_mpy(dest):
