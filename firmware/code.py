@@ -80,6 +80,7 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000, sampl
     bank = cp_pca9685.servo_bank(i2c, board["pca9685"], table)
     r = Runner(robot, [row[2] for row in table], bank, sensors, clock, boards.sensor_mounts(board))
     r.board = board
+    r.sonar_pins = pairs
     return r
 
 

@@ -71,6 +71,7 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=time, max_range=10000, sampl
         adc=adc,
     )
     r.board = board
+    r.sonar_pins = pins
     return r
 
 

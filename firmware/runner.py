@@ -63,6 +63,7 @@ class Runner:
         self._start = None  # a follow setting waiting for the robot to stand
         self.console = None  # console.Console: polled once a frame when set (console.start)
         self.watchdog = None  # machine.WDT (the board file's watchdog_ms): fed once a frame
+        self.sonar_pins = None  # (trigger, echo) per sonar, drivers.hcsr04 order (main.build): selftest's hints
         self.boot = BOOT_NOT_YET  # what power_up did (BOOT_WORDS)
         self.battery = battery
         self.adc = adc

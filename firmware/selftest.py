@@ -21,7 +21,6 @@ import gc
 
 from drivers import hcsr04
 from hexapod import VERSION, tick
-from hexapod import board as boards
 from hexapod.units import format_fixed
 
 FRAME_MS = 20
@@ -225,8 +224,7 @@ class Checks:
     def _sonars(self, out):
         r = self.runner
         w = self.watch
-        board = getattr(r, "board", None)
-        pins = boards.sensor_pins(board) if board else None
+        pins = getattr(r, "sonar_pins", None)
         for k in range(len(w.status)):
             st = w.status[k]
             name = "sonar " + hcsr04.SENSOR_NAMES[k]

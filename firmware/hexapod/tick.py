@@ -35,7 +35,7 @@ from hexapod.posture import POSTURE_STEP, Posture
 from hexapod.reach import disc_radii
 from hexapod.servo import ServoMap
 from hexapod.turns import sweep_command
-from hexapod.walk import SERVO_SPEED, STEP_MAX, STOPPED, Walker
+from hexapod.walk import SERVO_SPEED, SPEED_MAX, STEP_MAX, STOPPED, YAW_RATE_MAX, Walker
 
 # The viper twins (docs/viper.md): the frame and the pose check compiled by the viper emitter where
 # MicroPython has one (hexapod/_tick_viper.py and _body_viper.py, proven equal to the plain _output
@@ -581,7 +581,7 @@ class Robot:
     def cap_speed(self, speed=0, yaw_rate=0):
         """Cap walking at speed (0.1 mm/s, planar) and yaw_rate (cdeg/s), both > 0; cap_speed()
         lifts the cap. A walk under way is re-commanded at once (the walker ramps to it)."""
-        for name, v, top in (("speed", speed, 3000), ("yaw_rate", yaw_rate, 9000)):
+        for name, v, top in (("speed", speed, SPEED_MAX), ("yaw_rate", yaw_rate, YAW_RATE_MAX)):
             if not isinstance(v, int) or isinstance(v, bool) or v < 0 or v > top:
                 raise ValueError("%s: %r, allowed 0..%d (0: no cap)" % (name, v, top))
         if (speed == 0) != (yaw_rate == 0):
