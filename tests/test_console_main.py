@@ -123,7 +123,7 @@ def test_poll_reader_on_an_open_line_with_nothing_waiting_allocates_nothing(mp):
     import subprocess
 
     from hexapod_host import mpvm
-    from hexapod_host.testing.runtimes import HEAP_PROBE
+    from hexapod_host.testing.runtimes import HEAP_PROBE, TESTS
 
     src = (
         RIG
@@ -144,7 +144,7 @@ while not con.lines:
         [mpvm.executable(), "-X", "heapsize=4m", "-c", src],
         stdin=subprocess.PIPE,
         stdout=subprocess.PIPE,
-        env=dict(os.environ, MICROPYPATH=mpvm.search_path()),
+        env=dict(os.environ, MICROPYPATH=os.pathsep.join((mpvm.search_path(), TESTS))),
     )
     try:
         first = proc.stdout.readline()

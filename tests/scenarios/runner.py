@@ -4,6 +4,7 @@ scenario plugs in itself, its HC-SR04 models at 300..700 mm, the virtual clock."
 import _stub_clock as clock
 import main
 import stub_board
+from scenarios.heap import heap_bytes
 
 from hexapod import board as boards
 
@@ -132,24 +133,16 @@ def steady_frame_heap():
     return (walking_heap(r), r.frames, r.held, r.bank.failed_frames, r.robot.mode)
 
 
-def walking_heap(r, settle=300, frames=300):
+def walking_heap(r, frames=300):
     """MicroPython only (gc.mem_alloc): heap bytes `frames` frames of the runner r leave allocated,
-    after `settle` frames that are not counted."""
-    import gc
+    after as many that are not counted."""
 
     def run(n):
         for _ in range(n):
             r.step()
             r.wait()
 
-    run(settle)
-    gc.collect()
-    gc.disable()
-    before = gc.mem_alloc()
-    run(frames)
-    after = gc.mem_alloc()
-    gc.enable()
-    return after - before
+    return heap_bytes(run, frames)
 
 
 def board_runs(board, n):

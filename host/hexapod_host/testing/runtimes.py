@@ -51,23 +51,9 @@ g = unguarded_geometry()
 """
 
 
-# Source text for VM scripts: heap_bytes(fn, arg) runs fn(arg) with the collector off and
-# returns the heap bytes it left allocated. Locals only: a new global would grow the
-# module dict inside the measurement.
-HEAP_PROBE = """
-import gc
-
-
-def heap_bytes(fn, arg):
-    fn(arg)
-    gc.collect()
-    gc.disable()
-    before = gc.mem_alloc()
-    fn(arg)
-    after = gc.mem_alloc()
-    gc.enable()
-    return after - before
-"""
+# Source text for VM scripts: heap_bytes(fn, arg) (tests/scenarios/heap.py) runs fn(arg) with the
+# collector off and returns the heap bytes it left allocated.
+HEAP_PROBE = "from scenarios.heap import heap_bytes\n"
 
 
 class CPythonRuntime:
