@@ -101,7 +101,7 @@ def test_tick_bench_script_runs_allocation_free():
     from hexapod_host.bench.tick import bench_tick
 
     result = bench_tick(None, ticks=300, repeats=1)
-    assert result["bench"] == "tick" and result["heap"] == "192k"  # the full run fits 160k only in some heap layouts
+    assert result["bench"] == "tick" and result["heap"] == "256k"  # 192k stopped fitting the wall row on 2026-11-27
     assert [g["gait"] for g in result["gaits"]] == ["tripod", "tetrapod", "ripple", "wave"]
     for g in result["gaits"]:
         assert g["heap_bytes_per_tick"] == 0 and g["faults"] == 0
