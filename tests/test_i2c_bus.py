@@ -37,6 +37,25 @@ def test_timeout_raises_etimedout_and_reset_fault_resets_chip(rt):
     assert rt.call("scenarios.i2c_bus:timeout_and_reset") == [("OSError", 110), ("ok", 2), "ok", 0x11, 1, 1]
 
 
+@pytest.mark.parametrize(
+    "byte, regs, counted",
+    [
+        (1, [0, 0], 2),  # the pointer byte times out: address + pointer on the wire, nothing lands
+        (2, [0, 0], 3),  # AI off: the pointer lands, the first data byte times out
+        (3, [5, 0], 4),  # 5 lands in LED0_ON_L (AI off), the byte after it times out
+        (4, [6, 0], 4),  # past the transfer's last byte: no timeout, 6 overwrites 5 (AI off)
+    ],
+)
+def test_a_timeout_strikes_exactly_its_byte(rt, byte, regs, counted):
+    a, got_regs, got_counted, timeouts, r = rt.call("scenarios.i2c_bus:timeout_at_byte", byte)
+    struck = byte <= 3
+    assert a == (("OSError", 110) if struck else ("ok", 3))
+    assert (got_regs, got_counted) == (regs, counted)
+    # the read's bytes are 1 and 2 after its address: a timeout at byte 3 or 4 never strikes it
+    assert r == ("OSError" if byte <= 2 else "ok")
+    assert timeouts == (byte <= 3) + (byte <= 2)
+
+
 def test_fault_count_covers_consecutive_transfers(rt):
     assert rt.call("scenarios.i2c_bus:fault_count", 2, 3) == [("OSError", 19), ("OSError", 19), ("ok", 1)]
 

@@ -77,6 +77,21 @@ def timeout_and_reset():
     return [a, b, c[0], c[1][0], chip.resets - before, bus.timeouts]
 
 
+def timeout_at_byte(byte):
+    """[writeto of pointer 0x06 + 5, 6 with a timeout armed at byte `byte` (0 = the address), LED0_ON_L
+    and _H, bus bytes counted, bus timeouts, a 2-byte readfrom with the same fault]."""
+    bus, chip = _bus()
+    i2c = machine.I2C(0, bus=bus)
+    bus.reset_stats()
+    bus.fault(0x40, "timeout", byte=byte)
+    a = err(i2c.writeto, 0x40, bytes([0x06, 5, 6]))
+    regs = list(chip.regs[6:8])
+    counted = bus.bytes
+    bus.fault(0x40, "timeout", byte=byte)
+    r = err(i2c.readfrom, 0x40, 2)
+    return [a, regs, counted, bus.timeouts, r[0]]
+
+
 def fault_count(count, transfers):
     """err() of each of transfers writes after a NACK fault with count."""
     bus, _ = _bus()

@@ -200,16 +200,22 @@ class I2CBus:
                 self._selected[i].on_start(read)
         return 0
 
+    def _next_byte_times_out(self, before):
+        """Count the next byte; True (timeout counted, wire time since before booked) if a timeout strikes it."""
+        self._byte_no += 1
+        self.bytes += 1
+        if self._armed != _TIMEOUT or self._byte_no < self._fault_byte:
+            return False
+        self.timeouts += 1
+        self._wire_ns += self._t_ns - before
+        return True
+
     def send(self, buf, start, end):
         """Data bytes buf[start:end] to the addressed chips; the number acknowledged, or TIMEOUT."""
         before = self._t_ns
         acked = 0
         for i in range(start, end):
-            self._byte_no += 1
-            self.bytes += 1
-            if self._armed == _TIMEOUT and self._byte_no >= self._fault_byte:
-                self.timeouts += 1
-                self._wire_ns += self._t_ns - before
+            if self._next_byte_times_out(before):
                 return TIMEOUT
             self._clock(9)
             if self._armed == _NACK and self._byte_no >= self._fault_byte:
@@ -236,11 +242,7 @@ class I2CBus:
         """Read bytes into buf[start:end] (wired-AND when several chips answer); 0 or TIMEOUT."""
         before = self._t_ns
         for i in range(start, end):
-            self._byte_no += 1
-            self.bytes += 1
-            if self._armed == _TIMEOUT and self._byte_no >= self._fault_byte:
-                self.timeouts += 1
-                self._wire_ns += self._t_ns - before
+            if self._next_byte_times_out(before):
                 return TIMEOUT
             self._clock(9)
             v = 0xFF
