@@ -59,6 +59,16 @@ def standing_robot(gait):
     return robot, t
 
 
+def keep_best(best, n, d, first):
+    """Tick n's time d (us, clamped to 16 bits) kept in best if first or faster; returns the clamped d."""
+    if d > 65535:
+        d = 65535
+    if first or d < best[2 * n] | best[2 * n + 1] << 8:
+        best[2 * n] = d & 255  # 16-bit little-endian in a bytearray: no big temporary
+        best[2 * n + 1] = d >> 8
+    return d
+
+
 def one_pass(gait, best, first):
     """One replay of the sequence; returns (heap bytes, worst raw us, faults)."""
     robot, t = standing_robot(gait)
@@ -74,12 +84,7 @@ def one_pass(gait, best, first):
             robot.walk(c[0], c[1], c[2])
         t0 = time.ticks_us()
         robot.tick(t)
-        d = time.ticks_diff(time.ticks_us(), t0)
-        if d > 65535:
-            d = 65535
-        if first or d < best[2 * n] | best[2 * n + 1] << 8:
-            best[2 * n] = d & 255  # 16-bit little-endian in a bytearray: no big temporary
-            best[2 * n + 1] = d >> 8
+        d = keep_best(best, n, time.ticks_diff(time.ticks_us(), t0), first)
         if d > worst:
             worst = d
         t += 20
@@ -182,12 +187,7 @@ def one_wall_pass(best, first):
         t0 = time.ticks_us()
         fol.update(t, k, DIST, STATUS)
         robot.tick(t)
-        d = time.ticks_diff(time.ticks_us(), t0)
-        if d > 65535:
-            d = 65535
-        if first or d < best[2 * n] | best[2 * n + 1] << 8:
-            best[2 * n] = d & 255
-            best[2 * n + 1] = d >> 8
+        d = keep_best(best, n, time.ticks_diff(time.ticks_us(), t0), first)
         if d > worst:
             worst = d
         t += 20
