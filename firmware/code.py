@@ -1,6 +1,7 @@
 """Board entry point on CircuitPython (it runs code.py): the CircuitPython twin of main.py.
 
-Loads the board file and the robot file named below, builds the loop (runner.Runner) on
+Loads the board file and the robot's files named below (robots/ROBOT.py and
+robots/ROBOT_cal.py, as main.py), builds the loop (runner.Runner) on
 busio.I2C, the PCA9685 bank (drivers.cp_pca9685) and five non-blocking HC-SR04 rangers
 (drivers.cp_hcsr04_pulsein), stands the robot up and runs 50 Hz frames for ever, printing a
 status line every 5 s; with a "follow" setting in the board file it follows that wall once
@@ -11,7 +12,7 @@ Needs adafruit_pca9685, adafruit_bus_device and adafruit_register in lib/ (docs/
 from runner import Runner
 
 from hexapod import board as boards
-from hexapod import geometry
+from hexapod import geometry, robotcal
 
 BOARD = "feather_rp2040"
 ROBOT = "default"
@@ -48,12 +49,13 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000, sampl
     except ImportError:
         raise ValueError("robot %r: no robots/%s.py" % (robot_name, robot_name)) from None
     robot = geometry.load(robot_module)
+    cal = robotcal.load(robot_name, robot.limits)
     bus = board["i2c"]
     scl = board_pin(board, bus["scl"], "i2c scl")
     sda = board_pin(board, bus["sda"], "i2c sda")
     sensor_pins = []
     names = boards.SENSORS
-    pairs = boards.sensor_pins(board)
+    pairs = boards.sonar_pins(board)
     for k in range(len(pairs)):  # every pin looked up before any is claimed
         trigger, echo = pairs[k]
         where = names[k] + " sensor"
@@ -75,9 +77,9 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000, sampl
             s.deinit()
         raise
     i2c = busio.I2C(scl, sda, frequency=bus["freq"])
-    table = boards.servo_table(board)
+    table = boards.servo_table(board, robotcal.servo_maps(cal))
     bank = cp_pca9685.servo_bank(i2c, board["pca9685"], table)
-    r = Runner(robot, [row[2] for row in table], bank, sensors, clock, boards.sensor_mounts(board))
+    r = Runner(robot, [row[2] for row in table], bank, sensors, clock, robotcal.sonar_mounts(cal))
     r.board = board
     return r
 

@@ -114,7 +114,8 @@ class Console:
         self._walking = False  # a console walk runs, expiring at _deadline (ticks_ms)
         self._deadline = 0
         self.lines = 0  # lines answered
-        # The board file's calibration: (centre_us, direction, min_us, max_us) per servo.
+        # The robot file's calibration (robots/<robot>_cal.py): (centre_us, direction, min_us,
+        # max_us) per servo; centre_us is the pulse at the servo's reference angle (ref_cdeg).
         self.base = tuple((s.centre_us, s.direction, s.min_us, s.max_us) for s in self.robot.servos)
         self.trims = [0] * 18
         self.cal_source = "defaults"
@@ -295,12 +296,13 @@ class Console:
         )
 
     def cal_line(self, k):
-        """'ok leg L joint J centre_us C trim T dir D min_us A max_us B' for servo 0..17."""
+        """'ok leg L joint J centre_us C ref_deg R trim T dir D min_us A max_us B' for servo 0..17."""
         s = self.robot.servos[k]
-        return "ok leg %d joint %s centre_us %d trim %d dir %d min_us %d max_us %d" % (
+        return "ok leg %d joint %s centre_us %d ref_deg %s trim %d dir %d min_us %d max_us %d" % (
             k // 3 + 1,
             JOINTS[k % 3],
             self.base[k][0],
+            format_fixed(s.ref_cdeg, 2),
             self.trims[k],
             s.direction,
             s.min_us,
@@ -585,13 +587,24 @@ class Console:
         return "ok saved %s crc %04x" % (self.store.path, crc)
 
     def load_file(self):
-        """Calibration from the store, else the board file's defaults; returns the reply."""
+        """Calibration from the store, else the robot file's defaults; returns the reply."""
         if self.store is None:
             raise ValueError("no calibration file on this board")
         try:
-            rows, where = self.store.load()
+            rows, where, version = self.store.load()
         except ValueError as e:
             return "ok defaults (%s)" % (e,)
+        if version == 1:
+            # Version 1 mirrored a flipped servo about angle 0, version 2 about its reference:
+            # the same pulses everywhere else, different ones there.
+            for k in range(18):
+                s = self.robot.servos[k]
+                if rows[k][1] != self.base[k][1] and s.ref_cdeg:
+                    return (
+                        "err load: %s is version 1 and flips leg %d %s, which it mirrored about 0 deg; now "
+                        "its reference is %s deg: 'defaults', set it again and 'save'"
+                        % (where, k // 3 + 1, JOINTS[k % 3], format_fixed(s.ref_cdeg, 2))
+                    )
         code = self.apply(rows)
         if code:
             return "err load: %s kept the calibration in force: %s" % (where, self._refused(code)[4:])
@@ -632,7 +645,7 @@ def start(runner, reader, os=None, opener=open, out=print, walk_timeout_ms=WALK_
     if store is not None:
         reply = c.load_file()
         if reply.startswith("ok defaults ("):
-            out("cal: %s; the board file's calibration is in use" % reply[13:-1])
+            out("cal: %s; the robot file's calibration is in use" % reply[13:-1])
         elif not reply.startswith("ok loaded"):
             out("cal: " + reply[4:])
     runner.console = c

@@ -1,6 +1,7 @@
 """Board entry point (MicroPython): the only file that touches real hardware.
 
-Loads the board file and the robot file named below, builds the loop (runner.Runner), stands
+Loads the board file and the robot's files named below (robots/ROBOT.py, its build, and
+robots/ROBOT_cal.py, its servo calibration and sonar mounts), builds the loop (runner.Runner), stands
 the robot up and runs 50 Hz frames for ever, printing a status line every 5 s; with a "follow"
 setting in the board file it follows that wall once standing (hexapod.follow). Edit BOARD and
 ROBOT to match yours (files in boards/ and robots/).
@@ -13,7 +14,7 @@ from runner import Runner
 
 from drivers import hcsr04, pca9685
 from hexapod import board as boards
-from hexapod import geometry
+from hexapod import geometry, robotcal
 
 BOARD = "pico"
 ROBOT = "default"
@@ -30,13 +31,15 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=time, max_range=10000, sampl
     None for the board's PCA9685s on its I2C)."""
     board = boards.load(board_name)
     robot_module = __import__("robots." + robot_name, None, None, ("NAME",))
-    table = boards.servo_table(board)
+    robot = geometry.load(robot_module)
+    cal = robotcal.load(robot_name, robot.limits)
+    table = boards.servo_table(board, robotcal.servo_maps(cal))
     if bank is None:
         bus = board["i2c"]
         i2c = I2C(bus["id"], scl=Pin(bus["scl"]), sda=Pin(bus["sda"]), freq=bus["freq"])
         bank = pca9685.servo_bank(i2c, board["pca9685"], table, sleep_us=clock.sleep_us)
     sensors = []
-    pins = boards.sensor_pins(board)
+    pins = boards.sonar_pins(board)
     for k in range(len(pins)):
         trigger, echo = pins[k]
         sensors.append(
@@ -50,9 +53,7 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=time, max_range=10000, sampl
                 irq=True,  # the echo timed by its pin's IRQ: nothing waits for it (drivers/hcsr04.py)
             )
         )
-    r = Runner(
-        geometry.load(robot_module), [row[2] for row in table], bank, sensors, clock, boards.sensor_mounts(board)
-    )
+    r = Runner(robot, [row[2] for row in table], bank, sensors, clock, robotcal.sonar_mounts(cal))
     r.board = board
     return r
 

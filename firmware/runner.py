@@ -30,8 +30,8 @@ class Runner:
         """geometry: hexapod.geometry.load(...); servo_maps: 18 ServoMaps (leg/joint order);
         bank: has write_frame(pulses), failed_frames, reinits; sensors: hcsr04 rangers in
         drivers.hcsr04 order; clock: ticks_ms/ticks_us/ticks_add/ticks_diff/sleep_ms/sleep_us; mounts: the five
-        sensors' (x, y, heading), 0.1 mm and cdeg (hexapod.board.sensor_mounts; default: the
-        shipped board files')."""
+        sensors' (x, y, heading), 0.1 mm and cdeg (hexapod.robotcal.sonar_mounts; default: the
+        shipped robot's)."""
         self.clock = clock
         self.bank = bank
         self.robot = tick.Robot(geometry, servo_maps, bank)

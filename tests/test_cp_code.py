@@ -20,10 +20,11 @@ from pca9685_model import PCA9685Model
 
 from drivers import cp_clock, hcsr04
 from hexapod import board as boards
+from hexapod import robotcal
 from hexapod_host import FIRMWARE, fakes_cp
 
 BOARD = boards.load("feather_rp2040")
-TABLE = boards.servo_table(BOARD)
+TABLE = boards.servo_table(BOARD, robotcal.servo_maps(robotcal.load("default")))
 RANGER = "drivers.cp_hcsr04_pulsein"
 
 
@@ -46,7 +47,7 @@ class Rig:
         start = fakes_cp.SUPERVISOR_PERIOD_MS - wrap_after_ms  # supervisor.ticks_ms wraps during the run
         self.cp = fakes_cp.CircuitPython(self.bus, ticks_start_ms=start).install(monkeypatch)
         self.sonar = [
-            hcsr04_model.HCSR04(t, e, distance=3000 + 1000 * k) for k, (t, e) in enumerate(boards.sensor_pins(BOARD))
+            hcsr04_model.HCSR04(t, e, distance=3000 + 1000 * k) for k, (t, e) in enumerate(boards.sonar_pins(BOARD))
         ]
         fakes_cp.forget(RANGER)
         self.code = load_code()

@@ -9,7 +9,7 @@ import pytest
 import robots.default
 from drivers import hcsr04
 from hexapod import board as hb
-from hexapod import follow, geometry, pid, tick
+from hexapod import follow, geometry, pid, robotcal, tick
 from hexapod.turns import sweep_command
 
 SLOTS = (0, 4, 1, 3, 2)  # drivers.hcsr04.plan for five sensors at 20 ms: front, RR, LF, RF, LR
@@ -91,8 +91,7 @@ def test_constants_agree_with_the_driver_and_the_boards():
     )
     assert follow._MIN_RANGE == hcsr04.MIN_RANGE
     assert hcsr04.plan(5, 20, hcsr04.NEIGHBOURS, 60, 38) == SLOTS
-    for name in ("pico", "esp32_devkit", "feather_rp2040"):
-        assert hb.sensor_mounts(hb.load(name)) == follow.DEFAULT_MOUNTS
+    assert robotcal.sonar_mounts(robotcal.load("default")) == follow.DEFAULT_MOUNTS
     assert (pid.KP, pid.KI, pid.KD) == (25000, 500, 1000)  # seed 000's Kp = 25, Ki = 0.5, Kd = 1
 
 

@@ -104,7 +104,7 @@ USED_NAMES = (
     ("none", "right_front", "right_rear", "right_front+right_rear"),
 )
 
-# Mounts of the shipped board files: (x, y, heading), 0.1 mm and cdeg, drivers.hcsr04 order.
+# Mounts of the shipped robot (robots/default_cal.py SONARS): (x, y, heading), 0.1 mm and cdeg, drivers.hcsr04 order.
 DEFAULT_MOUNTS = (
     (1300, 0, 0),
     (1000, 2100, 9000),
