@@ -14,8 +14,7 @@ from calstore import TRIM_MAX, Store
 from micropython import const
 from runner import counters
 
-from drivers import hcsr04
-from hexapod import follow, gait, tick
+from hexapod import follow, gait, sensors, tick
 from hexapod.leg import describe as leg_describe
 from hexapod.units import format_fixed, parse_fixed
 
@@ -27,7 +26,6 @@ COMMANDS = (
     "help status stand sit relax foot nudge joint pulse get walk stop gait sonar wall pid "
     "cal trim dir range save load defaults echo"
 )
-_STATUS_WORDS = ("ok", "out_of_range", "no_echo", "stuck", "too_close", "wait")
 
 
 class PollReader:
@@ -476,9 +474,9 @@ class Console:
         for k in range(len(r.distances)):
             st = r.sonar_status[k]
             d = r.distances[k]
-            parts.append(hcsr04.SENSOR_NAMES[k])
-            parts.append(format_fixed(d, 1) if st == hcsr04.OK and d >= 0 else "-")
-            parts.append(_STATUS_WORDS[st] if 0 <= st < len(_STATUS_WORDS) else "unknown")
+            parts.append(sensors.SONAR_NAMES[k])
+            parts.append(format_fixed(d, 1) if st == sensors.OK and d >= 0 else "-")
+            parts.append(sensors.STATUS_NAMES[st] if 0 <= st < len(sensors.STATUS_NAMES) else "unknown")
         return " ".join(parts)
 
     def _wall(self, args):

@@ -10,16 +10,16 @@ ROBOT to match yours (files in boards/ and robots/).
 import time
 
 from machine import I2C, Pin, time_pulse_us
-from runner import Runner
+from runner import FRAME_MS, Runner
 
 from drivers import hcsr04, pca9685
 from hexapod import board as boards
-from hexapod import geometry, robotcal
+from hexapod import geometry, robotcal, sensors
 
 BOARD = "pico"
 ROBOT = "default"
 STATUS_FRAMES = 250  # 5 s of 20 ms frames
-# Pings per median, drivers.hcsr04 order: each sensor pings every 100 ms, so a median of n
+# Pings per median, hexapod.sensors order: each sensor pings every 100 ms, so a median of n
 # lags about (n - 1) * 50 ms. The wall follower steers on the side sonars: no median there
 # (its PID takes each fresh reading once); the front one keeps 3 against a stray echo.
 SONAR_SAMPLES = (3, 1, 1, 1, 1)
@@ -27,7 +27,7 @@ SONAR_SAMPLES = (3, 1, 1, 1, 1)
 
 def build(board_name=BOARD, robot_name=ROBOT, clock=time, max_range=10000, samples=SONAR_SAMPLES, bank=None):
     """The Runner for a board and robot on this machine's I2C and pins (max_range: 0.1 mm;
-    samples: pings per median for each sensor, drivers.hcsr04 order; bank: where frames go,
+    samples: pings per median for each sonar, hexapod.sensors order; bank: where frames go,
     None for the board's PCA9685s on its I2C)."""
     board = boards.load(board_name)
     robot_module = __import__("robots." + robot_name, None, None, ("NAME",))
@@ -38,11 +38,11 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=time, max_range=10000, sampl
         bus = board["i2c"]
         i2c = I2C(bus["id"], scl=Pin(bus["scl"]), sda=Pin(bus["sda"]), freq=bus["freq"])
         bank = pca9685.servo_bank(i2c, board["pca9685"], table, sleep_us=clock.sleep_us)
-    sensors = []
+    rangers = []
     pins = boards.sonar_pins(board)
     for k in range(len(pins)):
         trigger, echo = pins[k]
-        sensors.append(
+        rangers.append(
             hcsr04.HCSR04(
                 Pin(trigger, Pin.OUT),
                 Pin(echo, Pin.IN),
@@ -53,7 +53,8 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=time, max_range=10000, sampl
                 irq=True,  # the echo timed by its pin's IRQ: nothing waits for it (drivers/hcsr04.py)
             )
         )
-    r = Runner(robot, [row[2] for row in table], bank, sensors, clock, robotcal.sonar_mounts(cal))
+    sonars = sensors.Sonars(hcsr04.RoundRobin(rangers, tick_ms=FRAME_MS), len(rangers))
+    r = Runner(robot, [row[2] for row in table], bank, sonars, clock, robotcal.sonar_mounts(cal))
     r.board = board
     return r
 

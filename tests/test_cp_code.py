@@ -105,7 +105,7 @@ def test_stands_walks_and_measures(rig):
     assert r.robot.mode == 4  # walking
     assert 450 * 20000 <= vclock.now_us() - t0 <= 450 * 20000 + 40000  # every frame on its 20 ms boundary
     assert sum(sum(m.flags.values()) for m in g.sonar) == 0  # no short trigger, crosstalk or ping within 60 ms
-    assert r.sonar.max_block_us == 10
+    assert r.sonars.ring.max_block_us == 10
 
 
 def test_main_prints_a_status_line_every_5_s(rig, capsys):

@@ -317,7 +317,7 @@ for n in range(12):
     r.step()
     blocked = max(blocked, clock.now_us() - t0)
     r.wait()
-print((r.sonar.split, blocked, r.distances))
+print((r.sonars.ring.split, blocked, r.distances))
 """
     split, blocked, dist = rt.value(src, heapsize="4m")
     assert split is True

@@ -10,9 +10,9 @@ everywhere: pulses in us, rates in Hz.
 """
 
 from hexapod.check import Check, is_identifier
+from hexapod.sensors import SONAR_NAMES
 
 JOINTS = ("coxa", "femur", "tibia")
-SENSORS = ("front", "left_front", "left_rear", "right_front", "right_rear")  # drivers.hcsr04 order
 RUNTIMES = ("micropython", "circuitpython")
 # mpy-cross -march names in the order of MicroPython's .mpy header (arch number = index + 1).
 ARCHES = ("x86", "x64", "armv6", "armv6m", "armv7m", "armv7em", "armv7emsp", "armv7emdp", "xtensa", "xtensawin")
@@ -170,15 +170,14 @@ def _sonars(ck, sonars, runtime, claim):
     for i in range(len(sonars)):
         where = "sonars[%d]" % i
         s = ck.seq(where, sonars[i], 3, _SONAR)
-        if s[0] not in SENSORS:
-            ck.fail(where + " name", "%r, allowed %s" % (s[0], ", ".join(SENSORS)))
+        ck.one_of(where + " name", s[0], SONAR_NAMES)
         where = "sonar %s" % s[0]
         if s[0] in seen:
             ck.fail(where, "listed twice")
         seen.append(s[0])
         claim(where + " trigger", ck.pin(where + " trigger", s[1], runtime))
         claim(where + " echo", ck.pin(where + " echo", s[2], runtime))
-    for name in SENSORS:
+    for name in SONAR_NAMES:
         if name not in seen:
             ck.fail("sonars", "missing sonar %s" % name)
 
@@ -205,8 +204,8 @@ def servo_table(board, maps):
 
 
 def sonar_pins(board):
-    """Five (trigger, echo) pins in drivers.hcsr04 order: front, left_front, left_rear, ..."""
+    """Five (trigger, echo) pins in hexapod.sensors order: front, left_front, left_rear, ..."""
     by_name = {}
     for s in board["sonars"]:
         by_name[s[0]] = (s[1], s[2])
-    return tuple(by_name[n] for n in SENSORS)
+    return tuple(by_name[n] for n in SONAR_NAMES)

@@ -11,7 +11,7 @@ direction and range at run time. Pure: no hardware imports.
 """
 
 from hexapod.check import Check, is_identifier
-from hexapod.follow import SENSOR_NAMES, check_mounts
+from hexapod.sensors import SONAR_NAMES, check_mounts
 from hexapod.servo import ServoMap
 
 JOINTS = ("coxa", "femur", "tibia")
@@ -52,7 +52,7 @@ def validate(name, data, limits=None):
     for i in range(len(sonars)):
         where = "SONARS[%d]" % i
         s = ck.seq(where, sonars[i], 4, _SONAR)
-        ck.one_of(where + " name", s[0], SENSOR_NAMES)
+        ck.one_of(where + " name", s[0], SONAR_NAMES)
         where = "sonar %s" % s[0]
         if s[0] in seen:
             ck.fail(where, "listed twice")
@@ -60,7 +60,7 @@ def validate(name, data, limits=None):
         ck.int_in(where + " x", s[1], -_XY_MAX, _XY_MAX, " (0.1 mm)")
         ck.int_in(where + " y", s[2], -_XY_MAX, _XY_MAX, " (0.1 mm)")
         ck.int_in(where + " heading", s[3], -18000, 18000, " (0.01 deg)")
-    for n in SENSOR_NAMES:
+    for n in SONAR_NAMES:
         if n not in seen:
             ck.fail("SONARS", "missing sonar %s" % n)
     try:
@@ -121,8 +121,8 @@ def servo_maps(cal):
 
 
 def sonar_mounts(cal):
-    """Five (x, y, heading) in drivers.hcsr04 order: 0.1 mm and cdeg, body frame."""
+    """Five (x, y, heading) in hexapod.sensors order: 0.1 mm and cdeg, body frame."""
     by_name = {}
     for s in cal["SONARS"]:
         by_name[s[0]] = (s[1], s[2], s[3])
-    return tuple(by_name[n] for n in SENSOR_NAMES)
+    return tuple(by_name[n] for n in SONAR_NAMES)
