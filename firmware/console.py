@@ -14,7 +14,7 @@ from calstore import TRIM_MAX, Store
 from micropython import const
 from runner import counters
 
-from hexapod import follow, gait, sensors, tick
+from hexapod import follow, gait, limits, sensors, tick
 from hexapod.leg import describe as leg_describe
 from hexapod.units import format_fixed, parse_fixed
 
@@ -484,9 +484,9 @@ class Console:
             self.runner.follow_off()
             return "ok wall off"
         self._args(args, 2, "left|right CM, or off")
-        if args[0] not in follow.SIDES:
+        if args[0] not in limits.SIDES:
             raise ValueError("side %r, allowed left, right or off" % (args[0][:20],))
-        cm = self._num("set point", args[1], 2, follow.SETPOINT_MIN, follow.SETPOINT_MAX, "cm")
+        cm = self._num("set point", args[1], 2, limits.SETPOINT_MIN, limits.SETPOINT_MAX, "cm")
         self._walking = False
         code = self.runner.follow(args[0], cm)
         if code:

@@ -16,7 +16,7 @@ State for a reply or the status line: runner.follower.mode_name, .used, .distanc
 .distance, .angle, .error, .output, .front, .faults, .fault_total, .reason_name.
 """
 
-from hexapod import follow, sensors, tick
+from hexapod import follow, limits, sensors, tick
 
 FRAME_MS = 20
 FRAME_US = 20000
@@ -67,7 +67,7 @@ class Runner:
     def follow_when_standing(self, setting):
         """Start following once the robot stands (main.py's start-up): setting is a board
         file's "follow" dict (side, setpoint, optional speed and form), checked now."""
-        follow.check_request(setting["side"], setting["setpoint"], setting.get("speed"), setting.get("form", "yaw"))
+        limits.check_follow(setting["side"], setting["setpoint"], setting.get("speed"), setting.get("form", "yaw"))
         self._start = setting
 
     def step(self):

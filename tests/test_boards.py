@@ -132,10 +132,10 @@ MUTATIONS = [
 ]
 
 
-# check() imports the whole core from source (board -> follow -> tick -> walk -> _tickfast) inside the VM:
-# its compiler fits in ~250 KB, but whether a given heap does depends on fragmentation (main at
-# 97c1045 failed at 236-248 KB and at 292 KB, passed at 252-288 KB; measured 2026-11-24): 512 KB.
-HEAP = "512k"
+# check() used to import the whole core from source (board -> follow -> tick -> walk -> _tickfast)
+# inside the VM, which needed a 512 KB heap; board.py now imports only hexapod.check, .limits and
+# .sensors (test_board_validation_imports_nothing_above_the_data_it_checks): the VM's default.
+HEAP = "256k"
 
 
 def run_mutations(rt, mutations):
@@ -251,3 +251,28 @@ print(([(a, c, m is MAPS[k]) for k, (a, c, m) in enumerate(t)], hb.sonar_pins(b)
     assert [row[2] for row in table] == [True] * 18  # the robot's maps, in leg/joint order
     assert [row[:2] for row in table] == [(0x40 if k < 9 else 0x41, k % 9) for k in range(18)]
     assert sonar_pins == ((6, 7), (8, 9), (10, 11), (12, 13), (14, 15))
+
+
+# What a board file's checks need: the checks' helpers, the command limits (the "follow"
+# setting) and the sensor contract (the sonars' names). Never the walker and what it stands on.
+BOARD_IMPORTS = {"hexapod", "hexapod.board", "hexapod.check", "hexapod.limits", "hexapod.sensors"}
+IMPORTS = """
+import sys
+before = set(sys.modules)
+from hexapod import board
+board.load("pico")
+print(sorted(m for m in sys.modules if m not in before and m.startswith("hexapod")))
+"""
+
+
+def test_board_validation_imports_nothing_above_the_data_it_checks(mp):
+    import subprocess
+    import sys
+
+    from hexapod_host import mpvm
+
+    env = dict(__import__("os").environ, PYTHONPATH=mpvm.search_path())
+    cpython = subprocess.run([sys.executable, "-c", IMPORTS], capture_output=True, text=True, env=env, check=True)
+    for out in (cpython.stdout, mp.run(IMPORTS)):
+        loaded = set(__import__("ast").literal_eval(out.strip().splitlines()[-1]))
+        assert loaded == BOARD_IMPORTS, loaded

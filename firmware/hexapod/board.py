@@ -10,6 +10,7 @@ everywhere: pulses in us, rates in Hz.
 """
 
 from hexapod.check import Check, is_identifier
+from hexapod.limits import check_follow
 from hexapod.sensors import SONAR_NAMES
 
 JOINTS = ("coxa", "femur", "tibia")
@@ -129,15 +130,13 @@ def _console(ck, board):
 
 def _follow(ck, board):
     """The optional start-up wall following: None, or {"side", "setpoint"[, "speed", "form"]}
-    (hexapod.follow's units)."""
-    from hexapod import follow
-
+    (hexapod.limits.check_follow's units)."""
     setting = board.get("follow")
     if setting is None:
         return
     ck.dict_of("follow", setting, _FOLLOW, _FOLLOW_OPTIONAL)
     try:
-        follow.check_request(setting["side"], setting["setpoint"], setting.get("speed"), setting.get("form", "yaw"))
+        check_follow(setting["side"], setting["setpoint"], setting.get("speed"), setting.get("form", "yaw"))
     except ValueError as e:
         ck.fail("follow", str(e))
 

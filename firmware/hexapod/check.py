@@ -1,6 +1,12 @@
 """Checks for plain-data files (boards/, robots/): one ValueError naming the file, the place, what
-is wrong and what is allowed. Pure, imports nothing; never runs in the frame.
+is wrong and what is allowed; and is_whole, the integer test every value check in the core uses.
+Pure, imports nothing; never runs in the frame.
 """
+
+
+def is_whole(v):
+    """True for an int that is not a bool."""
+    return isinstance(v, int) and not isinstance(v, bool)
 
 
 class Check:

@@ -38,6 +38,7 @@ fresh reading (once per round robin): a stale reading is never fed twice.
 from micropython import const
 
 from hexapod.fixmath import atan2, mul_q15, sin, to_cdeg
+from hexapod.limits import FORMS, check_follow
 from hexapod.pid import KD, KI, KP, PID
 from hexapod.sensors import DEFAULT_MOUNTS, FRONT, LEFT_FRONT, LEFT_REAR, RIGHT_FRONT, RIGHT_REAR, check_mounts
 from hexapod.sensors import MIN_RANGE as _MIN_RANGE  # what a TOO_CLOSE front ping is taken as
@@ -49,7 +50,6 @@ from hexapod.sensors import TOO_CLOSE as _TOO_CLOSE
 from hexapod.sensors import WAIT as _WAIT
 from hexapod.tick import BUSY, MOVING, NOT_STANDING, OK, STANDING, WALKING
 from hexapod.turns import sweep_command
-from hexapod.walk import SPEED_MAX
 from hexapod.walk import STOPPED as WALKER_STOPPED
 
 _NEAR = const(400)  # from under 4 cm a side sonar going out of range has come too close, 0.1 mm
@@ -91,8 +91,6 @@ NO_WALL = const(2)
 FAILED = const(3)
 STATE_NAMES = ("waiting", "ok", "no wall", "failed")
 
-FORMS = ("yaw", "sweeps")  # the PID output as a yaw rate (Robot.walk) or as seed 000's coxa sweeps
-SIDES = ("left", "right")
 # The sensors each side uses, by bit (1: side front, 2: side rear).
 USED_NAMES = (
     ("none", "left_front", "left_rear", "left_front+left_rear"),
@@ -101,9 +99,6 @@ USED_NAMES = (
 
 # Defaults (the simulator tunes them; docs/wall.md explains each).
 SPEED = const(800)  # forward speed, 0.1 mm/s
-SPEED_MIN = const(100)
-SETPOINT_MIN = const(400)  # set point (the side sonar's reading), 0.1 mm
-SETPOINT_MAX = const(5000)
 YAW_MAX = const(3000)  # the follower's largest yaw rate (PID output clamp), cdeg/s
 I_MAX = const(1000)  # integral clamp, cdeg/s
 LOOKAHEAD = const(1000)  # L: the look-ahead point ahead of the sensor pair, 0.1 mm
@@ -123,24 +118,6 @@ _COUNT_MAX = const(1000000)  # counters stop here (small ints for ever)
 _DEG180 = const(1800000)  # fixmath.ANGLE_UNIT
 _DEG360 = const(3600000)
 _WRAP = const(0x3FFFFFFF)
-
-
-def check_request(side, setpoint, speed=None, form="yaw"):
-    """ValueError naming the first bad value among side, setpoint (0.1 mm), speed (0.1 mm/s), form."""
-    if side not in SIDES:
-        raise ValueError("side: %r, allowed 'left' or 'right'" % (side,))
-    if not _whole(setpoint) or setpoint < SETPOINT_MIN or setpoint > SETPOINT_MAX:
-        raise ValueError(
-            "setpoint: %r is outside %d..%d (0.1 mm, the side sonar's reading)" % (setpoint, SETPOINT_MIN, SETPOINT_MAX)
-        )
-    if speed is not None and (not _whole(speed) or speed < SPEED_MIN or speed > SPEED_MAX):
-        raise ValueError("speed: %r is outside %d..%d (0.1 mm/s)" % (speed, SPEED_MIN, SPEED_MAX))
-    if form not in FORMS:
-        raise ValueError("form: %r, allowed 'yaw' or 'sweeps'" % (form,))
-
-
-def _whole(v):
-    return isinstance(v, int) and not isinstance(v, bool)
 
 
 def yaw_for_radius(speed, radius):
@@ -210,7 +187,7 @@ class Follower:
         000's coxa sweeps). Returns 0 (following) or a hexapod.tick reason code (not standing,
         busy, unreachable) having changed nothing; bad values raise ValueError, changing nothing.
         Called again on the same side and form it changes set point and speed on the fly."""
-        check_request(side, setpoint, speed, form)
+        check_follow(side, setpoint, speed, form)
         robot = self.robot
         if robot.mode != STANDING and robot.mode != WALKING:
             return BUSY if robot.mode == MOVING else NOT_STANDING

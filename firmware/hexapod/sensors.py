@@ -22,6 +22,8 @@ one; a battery monitor or an IMU would be another, handed to the Runner beside i
 
 from micropython import const
 
+from hexapod.check import is_whole
+
 FRONT = const(0)
 LEFT_FRONT = const(1)
 LEFT_REAR = const(2)
@@ -54,10 +56,6 @@ HEADING_SLACK = const(1000)  # how far a mount may turn from it, cdeg (the beam 
 BASELINE_MIN = const(500)  # a side pair's front sonar at least this far ahead of its rear one, 0.1 mm
 
 
-def _whole(v):
-    return isinstance(v, int) and not isinstance(v, bool)
-
-
 def check_mounts(mounts):
     """ValueError unless mounts are 5 (x, y, heading) in SONAR_NAMES order that the wall follower
     can use: front facing forward, side sonars facing their side (+-10 deg) on that side, each
@@ -66,7 +64,11 @@ def check_mounts(mounts):
         raise ValueError("sensor mounts: need 5 (x, y, heading) in the order %s" % (", ".join(SONAR_NAMES),))
     for k in range(5):
         m = mounts[k]
-        if not isinstance(m, (tuple, list)) or len(m) != 3 or not (_whole(m[0]) and _whole(m[1]) and _whole(m[2])):
+        if (
+            not isinstance(m, (tuple, list))
+            or len(m) != 3
+            or not (is_whole(m[0]) and is_whole(m[1]) and is_whole(m[2]))
+        ):
             raise ValueError("sensor mounts: %s: %r, allowed (x, y, heading) integers" % (SONAR_NAMES[k], m))
         want = HEADINGS[k]
         if m[2] < want - HEADING_SLACK or m[2] > want + HEADING_SLACK:

