@@ -109,7 +109,11 @@ def validate(board):
         ck.int_in(where + ".osc_hz", chip["osc_hz"], 22500000, 27500000, " Hz (25 MHz +-10 %)")
 
     _channels(ck, board["channels"], addresses)
-    _sonars(ck, ck.seq("sonars", board["sonars"], -1, "of sonar tuples"), runtime, claim)
+    sonars = ck.named("sonars", board["sonars"], 3, _SONAR, SONAR_NAMES, "sonar")
+    for name in SONAR_NAMES:
+        where = "sonar " + name
+        claim(where + " trigger", ck.pin(where + " trigger", sonars[name][1], runtime))
+        claim(where + " echo", ck.pin(where + " echo", sonars[name][2], runtime))
     _follow(ck, board)
     _console(ck, board)
     return board
@@ -162,23 +166,6 @@ def _channels(ck, channels, addresses):
             if key in used:
                 ck.fail(where, "chip 0x%02x channel %d already drives %s" % (a, ch, used[key]))
             used[key] = who
-
-
-def _sonars(ck, sonars, runtime, claim):
-    seen = []
-    for i in range(len(sonars)):
-        where = "sonars[%d]" % i
-        s = ck.seq(where, sonars[i], 3, _SONAR)
-        ck.one_of(where + " name", s[0], SONAR_NAMES)
-        where = "sonar %s" % s[0]
-        if s[0] in seen:
-            ck.fail(where, "listed twice")
-        seen.append(s[0])
-        claim(where + " trigger", ck.pin(where + " trigger", s[1], runtime))
-        claim(where + " echo", ck.pin(where + " echo", s[2], runtime))
-    for name in SONAR_NAMES:
-        if name not in seen:
-            ck.fail("sonars", "missing sonar %s" % name)
 
 
 def load(name):

@@ -47,6 +47,23 @@ class Check:
             self.fail(where, "%r, allowed %s" % (v, ", ".join(allowed)))
         return v
 
+    def named(self, where, rows, width, shape, names, what):
+        """Rows (name, ...) of `width` items, one for each of names: {name: row}. Fails on a row of
+        another width, an unknown or repeated name ("<what> NAME: listed twice") or a missing one."""
+        self.seq(where, rows, -1, "of %s tuples" % what)
+        by = {}
+        for i in range(len(rows)):
+            at = "%s[%d]" % (where, i)
+            s = self.seq(at, rows[i], width, shape)
+            self.one_of(at + " name", s[0], names)
+            if s[0] in by:
+                self.fail("%s %s" % (what, s[0]), "listed twice")
+            by[s[0]] = s
+        for n in names:
+            if n not in by:
+                self.fail(where, "missing %s %s" % (what, n))
+        return by
+
 
 def is_identifier(s):
     """True for a non-empty ASCII identifier (a file name, a pin name)."""

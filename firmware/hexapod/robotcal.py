@@ -37,7 +37,7 @@ def validate(name, data, limits=None):
         if limits is not None and (a < limits[2 * j] or a > limits[2 * j + 1]):
             lo, hi = limits[2 * j], limits[2 * j + 1]
             ck.fail(where, "%d is outside the robot's %s limits %d..%d cdeg" % (a, JOINTS[j], lo, hi))
-    rows = _rows(ck, "SERVOS", data["SERVOS"], 6, _SERVO, JOINTS)
+    rows = _servo_rows(ck, data["SERVOS"])
     for k in range(18):
         where, s = rows[k]
         for i, field in ((2, "centre_us"), (3, "direction"), (4, "min_us"), (5, "max_us")):
@@ -47,22 +47,10 @@ def validate(name, data, limits=None):
             ServoMap(centre_us=s[2], direction=s[3], min_us=s[4], max_us=s[5], ref_cdeg=ref[k % 3])
         except ValueError as e:
             ck.fail(where, str(e))
-    sonars = ck.seq("SONARS", data["SONARS"], -1, "of rows " + _SONAR)
-    seen = []
-    for i in range(len(sonars)):
-        where = "SONARS[%d]" % i
-        s = ck.seq(where, sonars[i], 4, _SONAR)
-        ck.one_of(where + " name", s[0], SONAR_NAMES)
-        where = "sonar %s" % s[0]
-        if s[0] in seen:
-            ck.fail(where, "listed twice")
-        seen.append(s[0])
-        ck.int_in(where + " x", s[1], -_XY_MAX, _XY_MAX, " (0.1 mm)")
-        ck.int_in(where + " y", s[2], -_XY_MAX, _XY_MAX, " (0.1 mm)")
-        ck.int_in(where + " heading", s[3], -18000, 18000, " (0.01 deg)")
-    for n in SONAR_NAMES:
-        if n not in seen:
-            ck.fail("SONARS", "missing sonar %s" % n)
+    sonars = ck.named("SONARS", data["SONARS"], 4, _SONAR, SONAR_NAMES, "sonar")
+    for n in SONAR_NAMES:  # the headings are check_mounts' to judge
+        ck.int_in("sonar %s x" % n, sonars[n][1], -_XY_MAX, _XY_MAX, " (0.1 mm)")
+        ck.int_in("sonar %s y" % n, sonars[n][2], -_XY_MAX, _XY_MAX, " (0.1 mm)")
     try:
         check_mounts(sonar_mounts(data))
     except ValueError as e:
@@ -70,25 +58,23 @@ def validate(name, data, limits=None):
     return data
 
 
-def _rows(ck, where, rows, width, shape, joints):
-    """Rows that start (leg, joint), one for each of legs 1..6 x joints: {k: (where, row)} with
-    k = (leg - 1) * 3 + joint and where = "rows[i] (leg L joint)" for the row's own messages.
-    Fails on a row of another width, an unknown or repeated servo, or a missing one."""
-    ck.seq(where, rows, -1, "of rows " + shape)
+def _servo_rows(ck, rows):
+    """18 rows (leg, joint, ...), one per servo: {k: (where, row)}, k = (leg - 1) * 3 + joint and
+    where "SERVOS[i] (leg L joint)" for the row's own messages."""
+    ck.seq("SERVOS", rows, -1, "of rows " + _SERVO)
     by = {}
     for i in range(len(rows)):
-        at = "%s[%d]" % (where, i)
-        s = ck.seq(at, rows[i], width, shape)
+        at = "SERVOS[%d]" % i
+        s = ck.seq(at, rows[i], 6, _SERVO)
         leg = ck.int_in(at + " leg", s[0], 1, 6)
-        ck.one_of(at + " joint", s[1], joints)
-        k = (leg - 1) * 3 + joints.index(s[1])
+        k = (leg - 1) * 3 + JOINTS.index(ck.one_of(at + " joint", s[1], JOINTS))
         at = "%s (leg %d %s)" % (at, leg, s[1])
         if k in by:
             ck.fail(at, "listed twice (first at %s)" % (by[k][0].split(" ")[0],))
         by[k] = (at, s)
-    for k in range(len(joints) * 6):
+    for k in range(18):
         if k not in by:
-            ck.fail(where, "missing servo leg %d %s" % (k // 3 + 1, joints[k % 3]))
+            ck.fail("SERVOS", "missing servo leg %d %s" % (k // 3 + 1, JOINTS[k % 3]))
     return by
 
 
