@@ -1,6 +1,6 @@
 """A stand-in board console for the jog tool's tests: docs/console.md's jog and calibration lines,
-answered with the real core (hexapod.leg IK/FK, hexapod.servo) on the pico board file and the
-default robot. It starts standing, every foot at (130, 0, -80) mm in its leg frame. It also
+answered with the real core (hexapod.leg IK/FK, hexapod.servo) on the default robot and its
+calibration file. It starts standing, every foot at (130, 0, -80) mm in its leg frame. It also
 serves a pseudo-terminal (serve_pty) so `hexapod jog --port` can open it like a board."""
 
 import contextlib
@@ -8,7 +8,7 @@ import os
 import threading
 
 import robots.default
-from hexapod import board as boards
+from hexapod import robotcal
 from hexapod.leg import OK, Leg, describe
 from hexapod.servo import ServoMap
 from hexapod.units import format_fixed, parse_fixed
@@ -21,8 +21,9 @@ class FakeConsole:
     def __init__(self):
         r = robots.default
         self.leg = Leg(coxa=r.COXA, femur=r.FEMUR, tibia=r.TIBIA, femur_offset=r.FEMUR_OFFSET, limits=r.LIMITS)
-        table = boards.servo_table(boards.load("pico"))
-        self.cal = [[m.centre_us, 0, m.direction, m.min_us, m.max_us] for _, _, m in table]
+        maps = robotcal.servo_maps(robotcal.load("default"))
+        self.cal = [[m.centre_us, 0, m.direction, m.min_us, m.max_us] for m in maps]
+        self.ref = [m.ref_cdeg for m in maps]
         self.angles = [0] * 18
         self.driven = [True] * 18
         out = [0, 0, 0]
@@ -34,7 +35,7 @@ class FakeConsole:
 
     def servo(self, k):
         c, t, d, lo, hi = self.cal[k]
-        return ServoMap(centre_us=max(lo, min(hi, c + t)), direction=d, min_us=lo, max_us=hi)
+        return ServoMap(centre_us=max(lo, min(hi, c + t)), direction=d, min_us=lo, max_us=hi, ref_cdeg=self.ref[k])
 
     def pulse_of(self, k, cdeg):
         return self.servo(k).raw(cdeg)
@@ -53,8 +54,19 @@ class FakeConsole:
         )
 
     def cal_line(self, n, j):
-        c, t, d, lo, hi = self.cal[3 * (n - 1) + JOINTS.index(j)]
-        return "ok leg %d joint %s centre_us %d trim %d dir %d min_us %d max_us %d" % (n, j, c, t, d, lo, hi)
+        k = 3 * (n - 1) + JOINTS.index(j)
+        c, t, d, lo, hi = self.cal[k]
+        ref = format_fixed(self.ref[k], 2)
+        return "ok leg %d joint %s centre_us %d ref_deg %s trim %d dir %d min_us %d max_us %d" % (
+            n,
+            j,
+            c,
+            ref,
+            t,
+            d,
+            lo,
+            hi,
+        )
 
     def set_angles(self, k, angles, who):
         """Accept the angles (cdeg) of servos k.. when every pulse is in range; else an err line."""

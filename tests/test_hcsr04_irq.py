@@ -309,7 +309,7 @@ bus = shared_bus(0)
 b = boards.load("pico")
 for c in b["pca9685"]["chips"]:
     bus.attach(PCA9685Model(c["address"], osc_hz=c["osc_hz"]))
-sonars = [hcsr04_model.HCSR04(t, e, distance=3000 + 1000 * k) for k, (t, e) in enumerate(boards.sensor_pins(b))]
+sonars = [hcsr04_model.HCSR04(t, e, distance=3000 + 1000 * k) for k, (t, e) in enumerate(boards.sonar_pins(b))]
 r = main.build(clock=clock)
 blocked = 0
 for n in range(12):
@@ -317,7 +317,7 @@ for n in range(12):
     r.step()
     blocked = max(blocked, clock.now_us() - t0)
     r.wait()
-print((r.sonar.split, blocked, r.distances))
+print((r.sonars.ring.split, blocked, r.distances))
 """
     split, blocked, dist = rt.value(src, heapsize="4m")
     assert split is True

@@ -6,10 +6,10 @@ import ast
 SETUP = """
 import robots.default as robot_file
 from hexapod import geometry, tick
-from hexapod.board import load, servo_table
+from hexapod import robotcal
 g = geometry.load(robot_file)
 fb = tick.FrameBuffer()
-robot = tick.Robot(g, [row[2] for row in servo_table(load("pico"))], fb)
+robot = tick.Robot(g, robotcal.servo_maps(robotcal.load("default")), fb)
 t = [0]
 def run(n):
     for _ in range(n):

@@ -37,5 +37,5 @@ def pca9685_models(board, attach=True):
 def sonar_models(board, distances):
     """HC-SR04 models on the board's trigger/echo pins (drivers.hcsr04 order), each answering its
     distance (0.1 mm)."""
-    pins = boards.sensor_pins(board)
+    pins = boards.sonar_pins(board)
     return [hcsr04_model.HCSR04(pins[k][0], pins[k][1], distance=distances[k]) for k in range(len(pins))]
