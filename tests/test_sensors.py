@@ -214,7 +214,7 @@ print((battery.frames, r.frames, log[:4], [k for k, _ in log].count("sonar"), so
 
 
 def test_a_frame_with_an_extra_sensor_allocates_nothing(mp):
-    from hexapod_host.testing import HEAP_PROBE
+    from hexapod_host.testing.runtimes import HEAP_PROBE
 
     src = (
         SETUP
