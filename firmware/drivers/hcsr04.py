@@ -3,7 +3,8 @@ filter, a five-sensor round robin.
 
 Units: distances in 0.1 mm, temperature in 0.01 degC, pulse and block times in us, tick in ms.
 Pins, the clock (`time` on a board, `_stub_clock` in tests) and time_pulse_us are passed in.
-A ping reports a status; a distance is written only with OK, never in place of a fault.
+A ping reports a status; a distance is written only with OK, never in place of a fault. The
+sonar order, names and status codes are the sensor contract's (hexapod.sensors).
 
 With irq=True (main.py) the echo pin's IRQ stores ticks_us() at the echo's rise and fall into
 a preallocated array (a hard IRQ: no allocation), so nothing waits for the echo: the round robin
@@ -16,18 +17,28 @@ from array import array
 
 from micropython import const
 
-OK = const(0)
-OUT_OF_RANGE = const(1)  # echo longer than max_range allows (incl. the module's 38 ms no-echo hold)
-NO_ECHO = const(2)  # echo never rose within the timeout (missing echo, unplugged module)
-STUCK = const(3)  # echo already high before the trigger: nothing fired
-TOO_CLOSE = const(4)  # echo shorter than the module's 2 cm minimum
-WAIT = const(5)  # asked again within 60 ms of its last ping: nothing fired, buffers untouched
-PENDING = const(6)  # fired, the echo still within its timeouts: nothing to report yet
-NO_DISTANCE = const(-1)  # what dist[i] holds whenever status[i] is not OK
+from hexapod.sensors import (
+    FRONT,
+    LEFT_FRONT,
+    LEFT_REAR,
+    MIN_RANGE,
+    NO_DISTANCE,
+    NO_ECHO,
+    OK,
+    OUT_OF_RANGE,
+    PENDING,
+    RIGHT_FRONT,
+    RIGHT_REAR,
+    STUCK,
+    TOO_CLOSE,
+    WAIT,
+)
 
-STATUS_NAMES = ("ok", "out of range", "no echo", "echo stuck high", "too close", "wait", "pending")
-
-MIN_RANGE = const(200)  # 2 cm
+# What the statuses mean here: OUT_OF_RANGE, an echo longer than max_range allows (incl. the
+# module's 38 ms no-echo hold); NO_ECHO, no rise within the timeout; STUCK, the echo high before
+# the trigger (nothing fired); TOO_CLOSE, an echo under MIN_RANGE (2 cm); WAIT, asked again within
+# 60 ms of its last ping (nothing fired, buffers untouched); PENDING, fired and its echo still
+# within its timeouts. dist[i] holds NO_DISTANCE whenever status[i] is not OK.
 MAX_RANGE = const(40000)  # 4 m
 TRIGGER_US = const(10)
 MIN_CYCLE_US = const(60000)  # datasheet: >= 60 ms between pings of one module
@@ -35,12 +46,6 @@ RISE_US = const(1000)  # allowance for the 8-cycle 40 kHz burst before echo rise
 _SHIFT = const(14)
 _HALF = const(8192)  # rounding for >> _SHIFT
 
-FRONT = const(0)
-LEFT_FRONT = const(1)
-LEFT_REAR = const(2)
-RIGHT_FRONT = const(3)
-RIGHT_REAR = const(4)
-SENSOR_NAMES = ("front", "left_front", "left_rear", "right_front", "right_rear")  # seed 000, Fig. 2
 # Pairs that face the same wall or corner: each can hear the other's burst.
 NEIGHBOURS = ((FRONT, LEFT_FRONT), (FRONT, RIGHT_FRONT), (LEFT_FRONT, LEFT_REAR), (RIGHT_FRONT, RIGHT_REAR))
 
