@@ -9,7 +9,7 @@ standing (hexapod.follow). Edit BOARD and ROBOT to match yours (files in boards/
 Needs adafruit_pca9685, adafruit_bus_device and adafruit_register in lib/ (docs/wiring.md).
 """
 
-from runner import FRAME_MS, Runner, release
+from runner import BOOT_ONLY, FRAME_MS, Runner, release
 
 from hexapod import geometry, sensors
 
@@ -59,7 +59,7 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000, sampl
     pairs = boards.sonar_pins(board)
     for k in range(len(pairs)):  # every pin looked up before any is claimed
         trigger, echo = pairs[k]
-        where = sensors.SONAR_NAMES[k] + " sensor"
+        where = sensors.SENSOR_NAMES[k] + " sensor"
         sonar_pins.append((board_pin(board, trigger, where + " trigger"), board_pin(board, echo, where + " echo")))
 
     import busio
@@ -81,7 +81,7 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000, sampl
     table = boards.servo_table(board, robotcal.servo_maps(cal))
     bank = cp_pca9685.servo_bank(i2c, board["pca9685"], table)
     sonars = sensors.Sonars(hcsr04.RoundRobin(rangers, tick_ms=FRAME_MS), len(rangers))
-    r = Runner(robot, [row[2] for row in table], bank, sonars, clock, robotcal.sonar_mounts(cal))
+    r = Runner(robot, [row[2] for row in table], bank, sonars, clock, robotcal.sensor_mounts(cal))
     r.board = board
     r.sonar_pins = pairs
     return r
@@ -98,7 +98,8 @@ def main(frames=-1, clock=None, board_name=BOARD, robot_name=ROBOT, reader=None,
     the status line (docs/console.md); Ctrl-C relaxes the servos (or holds, on_exit)."""
     global runner
     r = runner = build(board_name, robot_name, clock)
-    release("hexapod.board", "hexapod.robotfile", "robots." + robot_name)  # boot-only: its heap back to the loop
+    # The boot-only modules (the board and robot files and their checks): their heap back to the loop.
+    release(*BOOT_ONLY, "robots." + robot_name, "robots.%s_cal" % robot_name)
     r.bring_up(reader, boot, calibrated)
     if reader is not None and r.board.get("watchdog_ms"):
         from microcontroller import watchdog

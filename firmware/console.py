@@ -574,7 +574,7 @@ class Console:
         for k in range(len(r.distances)):
             st = r.sonar_status[k]
             d = r.distances[k]
-            parts.append(sensors.SONAR_NAMES[k])
+            parts.append(sensors.SENSOR_NAMES[k])
             parts.append(format_fixed(d, 1) if st == sensors.OK and d >= 0 else "-")
             parts.append(sensors.STATUS_NAMES[st] if 0 <= st < len(sensors.STATUS_NAMES) else "unknown")
         return " ".join(parts)

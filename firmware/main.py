@@ -11,7 +11,7 @@ ROBOT to match yours (files in boards/ and robots/).
 import time
 
 from machine import I2C, Pin, time_pulse_us
-from runner import FRAME_MS, Runner, release
+from runner import BOOT_ONLY, FRAME_MS, Runner, release
 
 from drivers import hcsr04, pca9685
 from hexapod import geometry, sensors
@@ -71,7 +71,7 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=time, max_range=10000, sampl
         bank,
         sonars,
         clock,
-        robotcal.sonar_mounts(cal),
+        robotcal.sensor_mounts(cal),
         battery=monitor,
         adc=adc,
     )
@@ -92,7 +92,8 @@ def main(frames=-1, clock=time, board_name=BOARD, robot_name=ROBOT, reader=None,
     the board file's on_exit) and leaves `runner` for the REPL."""
     global runner
     r = runner = build(board_name, robot_name, clock)
-    release("hexapod.board", "hexapod.robotfile", "robots." + robot_name)  # boot-only: its heap back to the loop
+    # The boot-only modules (the board and robot files and their checks): their heap back to the loop.
+    release(*BOOT_ONLY, "robots." + robot_name, "robots.%s_cal" % robot_name)
     r.bring_up(reader, boot, calibrated)
     if reader is not None and r.board.get("watchdog_ms"):
         from machine import WDT

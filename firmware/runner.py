@@ -47,7 +47,7 @@ class Runner:
         bank: has write_frame(pulses), failed_frames, reinits; sonars: hexapod.sensors.Sonars
         (the round robin of hcsr04 rangers, hexapod.sensors order); clock: ticks_ms/ticks_us/
         ticks_add/ticks_diff/sleep_ms/sleep_us; mounts: the five sonars' (x, y, heading), 0.1 mm
-        and cdeg (hexapod.robotcal.sonar_mounts; default: the shipped robot's); battery: a
+        and cdeg (hexapod.robotcal.sensor_mounts; default: the shipped robot's); battery: a
         hexapod.battery.Monitor (None: no monitor) and adc what it reads (machine.ADC:
         read_u16()), read once now and every SAMPLE_FRAMES frames; others: more frame sensors
         (hexapod.sensors: frame(now_ms), faults), each asked once a frame after the sonars."""
@@ -55,7 +55,7 @@ class Runner:
         self.bank = bank
         self.robot = tick.Robot(geometry, servo_maps, bank)
         self.sonars = sonars
-        self.sensors = (sonars,) + tuple(others)  # every frame sensor, in the order a frame asks them
+        self.others = tuple(others)  # asked after the sonars, in this order
         self.distances = sonars.distances  # 0.1 mm, NO_DISTANCE when not OK (the sonars' buffers)
         self.sonar_status = sonars.status
         self.frames = 0
@@ -144,7 +144,7 @@ class Runner:
     def follow_when_standing(self, setting):
         """Start following once the robot stands (main.py's start-up): setting is a board
         file's "follow" dict (side, setpoint, optional speed and form), checked now."""
-        limits.check_follow(setting["side"], setting["setpoint"], setting.get("speed"), setting.get("form", "yaw"))
+        limits.check_request(setting["side"], setting["setpoint"], setting.get("speed"), setting.get("form", "yaw"))
         self._start = setting
 
     def step(self):
@@ -158,11 +158,12 @@ class Runner:
                 self._battery_changed(b.update(self.adc.read_u16()))
             if b.state == batteries.CUTOFF and self.robot.mode != tick.RELAXED:
                 self._shut_down()
-        frame_sensors = self.sensors
-        for k in range(len(frame_sensors)):
-            frame_sensors[k].frame(now)
+        i = self.sonars.frame(now)
+        others = self.others
+        for k in range(len(others)):
+            others[k].frame(now)
         if self.follower.mode:
-            self.follower.update(now, self.sonars.last, self.distances, self.sonar_status)
+            self.follower.update(now, i, self.distances, self.sonar_status)
         elif self._start is not None and self.robot.mode == tick.STANDING:
             s = self._start
             self._start = None
@@ -245,6 +246,11 @@ class Runner:
         self.follower.off()
         if not hold:
             self.robot.go_limp()
+
+
+# What main.main and code.py's main release once the runner is built, with the robot's two files:
+# the board file's validator, the robot file's and the calibration file's checks, their helpers.
+BOOT_ONLY = ("hexapod.board", "hexapod.robotfile", "hexapod.robotcal", "hexapod.check")
 
 
 def release(*names):

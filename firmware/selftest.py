@@ -225,7 +225,7 @@ class Checks:
         pins = getattr(r, "sonar_pins", None)
         for k in range(len(w.status)):
             st = w.status[k]
-            name = "sonar " + sensors.SONAR_NAMES[k]
+            name = "sonar " + sensors.SENSOR_NAMES[k]
             if st == sensors.OK:
                 self._line(out, True, "%s ok %s mm" % (name, format_fixed(w.distance[k], 1)))
                 continue

@@ -71,7 +71,7 @@ def test_the_round_robin_mounts_and_gains_the_rig_assumes():
     # The order, names and codes are hexapod.sensors' alone (tests/test_sensors.py); the rig's
     # slot table and mounts are the driver's plan and the robot file's.
     assert hcsr04.plan(5, 20, hcsr04.NEIGHBOURS, 60, 38) == SLOTS
-    assert robotcal.sonar_mounts(robotcal.load("default")) == sensors.DEFAULT_MOUNTS
+    assert robotcal.sensor_mounts(robotcal.load("default")) == sensors.DEFAULT_MOUNTS
     assert (pid.KP, pid.KI, pid.KD) == (25000, 500, 1000)  # seed 000's Kp = 25, Ki = 0.5, Kd = 1
 
 

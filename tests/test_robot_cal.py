@@ -149,7 +149,7 @@ c = robotcal.load("default", geo.LIMITS)
 maps = robotcal.servo_maps(c)
 lim = geo.LIMITS
 print(([[maps[k].raw(a) for a in range(lim[2 * (k % 3)], lim[2 * (k % 3) + 1] + 1, 50)] for k in range(18)],
-       [m.ref_cdeg for m in maps[:3]], robotcal.sonar_mounts(c), maps[0] is not robotcal.servo_maps(c)[0]))
+       [m.ref_cdeg for m in maps[:3]], robotcal.sensor_mounts(c), maps[0] is not robotcal.servo_maps(c)[0]))
 """
     )
     pulses, refs, mounts, fresh = rt.value(src, heapsize="2m")

@@ -103,7 +103,7 @@ print([why(m) for m in %r])
 def test_the_contract_is_seed_000s_ring_and_the_datasheets_codes(rt):
     src = """
 from hexapod import sensors as s
-print((s.SONAR_NAMES, (s.FRONT, s.LEFT_FRONT, s.LEFT_REAR, s.RIGHT_FRONT, s.RIGHT_REAR), s.STATUS_NAMES,
+print((s.SENSOR_NAMES, (s.FRONT, s.LEFT_FRONT, s.LEFT_REAR, s.RIGHT_FRONT, s.RIGHT_REAR), s.STATUS_NAMES,
        (s.OK, s.OUT_OF_RANGE, s.NO_ECHO, s.STUCK, s.TOO_CLOSE, s.WAIT, s.PENDING), s.NO_DISTANCE, s.MIN_RANGE))
 """
     names, order, words, codes, none, min_range = rt.value(src)
@@ -126,7 +126,7 @@ def test_mounts_check_says_the_same_on_both_runtimes(both_runtimes):
 def test_the_robot_file_and_the_default_mounts_agree(rt):
     src = """
 from hexapod import robotcal, sensors
-print(robotcal.sonar_mounts(robotcal.load("default")) == sensors.DEFAULT_MOUNTS)
+print(robotcal.sensor_mounts(robotcal.load("default")) == sensors.DEFAULT_MOUNTS)
 """
     assert rt.value(src) is True
     assert GOOD == ((1300, 0, 0), (1000, 2100, 9000), (-1000, 2100, 9000), (1000, -2100, -9000), (-1000, -2100, -9000))
@@ -159,12 +159,12 @@ def test_the_sonar_ring_is_a_frame_sensor(rt):
 s = sensors.Sonars(Ring(script))
 out = []
 for t in range(7):
-    out.append((s.frame(20 * t), s.last, s.faults))
+    out.append((s.frame(20 * t), s.faults))
 print((out, s.distances, s.status))
 """
     )
     out, dist, status = rt.value(src)
-    assert out == [(0, 0, 0), (1, 1, 0), (-1, -1, 0), (2, 2, 1), (3, 3, 2), (4, 4, 3), (0, 0, 4)]
+    assert out == [(0, 0), (1, 0), (-1, 0), (2, 1), (3, 2), (4, 3), (0, 4)]
     assert dist == [-1, -1, -1, -1, -1] and status == [4, 5, 1, 2, 3]
 
 
@@ -210,7 +210,7 @@ r = Runner(r0.robot.geometry, r0.robot.servos, r0.bank, sonars, clock, others=(b
 r.robot.stand_up()
 frames(r, 200)
 print((battery.frames, r.frames, log[:4], [k for k, _ in log].count("sonar"), sonars.faults, r.sonar_faults,
-       r.distances is sonars.distances, r.robot.mode == tick.STANDING, r.sensors == (sonars, battery)))
+       r.distances is sonars.distances, r.robot.mode == tick.STANDING, r.sonars is sonars and r.others == (battery,)))
 """
     )
     cp, mp = both_runtimes(src, heapsize="4m")

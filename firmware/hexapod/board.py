@@ -9,9 +9,11 @@ file, what is wrong and what is allowed; nothing else ever escapes from validate
 everywhere: pulses in us, rates in Hz.
 """
 
+from micropython import const
+
 from hexapod.check import Check, is_identifier
-from hexapod.limits import check_follow
-from hexapod.sensors import SONAR_NAMES
+from hexapod.limits import check_request
+from hexapod.sensors import SENSOR_NAMES
 
 JOINTS = ("coxa", "femur", "tibia")
 RUNTIMES = ("micropython", "circuitpython")
@@ -19,29 +21,25 @@ RUNTIMES = ("micropython", "circuitpython")
 ARCHES = ("x86", "x64", "armv6", "armv6m", "armv7m", "armv7em", "armv7emsp", "armv7emdp", "xtensa", "xtensawin")
 ARCHES += ("rv32imc",)
 LEGS = 6
+# The private tables below are const(): folded into the code, no name kept on the board (each
+# module-level name is a qstr, which stays in the heap after runner.release forgets this module).
 
-_TOP = ("name", "runtime", "arch", "i2c", "pca9685", "channels", "sonars")
-_OPTIONAL = ("notes", "follow", "watchdog_ms", "on_exit", "walk_timeout_ms", "boot", "battery")
-# Keys of the board files before the robot's data moved out (docs/wiring.md says how to move them).
-_MOVED = (
-    ("servos", 'the channel map stays here as "channels"; the calibration moved to robots/<robot>_cal.py'),
-    ("sensors", '"sonars": (name, trigger, echo) stay here; the mounts moved to robots/<robot>_cal.py'),
-)
+_TOP = const(("name", "runtime", "arch", "i2c", "pca9685", "channels", "sonars"))
+_OPTIONAL = const(("notes", "follow", "watchdog_ms", "on_exit", "walk_timeout_ms", "boot", "battery"))
 ON_EXIT = ("relax", "hold")  # what leaving the loop (Ctrl-C) does to the servos
 # What power-up does: stay relaxed (no pulse until `stand`), or stand, and only with a valid
 # calibration file (runner.power_up).
 BOOT = ("relaxed", "stand")
 # The battery monitor (hexapod.battery): the ADC pin and the divider's ratio; the cell count
 # and the per-cell thresholds default to a 2S LiPo's (hexapod.battery says where they come from).
-_BATTERY = ("pin", "divider_permille")
-_BATTERY_OPTIONAL = ("cells", "cell_warn_mv", "cell_cutoff_mv", "cell_resume_mv")
-_FOLLOW = ("side", "setpoint")
-_FOLLOW_OPTIONAL = ("speed", "form")
-_I2C = ("id", "sda", "scl", "freq")
-_PCA = ("pwm_hz", "chips")
-_CHIP = ("address", "osc_hz")
-_SONAR = "(name, trigger, echo)"
-_ALLCALL = 0x70  # a PCA9685 answers there by default (MODE1.ALLCALL): no chip may use it
+_BATTERY = const(("pin", "divider_permille"))
+_BATTERY_OPTIONAL = const(("cells", "cell_warn_mv", "cell_cutoff_mv", "cell_resume_mv"))
+_FOLLOW = const(("side", "setpoint"))
+_FOLLOW_OPTIONAL = const(("speed", "form"))
+_I2C = const(("id", "sda", "scl", "freq"))
+_PCA = const(("pwm_hz", "chips"))
+_CHIP = const(("address", "osc_hz"))
+_ALLCALL = const(0x70)  # a PCA9685 answers there by default (MODE1.ALLCALL): no chip may use it
 
 
 class _Check(Check):
@@ -69,9 +67,17 @@ def validate(board):
     """Check a BOARD dict; return it unchanged, or raise ValueError naming the first mistake."""
     ck = _Check(board)
     if isinstance(board, dict):
-        for key, why in _MOVED:
+        # Keys of the board files before the robot's data moved out (docs/wiring.md says how to move
+        # them), written out here: a module-level name would stay in the board's heap (a qstr).
+        for key, why in (
+            (
+                "servos",
+                'moved: the channel map stays here as "channels"; the calibration moved to robots/<robot>_cal.py',
+            ),
+            ("sensors", 'moved: "sonars": (name, trigger, echo) stay here; the mounts moved to robots/<robot>_cal.py'),
+        ):
             if key in board:
-                ck.fail(key, "moved: " + why + " (docs/wiring.md)")
+                ck.fail(key, why + " (docs/wiring.md)")
     ck.dict_of("board", board, _TOP, _OPTIONAL)
     name = board["name"]
     if not is_identifier(name):
@@ -115,12 +121,13 @@ def validate(board):
         addresses.append(a)
         ck.int_in(where + ".osc_hz", chip["osc_hz"], 22500000, 27500000, " Hz (25 MHz +-10 %)")
 
-    _channels(ck, board["channels"], addresses)
-    sonars = ck.named("sonars", board["sonars"], 3, _SONAR, SONAR_NAMES, "sonar")
-    for name in SONAR_NAMES:
-        where = "sonar " + name
-        claim(where + " trigger", ck.pin(where + " trigger", sonars[name][1], runtime))
-        claim(where + " echo", ck.pin(where + " echo", sonars[name][2], runtime))
+    _servos(ck, board["channels"], addresses)
+    sonars = ck.named("sonars", board["sonars"], 3, "(name, trigger, echo)", SENSOR_NAMES, "sonar")
+    for name in SENSOR_NAMES:
+        where = "sonar %s trigger" % name
+        claim(where, ck.pin(where, sonars[name][1], runtime))
+        where = "sonar %s echo" % name
+        claim(where, ck.pin(where, sonars[name][2], runtime))
     _follow(ck, board)
     _console(ck, board)
     _battery(ck, board, runtime, claim)
@@ -179,18 +186,18 @@ def _console(ck, board):
 
 def _follow(ck, board):
     """The optional start-up wall following: None, or {"side", "setpoint"[, "speed", "form"]}
-    (hexapod.limits.check_follow's units)."""
+    (hexapod.limits.check_request's units)."""
     setting = board.get("follow")
     if setting is None:
         return
     ck.dict_of("follow", setting, _FOLLOW, _FOLLOW_OPTIONAL)
     try:
-        check_follow(setting["side"], setting["setpoint"], setting.get("speed"), setting.get("form", "yaw"))
+        check_request(setting["side"], setting["setpoint"], setting.get("speed"), setting.get("form", "yaw"))
     except ValueError as e:
         ck.fail("follow", str(e))
 
 
-def _channels(ck, channels, addresses):
+def _servos(ck, channels, addresses):
     """Six legs of three (address, channel): coxa, femur, tibia; each output drives one servo."""
     used = {}
     ck.seq("channels", channels, LEGS, "(one per leg: ((address, channel) of its coxa, femur, tibia))")
@@ -227,11 +234,11 @@ def load(name):
     return validate(board)
 
 
-def servo_table(board, maps):
+def servo_table(board, servo_maps):
     """18 (address, channel, ServoMap) in leg/joint order (index (leg - 1) * 3 + joint): the
     board's channel map joined with the robot's 18 servo maps (hexapod.robotcal.servo_maps)."""
     ch = board["channels"]
-    return tuple((ch[k // 3][k % 3][0], ch[k // 3][k % 3][1], maps[k]) for k in range(LEGS * 3))
+    return tuple((ch[k // 3][k % 3][0], ch[k // 3][k % 3][1], servo_maps[k]) for k in range(LEGS * 3))
 
 
 def sonar_pins(board):
@@ -239,4 +246,4 @@ def sonar_pins(board):
     by_name = {}
     for s in board["sonars"]:
         by_name[s[0]] = (s[1], s[2])
-    return tuple(by_name[n] for n in SONAR_NAMES)
+    return tuple(by_name[n] for n in SENSOR_NAMES)

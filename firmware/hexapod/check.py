@@ -1,23 +1,21 @@
 """Checks for plain-data files (boards/, robots/): one ValueError naming the file, the place, what
-is wrong and what is allowed; and is_whole, the integer test every value check in the core uses.
-Pure, imports nothing; never runs in the frame.
+is wrong and what is allowed. Pure, imports nothing; never runs in the frame. Boot-only: the board
+and robot checks import it, main.main forgets it with them once the loop is built (runner.release).
 """
 
 
-def is_whole(v):
-    """True for an int that is not a bool."""
-    return isinstance(v, int) and not isinstance(v, bool)
-
-
 class Check:
-    """Carries the file's kind and name ("board 'pico'", "robot 'default'") into every message."""
+    """Carries the file's kind and name ("board 'pico'", "robot 'default'") into every message.
 
-    def __init__(self, kind, name):
-        self.kind = kind
-        self.name = name
+    Names and short strings here (and in the other boot-only checks) reuse what the firmware has
+    anyway where they can: each new one is a qstr, which stays in the board's heap after the
+    module is released (runner.release), and a few dozen more cost a new qstr pool (8 KB)."""
+
+    def __init__(self, label, name):
+        self.name = label + " " + repr(name)  # what every message starts with
 
     def fail(self, where, msg):
-        raise ValueError("%s %r: %s: %s" % (self.kind, self.name, where, msg))
+        raise ValueError(self.name + ": " + where + ": " + msg)
 
     def dict_of(self, where, v, required, optional=()):
         if not isinstance(v, dict):
@@ -42,26 +40,27 @@ class Check:
             self.fail(where, "%r, allowed %d..%d%s" % (v, lo, hi, unit))
         return v
 
-    def one_of(self, where, v, allowed):
-        if v not in allowed:
-            self.fail(where, "%r, allowed %s" % (v, ", ".join(allowed)))
+    def one_of(self, where, v, required):
+        if v not in required:
+            self.fail(where, "%r, allowed %s" % (v, ", ".join(required)))
         return v
 
-    def named(self, where, rows, width, shape, names, what):
-        """Rows (name, ...) of `width` items, one for each of names: {name: row}. Fails on a row of
-        another width, an unknown or repeated name ("<what> NAME: listed twice") or a missing one."""
-        self.seq(where, rows, -1, "of %s tuples" % what)
+    def named(self, where, v, length, shape, required, label):
+        """Rows (name, ...) of `length` items, one for each name in required: {name: row}. Fails on
+        a row of another length, an unknown or repeated name ("<label> NAME: listed twice") or a
+        missing one."""
+        self.seq(where, v, -1, "of %s tuples" % label)
         by = {}
-        for i in range(len(rows)):
+        for i in range(len(v)):
             at = "%s[%d]" % (where, i)
-            s = self.seq(at, rows[i], width, shape)
-            self.one_of(at + " name", s[0], names)
+            s = self.seq(at, v[i], length, shape)
+            self.one_of(at + " name", s[0], required)
             if s[0] in by:
-                self.fail("%s %s" % (what, s[0]), "listed twice")
+                self.fail(label + " " + s[0], "listed twice")
             by[s[0]] = s
-        for n in names:
+        for n in required:
             if n not in by:
-                self.fail(where, "missing %s %s" % (what, n))
+                self.fail(where, "missing %s %s" % (label, n))
         return by
 
 

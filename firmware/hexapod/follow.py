@@ -38,20 +38,23 @@ fresh reading (once per round robin): a stale reading is never fed twice.
 from micropython import const
 
 from hexapod.fixmath import atan2, mul_q15, sin, to_cdeg
-from hexapod.limits import FORMS, check_follow
+from hexapod.limits import FORMS, check_request
 from hexapod.pid import KD, KI, KP, PID
 from hexapod.sensors import DEFAULT_MOUNTS, FRONT, LEFT_FRONT, LEFT_REAR, RIGHT_FRONT, RIGHT_REAR, check_mounts
-from hexapod.sensors import MIN_RANGE as _MIN_RANGE  # what a TOO_CLOSE front ping is taken as
-from hexapod.sensors import NO_ECHO as _NO_ECHO
-from hexapod.sensors import OK as _OK
-from hexapod.sensors import OUT_OF_RANGE as _OUT_OF_RANGE
-from hexapod.sensors import STUCK as _STUCK
-from hexapod.sensors import TOO_CLOSE as _TOO_CLOSE
-from hexapod.sensors import WAIT as _WAIT
 from hexapod.tick import BUSY, MOVING, NOT_STANDING, OK, STANDING, WALKING
 from hexapod.turns import sweep_command
 from hexapod.walk import STOPPED as WALKER_STOPPED
 
+# The sensor contract's statuses, copied as private constants (folded into the code, no name kept
+# on the board; tests/test_viper_twins.py checks each against its source).
+_OK = const(0)  # hexapod.sensors.OK
+_OUT_OF_RANGE = const(1)  # hexapod.sensors.OUT_OF_RANGE
+_NO_ECHO = const(2)  # hexapod.sensors.NO_ECHO
+_STUCK = const(3)  # hexapod.sensors.STUCK
+_TOO_CLOSE = const(4)  # hexapod.sensors.TOO_CLOSE
+_WAIT = const(5)  # hexapod.sensors.WAIT
+# What a TOO_CLOSE front ping is taken as.
+_MIN_RANGE = const(200)  # hexapod.sensors.MIN_RANGE
 _NEAR = const(400)  # from under 4 cm a side sonar going out of range has come too close, 0.1 mm
 
 # Modes.
@@ -187,7 +190,7 @@ class Follower:
         000's coxa sweeps). Returns 0 (following) or a hexapod.tick reason code (not standing,
         busy, unreachable) having changed nothing; bad values raise ValueError, changing nothing.
         Called again on the same side and form it changes set point and speed on the fly."""
-        check_follow(side, setpoint, speed, form)
+        check_request(side, setpoint, speed, form)
         robot = self.robot
         if robot.mode != STANDING and robot.mode != WALKING:
             return BUSY if robot.mode == MOVING else NOT_STANDING

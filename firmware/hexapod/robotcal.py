@@ -10,24 +10,24 @@ The board file says which chip channel drives each servo and which pins each son
 direction and range at run time. Pure: no hardware imports.
 """
 
+from micropython import const
+
 from hexapod.check import Check, is_identifier
-from hexapod.sensors import SONAR_NAMES, check_mounts
+from hexapod.sensors import SENSOR_NAMES, check_mounts
 from hexapod.servo import ServoMap
 
 JOINTS = ("coxa", "femur", "tibia")
-FIELDS = ("REFERENCE", "SERVOS", "SONARS")
-SUFFIX = "_cal"  # robots/<robot>_cal.py
-_SERVO = "(leg, joint, centre_us, direction, min_us, max_us)"
-_SONAR = "(name, x, y, heading)"
-_XY_MAX = 10000  # largest |x|, |y| of a sonar, 0.1 mm
+# The file's fields (REFERENCE, SERVOS, SONARS) and its rows' shapes are written out where they
+# are used: a module-level name is a qstr that stays in the board's heap after the release.
+_XY_MAX = const(10000)  # largest |x|, |y| of a sonar, 0.1 mm
 
 
 def validate(name, data, limits=None):
-    """Check a calibration (a dict of FIELDS); limits: the robot's six joint limits (cdeg: coxa
+    """Check a calibration (a dict of REFERENCE, SERVOS, SONARS); limits: the robot's six joint limits (cdeg: coxa
     min, max, femur min, max, tibia min, max), each reference must lie inside them. Returns
     data unchanged, or raises ValueError naming the first mistake."""
     ck = Check("robot", name)
-    ck.dict_of("calibration", data, FIELDS)
+    ck.dict_of("calibration", data, ("REFERENCE", "SERVOS", "SONARS"))
     ref = ck.seq("REFERENCE", data["REFERENCE"], 3, "(coxa, femur, tibia) in cdeg")
     for j in range(3):
         where = "REFERENCE %s" % JOINTS[j]
@@ -37,7 +37,7 @@ def validate(name, data, limits=None):
         if limits is not None and (a < limits[2 * j] or a > limits[2 * j + 1]):
             lo, hi = limits[2 * j], limits[2 * j + 1]
             ck.fail(where, "%d is outside the robot's %s limits %d..%d cdeg" % (a, JOINTS[j], lo, hi))
-    rows = _servo_rows(ck, data["SERVOS"])
+    rows = _servos(ck, data["SERVOS"])
     for k in range(18):
         where, s = rows[k]
         for i, field in ((2, "centre_us"), (3, "direction"), (4, "min_us"), (5, "max_us")):
@@ -47,25 +47,26 @@ def validate(name, data, limits=None):
             ServoMap(centre_us=s[2], direction=s[3], min_us=s[4], max_us=s[5], ref_cdeg=ref[k % 3])
         except ValueError as e:
             ck.fail(where, str(e))
-    sonars = ck.named("SONARS", data["SONARS"], 4, _SONAR, SONAR_NAMES, "sonar")
-    for n in SONAR_NAMES:  # the headings are check_mounts' to judge
-        ck.int_in("sonar %s x" % n, sonars[n][1], -_XY_MAX, _XY_MAX, " (0.1 mm)")
-        ck.int_in("sonar %s y" % n, sonars[n][2], -_XY_MAX, _XY_MAX, " (0.1 mm)")
+    sonars = ck.named("SONARS", data["SONARS"], 4, "(name, x, y, heading)", SENSOR_NAMES, "sonar")
+    for n in SENSOR_NAMES:  # the headings are check_mounts' to judge
+        for i in (1, 2):
+            ck.int_in("sonar %s %s" % (n, "x" if i == 1 else "y"), sonars[n][i], -_XY_MAX, _XY_MAX, " (0.1 mm)")
     try:
-        check_mounts(sonar_mounts(data))
+        check_mounts(sensor_mounts(data))
     except ValueError as e:
         ck.fail("SONARS", str(e))
     return data
 
 
-def _servo_rows(ck, rows):
+def _servos(ck, v):
     """18 rows (leg, joint, ...), one per servo: {k: (where, row)}, k = (leg - 1) * 3 + joint and
     where "SERVOS[i] (leg L joint)" for the row's own messages."""
-    ck.seq("SERVOS", rows, -1, "of rows " + _SERVO)
+    shape = "(leg, joint, centre_us, direction, min_us, max_us)"
+    ck.seq("SERVOS", v, -1, "of rows (leg, joint, centre_us, direction, min_us, max_us)")
     by = {}
-    for i in range(len(rows)):
-        at = "SERVOS[%d]" % i
-        s = ck.seq(at, rows[i], 6, _SERVO)
+    for i in range(len(v)):
+        at = "%s[%d]" % ("SERVOS", i)
+        s = ck.seq(at, v[i], 6, shape)
         leg = ck.int_in(at + " leg", s[0], 1, 6)
         k = (leg - 1) * 3 + JOINTS.index(ck.one_of(at + " joint", s[1], JOINTS))
         at = "%s (leg %d %s)" % (at, leg, s[1])
@@ -79,19 +80,20 @@ def _servo_rows(ck, rows):
 
 
 def load(robot, limits=None):
-    """Import robots/<robot>_cal.py and return its validated calibration (a dict of FIELDS)."""
+    """Import robots/<robot>_cal.py and return its validated calibration (a dict of REFERENCE,
+    SERVOS, SONARS)."""
     if not is_identifier(robot):
         raise ValueError("robot name %r: allowed a file name in robots/ without .py" % (robot,))
     try:
-        module = __import__("robots." + robot + SUFFIX, None, None, FIELDS)
+        module = __import__("robots.%s_cal" % robot, None, None, ("SERVOS",))
     except ImportError:
         raise ValueError(
-            "robot %r: no robots/%s%s.py (the robot's servo calibration and sonar mounts)" % (robot, robot, SUFFIX)
+            "robot %r: no robots/%s_cal.py (the robot's servo calibration and sonar mounts)" % (robot, robot)
         ) from None
     data = {}
-    for field in FIELDS:
+    for field in ("REFERENCE", "SERVOS", "SONARS"):
         if not hasattr(module, field):
-            raise ValueError("robot %r: robots/%s%s.py defines no %s" % (robot, robot, SUFFIX, field))
+            raise ValueError("robot %r: robots/%s_cal.py defines no %s" % (robot, robot, field))
         data[field] = getattr(module, field)
     return validate(robot, data, limits)
 
@@ -106,9 +108,9 @@ def servo_maps(cal):
     return maps
 
 
-def sonar_mounts(cal):
+def sensor_mounts(cal):
     """Five (x, y, heading) in hexapod.sensors order: 0.1 mm and cdeg, body frame."""
     by_name = {}
     for s in cal["SONARS"]:
         by_name[s[0]] = (s[1], s[2], s[3])
-    return tuple(by_name[n] for n in SONAR_NAMES)
+    return tuple(by_name[n] for n in SENSOR_NAMES)

@@ -2,7 +2,7 @@
 console agree on, in one place. Pure: no I/O, no clock; never allocates in a frame.
 
 Sonars (five HC-SR04, seed 000 Fig. 2). Their order is the index into every per-sonar buffer:
-FRONT, LEFT_FRONT, LEFT_REAR, RIGHT_FRONT, RIGHT_REAR (SONAR_NAMES). A ping reports a status
+FRONT, LEFT_FRONT, LEFT_REAR, RIGHT_FRONT, RIGHT_REAR (SENSOR_NAMES). A ping reports a status
 code (OK .. PENDING, STATUS_NAMES are the console's words for them) and, only with OK, a
 distance in 0.1 mm; any other status leaves NO_DISTANCE in its place. A mount is (x, y,
 heading): 0.1 mm in the body frame and cdeg counter-clockwise from forward; check_mounts says
@@ -22,14 +22,14 @@ one; a battery monitor or an IMU would be another, handed to the Runner beside i
 
 from micropython import const
 
-from hexapod.check import is_whole
+from hexapod.limits import is_whole
 
 FRONT = const(0)
 LEFT_FRONT = const(1)
 LEFT_REAR = const(2)
 RIGHT_FRONT = const(3)
 RIGHT_REAR = const(4)
-SONAR_NAMES = ("front", "left_front", "left_rear", "right_front", "right_rear")
+SENSOR_NAMES = ("front", "left_front", "left_rear", "right_front", "right_rear")
 
 OK = const(0)
 OUT_OF_RANGE = const(1)  # nothing in range (the module's 38 ms no-echo hold; also what under 2 cm looks like)
@@ -42,7 +42,7 @@ STATUS_NAMES = ("ok", "out_of_range", "no_echo", "stuck", "too_close", "wait", "
 NO_DISTANCE = const(-1)  # dist[i] whenever status[i] is not OK
 MIN_RANGE = const(200)  # the HC-SR04's 2 cm, 0.1 mm: a TOO_CLOSE reading is nearer than this
 
-# The shipped robot's mounts (robots/default_cal.py SONARS), SONAR_NAMES order: side sonars on
+# The shipped robot's mounts (robots/default_cal.py SONARS), SENSOR_NAMES order: side sonars on
 # brackets 210 mm out, 200 mm apart.
 DEFAULT_MOUNTS = (
     (1300, 0, 0),
@@ -51,17 +51,19 @@ DEFAULT_MOUNTS = (
     (1000, -2100, -9000),
     (-1000, -2100, -9000),
 )
-HEADINGS = (0, 9000, 9000, -9000, -9000)  # each sonar's intended heading, cdeg
-HEADING_SLACK = const(1000)  # how far a mount may turn from it, cdeg (the beam is ~15 deg either side)
-BASELINE_MIN = const(500)  # a side pair's front sonar at least this far ahead of its rear one, 0.1 mm
+# Each sonar's intended heading is 0 (front), 90 degrees (left pair) or -90 (right pair). Private
+# constants here and below: folded into the code, no name kept on the board (a name costs heap).
+_SIDE_HEADING = const(9000)  # cdeg
+_HEADING_SLACK = const(1000)  # how far a mount may turn from it, cdeg (the beam is ~15 deg either side)
+_BASELINE_MIN = const(500)  # a side pair's front sonar at least this far ahead of its rear one, 0.1 mm
 
 
 def check_mounts(mounts):
-    """ValueError unless mounts are 5 (x, y, heading) in SONAR_NAMES order that the wall follower
+    """ValueError unless mounts are 5 (x, y, heading) in SENSOR_NAMES order that the wall follower
     can use: front facing forward, side sonars facing their side (+-10 deg) on that side, each
     side's front sonar at least 50 mm ahead of its rear one."""
     if not isinstance(mounts, (tuple, list)) or len(mounts) != 5:
-        raise ValueError("sensor mounts: need 5 (x, y, heading) in the order %s" % (", ".join(SONAR_NAMES),))
+        raise ValueError("sensor mounts: need 5 (x, y, heading) in the order %s" % (", ".join(SENSOR_NAMES),))
     for k in range(5):
         m = mounts[k]
         if (
@@ -69,22 +71,22 @@ def check_mounts(mounts):
             or len(m) != 3
             or not (is_whole(m[0]) and is_whole(m[1]) and is_whole(m[2]))
         ):
-            raise ValueError("sensor mounts: %s: %r, allowed (x, y, heading) integers" % (SONAR_NAMES[k], m))
-        want = HEADINGS[k]
-        if m[2] < want - HEADING_SLACK or m[2] > want + HEADING_SLACK:
+            raise ValueError("sensor mounts: %s: %r, allowed (x, y, heading) integers" % (SENSOR_NAMES[k], m))
+        want = 0 if k == FRONT else (_SIDE_HEADING if k <= LEFT_REAR else -_SIDE_HEADING)
+        if m[2] < want - _HEADING_SLACK or m[2] > want + _HEADING_SLACK:
             raise ValueError(
                 "sensor mounts: %s heading %d cdeg, allowed %d..%d"
-                % (SONAR_NAMES[k], m[2], want - HEADING_SLACK, want + HEADING_SLACK)
+                % (SENSOR_NAMES[k], m[2], want - _HEADING_SLACK, want + _HEADING_SLACK)
             )
         if k and (m[1] <= 0 if k < 3 else m[1] >= 0):
             raise ValueError(
-                "sensor mounts: %s y %d must be %s" % (SONAR_NAMES[k], m[1], "> 0 (left)" if k < 3 else "< 0 (right)")
+                "sensor mounts: %s y %d must be %s" % (SENSOR_NAMES[k], m[1], "> 0 (left)" if k < 3 else "< 0 (right)")
             )
     for f, r in ((LEFT_FRONT, LEFT_REAR), (RIGHT_FRONT, RIGHT_REAR)):
-        if mounts[f][0] - mounts[r][0] < BASELINE_MIN:
+        if mounts[f][0] - mounts[r][0] < _BASELINE_MIN:
             raise ValueError(
                 "sensor mounts: %s x %d must be at least 500 (50 mm) ahead of %s x %d"
-                % (SONAR_NAMES[f], mounts[f][0], SONAR_NAMES[r], mounts[r][0])
+                % (SENSOR_NAMES[f], mounts[f][0], SENSOR_NAMES[r], mounts[r][0])
             )
 
 
@@ -97,12 +99,10 @@ class Sonars:
         self.distances = [NO_DISTANCE] * count  # 0.1 mm, NO_DISTANCE when not OK
         self.status = [WAIT] * count  # WAIT until a sonar has a first result
         self.faults = 0  # pings that came back OUT_OF_RANGE, NO_ECHO, STUCK or TOO_CLOSE
-        self.last = -1  # the sonar whose reading came in this frame, -1 none
 
     def frame(self, now_ms):
-        """One slot of the round robin; returns (and keeps in `last`) the sonar whose reading came in."""
+        """One slot of the round robin; returns the sonar whose reading came in (-1: none)."""
         i = self.ring.tick(self.distances, self.status)
-        self.last = i
         if i >= 0:
             st = self.status[i]
             if st != OK and st != WAIT:

@@ -20,8 +20,7 @@ ABOVE_MAX = const(2)
 
 PULSE_MIN_US = const(500)  # widest range any servo may be calibrated to
 PULSE_MAX_US = const(2500)
-REF_MIN = const(-18000)  # a reference angle's range, cdeg
-REF_MAX = const(18000)
+_REF_MAX = const(18000)  # a reference angle's range, -_REF_MAX.._REF_MAX cdeg
 
 # ServoMap.cal's words.
 _CENTRE = const(0)
@@ -40,18 +39,6 @@ def _word(k):
     return property(lambda self: self.cal[k], lambda self, v: _put(self.cal, k, v))
 
 
-def ref_offset(ref_cdeg, us_per_degree):
-    """ref_cdeg's distance from angle 0 in whole us; ValueError unless it is whole (exact)."""
-    if not isinstance(ref_cdeg, int) or isinstance(ref_cdeg, bool) or ref_cdeg < REF_MIN or ref_cdeg > REF_MAX:
-        raise ValueError("ref_cdeg: %r is outside %d..%d (0.01 deg)" % (ref_cdeg, REF_MIN, REF_MAX))
-    if ref_cdeg * us_per_degree % 10000:
-        raise ValueError(
-            "ref_cdeg: %d at %d (0.01 us per degree) is not a whole us from angle 0: allowed whole degrees"
-            % (ref_cdeg, us_per_degree)
-        )
-    return ref_cdeg * us_per_degree // 10000
-
-
 class ServoMap:
     """One servo's calibration; maps centidegrees to microseconds."""
 
@@ -65,36 +52,36 @@ class ServoMap:
             raise ValueError("direction: %r, allowed 1 or -1" % (direction,))
         if not isinstance(us_per_degree, int) or us_per_degree < 100 or us_per_degree > 5000:
             raise ValueError("us_per_degree: %r is outside 100..5000 (0.01 us per degree)" % (us_per_degree,))
+        if not isinstance(ref_cdeg, int) or isinstance(ref_cdeg, bool) or ref_cdeg < -_REF_MAX or ref_cdeg > _REF_MAX:
+            raise ValueError("ref_cdeg: %r is outside %d..%d (0.01 deg)" % (ref_cdeg, -_REF_MAX, _REF_MAX))
+        if ref_cdeg * us_per_degree % 10000:  # its distance from angle 0 must be a whole us (exact)
+            raise ValueError(
+                "ref_cdeg: %d at %d (0.01 us per degree) is not a whole us from angle 0: allowed whole degrees"
+                % (ref_cdeg, us_per_degree)
+            )
         self.ref_cdeg = ref_cdeg  # the joint angle centre_us is the pulse at, cdeg
-        self._ref_us = ref_offset(ref_cdeg, us_per_degree)  # its distance from angle 0, us
+        self._ref_us = ref_cdeg * us_per_degree // 10000  # its distance from angle 0, us
         # The pulse at angle 0, direction, us_per_degree, min_us, max_us as machine words
         # (array("i")): the tick's viper frame (hexapod/_tick_viper.py) reads all five for one
         # attribute lookup.
         self.cal = array("i", [centre_us - direction * self._ref_us, direction, us_per_degree, min_us, max_us])
         self.excess = 0  # microseconds past the range on the last refusal
 
-    # The pulse at the reference angle, us. Setting it (or the direction) keeps the other: a
-    # flipped direction mirrors the servo about its reference.
-    @property
-    def centre_us(self):
-        c = self.cal
-        return c[_CENTRE] + c[_DIRECTION] * self._ref_us
-
-    @centre_us.setter
-    def centre_us(self, v):
-        c = self.cal
-        c[_CENTRE] = v - c[_DIRECTION] * self._ref_us
-
-    @property
-    def direction(self):
-        """1, or -1 for a servo mounted the other way round."""
-        return self.cal[_DIRECTION]
-
-    @direction.setter
-    def direction(self, d):
-        centre = self.centre_us
-        self.cal[_DIRECTION] = d
-        self.centre_us = centre
+    # The pulse at the reference angle, us (cal keeps the pulse at angle 0). Setting it (or the
+    # direction) keeps the other: a flipped direction mirrors the servo about its reference, the
+    # pulse at angle 0 moving by (old - new direction) * the reference's offset. Properties over
+    # lambdas, as _word's: a named setter would be one more name kept on the board.
+    centre_us = property(
+        lambda self: self.cal[_CENTRE] + self.cal[_DIRECTION] * self._ref_us,
+        lambda self, v: _put(self.cal, _CENTRE, v - self.cal[_DIRECTION] * self._ref_us),
+    )
+    direction = property(  # 1, or -1 for a servo mounted the other way round
+        lambda self: self.cal[_DIRECTION],
+        lambda self, d: (
+            _put(self.cal, _CENTRE, self.cal[_CENTRE] + (self.cal[_DIRECTION] - d) * self._ref_us)
+            or _put(self.cal, _DIRECTION, d)
+        ),
+    )
 
     # The other three as properties over cal (each one attribute, as before, for every other user).
     us_per_degree = property(lambda self: self.cal[_PER_DEGREE])  # pulse change per degree, 0.01 us

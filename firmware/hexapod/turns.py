@@ -8,9 +8,8 @@ any centre, and yaw alone pivots about the body centre. Off the tick (it allocat
 """
 
 from hexapod.body import FINE_SHIFT
-from hexapod.check import is_whole
 from hexapod.fixmath import atan2, mul_q15, to_cdeg
-from hexapod.limits import SPEED_MAX, YAW_RATE_MAX
+from hexapod.limits import SPEED_MAX, YAW_RATE_MAX, is_whole
 
 
 def coxa_sweep(walker, i, vx, w):

@@ -30,10 +30,13 @@ from array import array
 from micropython import const
 
 from hexapod.body import FINE, FINE_SHIFT, Body
-from hexapod.check import is_whole
 from hexapod.fixmath import ONE, cos, isqrt, mul_q15, sin
 from hexapod.gait import TICK_MS, TRIPOD, GaitClock, actual_cycle_ms, check_cycle_ms, check_gait, swing_stance_ticks
-from hexapod.limits import SPEED_MAX, YAW_RATE_MAX  # largest |vx|, |vy| (0.1 mm/s) and |yaw rate| (cdeg/s) accepted
+from hexapod.limits import (  # largest |vx|, |vy| (0.1 mm/s) and |yaw rate| (cdeg/s) accepted
+    SPEED_MAX,
+    YAW_RATE_MAX,
+    is_whole,
+)
 from hexapod.reach import servo_radii
 from hexapod.trajectory import swing_shape, swing_stroke
 

@@ -88,9 +88,10 @@ def boot(folder, cal, setting, frames, typed=(), every=50, calibrated=None):
 
 
 def released(folder):
-    """After main.main: which boot-only modules are still imported (hexapod.board, hexapod.robotfile,
-    robots.default)."""
+    """After main.main: whether each boot-only module is still imported (hexapod.board,
+    hexapod.robotfile, hexapod.robotcal, hexapod.check, robots.default, robots.default_cal)."""
     import sys
 
     boot(folder, "none", None, 1)
-    return ["hexapod.board" in sys.modules, "hexapod.robotfile" in sys.modules, "robots.default" in sys.modules]
+    names = ("hexapod.board", "hexapod.robotfile", "hexapod.robotcal", "hexapod.check", "robots.default")
+    return [name in sys.modules for name in names + ("robots.default_cal",)]

@@ -138,7 +138,7 @@ class Body:
         self.maps = [row[2] for row in boards.servo_table(boards.load(board_name), robotcal.servo_maps(cal))]
         self.lengths = [(lg.coxa / 10, lg.femur / 10, lg.tibia / 10, lg.femur_offset / 10) for lg in g.legs]
         self.mounts = [(g.mount_x[i] / 10, g.mount_y[i] / 10, math.radians(g.mount_angle[i] / 100)) for i in range(6)]
-        self.sensors = [(x / 10, y / 10, math.radians(h / 100)) for x, y, h in robotcal.sonar_mounts(cal)]
+        self.sensors = [(x / 10, y / 10, math.radians(h / 100)) for x, y, h in robotcal.sensor_mounts(cal)]
         bx, by = BODY_HALF
         corners = ((bx, by), (-bx, by), (-bx, -by), (bx, -by))
         self.outline = [corners[k] + corners[(k + 1) % 4] for k in range(4)]
