@@ -3,12 +3,13 @@
 Pins are GPIO numbers. Triggers on output-capable pins away from the boot straps (0, 2, 5,
 12, 15) and the flash (6..11); echoes on input-only 34, 35, 36 (VP), 39 (VN) and on 32.
 The ESP32 is 3.3 V only: every echo line goes through a 1k/2k divider (docs/wiring.md).
-Calibration rows are the seed 001 defaults: measure your own servos and replace them.
+The servo calibration and the sonar mounts are the robot's: robots/<robot>_cal.py.
 """
 
 BOARD = {
     "name": "esp32_devkit",
     "runtime": "micropython",
+    "arch": "xtensawin",  # mpy-cross -march: the code emitter of this board's .mpy files (viper)
     "i2c": {"id": 0, "sda": 21, "scl": 22, "freq": 400000},
     "pca9685": {
         "pwm_hz": 50,
@@ -17,39 +18,22 @@ BOARD = {
             {"address": 0x41, "osc_hz": 25000000},  # left legs 4-6 (A0 jumper bridged)
         ),
     },
-    # Femur and tibia servos of the left side are mounted mirrored, hence direction -1.
-    "servos": (
-        # leg, joint, chip, channel, centre_us, direction, min_us, max_us
-        # centre_us is the pulse at joint angle 0. The tibia's 0 is the leg straight out, one end
-        # of its -180..0 travel: 2400 us (600 us mirrored), so its -90 degree knee sits at 1500 us.
-        (1, "coxa", 0x40, 0, 1500, 1, 600, 2400),
-        (1, "femur", 0x40, 1, 1500, 1, 600, 2400),
-        (1, "tibia", 0x40, 2, 2400, 1, 600, 2400),
-        (2, "coxa", 0x40, 3, 1500, 1, 600, 2400),
-        (2, "femur", 0x40, 4, 1500, 1, 600, 2400),
-        (2, "tibia", 0x40, 5, 2400, 1, 600, 2400),
-        (3, "coxa", 0x40, 6, 1500, 1, 600, 2400),
-        (3, "femur", 0x40, 7, 1500, 1, 600, 2400),
-        (3, "tibia", 0x40, 8, 2400, 1, 600, 2400),
-        (4, "coxa", 0x41, 0, 1500, 1, 600, 2400),
-        (4, "femur", 0x41, 1, 1500, -1, 600, 2400),
-        (4, "tibia", 0x41, 2, 600, -1, 600, 2400),
-        (5, "coxa", 0x41, 3, 1500, 1, 600, 2400),
-        (5, "femur", 0x41, 4, 1500, -1, 600, 2400),
-        (5, "tibia", 0x41, 5, 600, -1, 600, 2400),
-        (6, "coxa", 0x41, 6, 1500, 1, 600, 2400),
-        (6, "femur", 0x41, 7, 1500, -1, 600, 2400),
-        (6, "tibia", 0x41, 8, 600, -1, 600, 2400),
+    # (chip address, channel) of each leg's coxa, femur and tibia servo: which PCA9685 output drives it
+    "channels": (
+        ((0x40, 0), (0x40, 1), (0x40, 2)),  # leg 1 RF
+        ((0x40, 3), (0x40, 4), (0x40, 5)),  # leg 2 RM
+        ((0x40, 6), (0x40, 7), (0x40, 8)),  # leg 3 RR
+        ((0x41, 0), (0x41, 1), (0x41, 2)),  # leg 4 LR
+        ((0x41, 3), (0x41, 4), (0x41, 5)),  # leg 5 LM
+        ((0x41, 6), (0x41, 7), (0x41, 8)),  # leg 6 LF
     ),
-    "sensors": (
-        # name, trigger pin, echo pin, x, y (0.1 mm, body frame), heading (0.01 deg, 0 = forward, left +)
-        # Side sonars on brackets at the stance's outer edge (210 mm out, above the legs), 200 mm
-        # apart: an 8 cm reading keeps every foot and link clear of the wall (docs/wall.md).
-        ("front", 25, 34, 1300, 0, 0),
-        ("left_front", 26, 35, 1000, 2100, 9000),
-        ("left_rear", 27, 36, -1000, 2100, 9000),
-        ("right_front", 14, 39, 1000, -2100, -9000),
-        ("right_rear", 33, 32, -1000, -2100, -9000),
+    "sonars": (
+        # name, trigger pin, echo pin (where each sonar sits is the robot's: robots/<robot>_cal.py)
+        ("front", 25, 34),
+        ("left_front", 26, 35),
+        ("left_rear", 27, 36),
+        ("right_front", 14, 39),
+        ("right_rear", 33, 32),
     ),
     # Wall following at power-up (hexapod.follow): None, or e.g. {"side": "left", "setpoint": 800}
     # (set point 0.1 mm, the side sonar's reading; optional "speed" 0.1 mm/s, "form" "yaw"/"sweeps").

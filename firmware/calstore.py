@@ -2,7 +2,12 @@
 
 A text file: a version line, 18 rows "leg joint trim direction min_us max_us" (legs 1..6,
 joints coxa femur tibia, us), then "crc XXXX", the CRC-16/CCITT-FALSE of every byte before
-that line. `trim` is added to the board file's centre_us. Written atomically: the whole text
+that line. Version 2: `trim` is added to the robot calibration's centre_us, the pulse at the
+servo's reference angle (robots/<robot>_cal.py REFERENCE), and a direction other than the
+robot file's mirrors the servo about that reference. Version 1 files (before the reference:
+trim added to the pulse at angle 0, a flipped direction mirrored about 0) load too; they mean
+the same pulses unless they flip the direction of a servo whose reference is not 0, which the
+console refuses to load (console.Console.load_file; docs/console.md). Written atomically: the whole text
 goes to TMP, is read back, then renamed over FILE (where the filesystem cannot rename over an
 existing file, FILE is removed first; load() then takes the complete TMP). So a save cut at
 any point leaves the old calibration or the new one, never a broken one.
@@ -11,7 +16,8 @@ Filesystem access is handed in (the `os` module and `open`) so tests can use a s
 loses power mid-write. Nothing here runs in the 50 Hz frame.
 """
 
-VERSION = 1
+VERSION = 2  # what save() writes
+READS = (1, 2)  # what load() reads
 FILE = "hexapod_cal.txt"
 TMP = "hexapod_cal.tmp"
 JOINTS = ("coxa", "femur", "tibia")
@@ -59,8 +65,11 @@ def decode(text):
     if len(want) != 4 or "%04x" % crc16(body.encode()) != want:
         raise ValueError("checksum mismatch (corrupt)")
     lines = body.split("\n")
-    if lines[0] != (_HEADER % VERSION).strip():
-        raise ValueError("version line %r, this firmware reads %r" % (lines[0][:20], (_HEADER % VERSION).strip()))
+    if version(text) not in READS:
+        raise ValueError(
+            "version line %r, this firmware reads %s"
+            % (lines[0][:20], " or ".join(repr((_HEADER % v).strip()) for v in READS))
+        )
     if len(lines) != 20 or lines[19] != "":
         raise ValueError("%d rows, need 18" % (len(lines) - 2))
     rows = []
@@ -76,6 +85,15 @@ def decode(text):
         check_row(where, *row)
         rows.append(row)
     return rows
+
+
+def version(text):
+    """The version number of a calibration file's text (its first line), 0 when it has none."""
+    head = text[: text.find("\n")] if "\n" in text else text
+    for v in READS:
+        if head == (_HEADER % v).strip():
+            return v
+    return 0
 
 
 class Store:
@@ -102,15 +120,17 @@ class Store:
             return False
 
     def load(self):
-        """(rows, where) from FILE, else from a complete TMP; OSError/ValueError say why neither."""
+        """(rows, where, version) from FILE, else from a complete TMP; ValueError says why neither."""
         try:
-            return decode(self._read(self.path)), self.path
+            text = self._read(self.path)
+            return decode(text), self.path, version(text)
         except OSError as e:
             why = "no %s" % self.path if _errno(e) == 2 else "%s unreadable (%s)" % (self.path, e)
         except ValueError as e:
             why = "%s %s" % (self.path, e)
         try:
-            return decode(self._read(self.tmp)), self.tmp
+            text = self._read(self.tmp)
+            return decode(text), self.tmp, version(text)
         except (OSError, ValueError):
             raise ValueError(why) from None
 

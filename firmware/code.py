@@ -1,6 +1,7 @@
 """Board entry point on CircuitPython (it runs code.py): the CircuitPython twin of main.py.
 
-Loads the board file and the robot file named below, builds the loop (runner.Runner) on
+Loads the board file and the robot's files named below (robots/ROBOT.py and
+robots/ROBOT_cal.py, as main.py), builds the loop (runner.Runner) on
 busio.I2C, the PCA9685 bank (drivers.cp_pca9685) and five non-blocking HC-SR04 rangers
 (drivers.cp_hcsr04_pulsein), stands the robot up and runs 50 Hz frames for ever, printing a
 status line every 5 s; with a "follow" setting in the board file it follows that wall once
@@ -8,14 +9,14 @@ standing (hexapod.follow). Edit BOARD and ROBOT to match yours (files in boards/
 Needs adafruit_pca9685, adafruit_bus_device and adafruit_register in lib/ (docs/wiring.md).
 """
 
-from runner import Runner, release
+from runner import BOOT_ONLY, FRAME_MS, Runner, release
 
-from hexapod import geometry
+from hexapod import geometry, sensors
 
 BOARD = "feather_rp2040"
 ROBOT = "default"
 STATUS_FRAMES = 250  # 5 s of 20 ms frames
-SONAR_SAMPLES = (3, 1, 1, 1, 1)  # pings per median, drivers.hcsr04 order (see main.py)
+SONAR_SAMPLES = (3, 1, 1, 1, 1)  # pings per median, hexapod.sensors order (see main.py)
 
 
 def board_pin(board, name, where):
@@ -33,8 +34,9 @@ def board_pin(board, name, where):
 
 def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000, samples=SONAR_SAMPLES):
     """The Runner for a CircuitPython board and robot file (max_range: 0.1 mm; samples: pings per
-    median, drivers.hcsr04 order); clock: cp_clock.Clock."""
-    from hexapod import board as boards  # boot only: main() releases it (runner.release)
+    median, hexapod.sensors order); clock: cp_clock.Clock."""
+    from hexapod import board as boards  # boot only: main() releases these (runner.release)
+    from hexapod import robotcal
 
     board = boards.load(board_name)
     if board["runtime"] != "circuitpython":
@@ -49,36 +51,37 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000, sampl
     except ImportError:
         raise ValueError("robot %r: no robots/%s.py" % (robot_name, robot_name)) from None
     robot = geometry.load(robot_module)
+    cal = robotcal.load(robot_name, robot.limits)
     bus = board["i2c"]
     scl = board_pin(board, bus["scl"], "i2c scl")
     sda = board_pin(board, bus["sda"], "i2c sda")
-    sensor_pins = []
-    names = boards.SENSORS
-    pairs = boards.sensor_pins(board)
+    sonar_pins = []
+    pairs = boards.sonar_pins(board)
     for k in range(len(pairs)):  # every pin looked up before any is claimed
         trigger, echo = pairs[k]
-        where = names[k] + " sensor"
-        sensor_pins.append((board_pin(board, trigger, where + " trigger"), board_pin(board, echo, where + " echo")))
+        where = sensors.SENSOR_NAMES[k] + " sensor"
+        sonar_pins.append((board_pin(board, trigger, where + " trigger"), board_pin(board, echo, where + " echo")))
 
     import busio
 
-    from drivers import cp_clock, cp_hcsr04_pulsein, cp_pca9685
+    from drivers import cp_clock, cp_hcsr04_pulsein, cp_pca9685, hcsr04
 
     if clock is None:
         clock = cp_clock.Clock()
-    sensors = []
-    try:  # sensors first: a refused setting (max_range) leaves no pin claimed and the bus untouched
-        for k in range(len(sensor_pins)):
-            trigger, echo = sensor_pins[k]
-            sensors.append(cp_hcsr04_pulsein.HCSR04(trigger, echo, clock, max_range=max_range, samples=samples[k]))
+    rangers = []
+    try:  # sonars first: a refused setting (max_range) leaves no pin claimed and the bus untouched
+        for k in range(len(sonar_pins)):
+            trigger, echo = sonar_pins[k]
+            rangers.append(cp_hcsr04_pulsein.HCSR04(trigger, echo, clock, max_range=max_range, samples=samples[k]))
     except ValueError:
-        for s in sensors:
+        for s in rangers:
             s.deinit()
         raise
     i2c = busio.I2C(scl, sda, frequency=bus["freq"])
-    table = boards.servo_table(board)
+    table = boards.servo_table(board, robotcal.servo_maps(cal))
     bank = cp_pca9685.servo_bank(i2c, board["pca9685"], table)
-    r = Runner(robot, [row[2] for row in table], bank, sensors, clock, boards.sensor_mounts(board))
+    sonars = sensors.Sonars(hcsr04.RoundRobin(rangers, tick_ms=FRAME_MS), len(rangers))
+    r = Runner(robot, [row[2] for row in table], bank, sonars, clock, robotcal.sensor_mounts(cal))
     r.board = board
     r.sonar_pins = pairs
     return r
@@ -95,7 +98,8 @@ def main(frames=-1, clock=None, board_name=BOARD, robot_name=ROBOT, reader=None,
     the status line (docs/console.md); Ctrl-C relaxes the servos (or holds, on_exit)."""
     global runner
     r = runner = build(board_name, robot_name, clock)
-    release("hexapod.board", "hexapod.robotfile", "robots." + robot_name)  # boot-only: its heap back to the loop
+    # The boot-only modules (the board and robot files and their checks): their heap back to the loop.
+    release(*BOOT_ONLY, "robots." + robot_name, "robots.%s_cal" % robot_name)
     r.bring_up(reader, boot, calibrated)
     if reader is not None and r.board.get("watchdog_ms"):
         from microcontroller import watchdog

@@ -16,9 +16,8 @@ from calstore import TRIM_MAX, Store
 from micropython import const
 from runner import BOOT_WORDS, counters
 
-from drivers import hcsr04
 from hexapod import battery as batteries
-from hexapod import follow, gait, tick
+from hexapod import follow, gait, limits, sensors, tick
 from hexapod.leg import describe as leg_describe
 from hexapod.units import format_fixed, parse_fixed
 
@@ -30,7 +29,6 @@ COMMANDS = (
     "help status stand sit relax foot nudge joint pulse get walk stop gait sonar wall pid "
     "cal trim dir range save load defaults echo selftest"
 )
-_STATUS_WORDS = ("ok", "out_of_range", "no_echo", "stuck", "too_close", "wait")
 
 
 class PollReader:
@@ -120,7 +118,8 @@ class Console:
         self._battery = batteries.OK  # the battery state last announced (a notice at each change)
         self.lines = 0  # lines answered
         self._job = None  # a multi-line reply under way (selftest): step() once a frame, abort(), done
-        # The board file's calibration: (centre_us, direction, min_us, max_us) per servo.
+        # The robot file's calibration (robots/<robot>_cal.py): (centre_us, direction, min_us,
+        # max_us) per servo; centre_us is the pulse at the servo's reference angle (ref_cdeg).
         self.base = tuple((s.centre_us, s.direction, s.min_us, s.max_us) for s in self.robot.servos)
         self.trims = [0] * 18
         self.cal_source = "defaults"
@@ -319,12 +318,13 @@ class Console:
         )
 
     def cal_line(self, k):
-        """'ok leg L joint J centre_us C trim T dir D min_us A max_us B' for servo 0..17."""
+        """'ok leg L joint J centre_us C ref_deg R trim T dir D min_us A max_us B' for servo 0..17."""
         s = self.robot.servos[k]
-        return "ok leg %d joint %s centre_us %d trim %d dir %d min_us %d max_us %d" % (
+        return "ok leg %d joint %s centre_us %d ref_deg %s trim %d dir %d min_us %d max_us %d" % (
             k // 3 + 1,
             JOINTS[k % 3],
             self.base[k][0],
+            format_fixed(s.ref_cdeg, 2),
             self.trims[k],
             s.direction,
             s.min_us,
@@ -574,9 +574,9 @@ class Console:
         for k in range(len(r.distances)):
             st = r.sonar_status[k]
             d = r.distances[k]
-            parts.append(hcsr04.SENSOR_NAMES[k])
-            parts.append(format_fixed(d, 1) if st == hcsr04.OK and d >= 0 else "-")
-            parts.append(_STATUS_WORDS[st] if 0 <= st < len(_STATUS_WORDS) else "unknown")
+            parts.append(sensors.SENSOR_NAMES[k])
+            parts.append(format_fixed(d, 1) if st == sensors.OK and d >= 0 else "-")
+            parts.append(sensors.STATUS_NAMES[st] if 0 <= st < len(sensors.STATUS_NAMES) else "unknown")
         return " ".join(parts)
 
     def _wall(self, args):
@@ -584,9 +584,9 @@ class Console:
             self.runner.follow_off()
             return "ok wall off"
         self._args(args, 2, "left|right CM, or off")
-        if args[0] not in follow.SIDES:
+        if args[0] not in limits.SIDES:
             raise ValueError("side %r, allowed left, right or off" % (args[0][:20],))
-        cm = self._num("set point", args[1], 2, follow.SETPOINT_MIN, follow.SETPOINT_MAX, "cm")
+        cm = self._num("set point", args[1], 2, limits.SETPOINT_MIN, limits.SETPOINT_MAX, "cm")
         self._battery_ok()
         self._walking = False
         code = self.runner.follow(args[0], cm)
@@ -687,13 +687,24 @@ class Console:
         return "ok saved %s crc %04x" % (self.store.path, crc)
 
     def load_file(self):
-        """Calibration from the store, else the board file's defaults; returns the reply."""
+        """Calibration from the store, else the robot file's defaults; returns the reply."""
         if self.store is None:
             raise ValueError("no calibration file on this board")
         try:
-            rows, where = self.store.load()
+            rows, where, version = self.store.load()
         except ValueError as e:
             return "ok defaults (%s)" % (e,)
+        if version == 1:
+            # Version 1 mirrored a flipped servo about angle 0, version 2 about its reference:
+            # the same pulses everywhere else, different ones there.
+            for k in range(18):
+                s = self.robot.servos[k]
+                if rows[k][1] != self.base[k][1] and s.ref_cdeg:
+                    return (
+                        "err load: %s is version 1 and flips leg %d %s, which it mirrored about 0 deg; now "
+                        "its reference is %s deg: 'defaults', set it again and 'save'"
+                        % (where, k // 3 + 1, JOINTS[k % 3], format_fixed(s.ref_cdeg, 2))
+                    )
         code = self.apply(rows)
         if code:
             return "err load: %s kept the calibration in force: %s" % (where, self._refused(code)[4:])
@@ -773,7 +784,7 @@ def start(runner, reader, os=None, opener=open, out=print, walk_timeout_ms=WALK_
     if store is not None:
         reply = c.load_file()
         if reply.startswith("ok defaults ("):
-            out("cal: %s; the board file's calibration is in use" % reply[13:-1])
+            out("cal: %s; the robot file's calibration is in use" % reply[13:-1])
         elif not reply.startswith("ok loaded"):
             out("cal: " + reply[4:])
     runner.console = c

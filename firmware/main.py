@@ -1,6 +1,7 @@
 """Board entry point (MicroPython): the only file that touches real hardware.
 
-Loads the board file and the robot file named below, builds the loop (runner.Runner), stands
+Loads the board file and the robot's files named below (robots/ROBOT.py, its build, and
+robots/ROBOT_cal.py, its servo calibration and sonar mounts), builds the loop (runner.Runner), stands
 the robot up and runs 50 Hz frames for ever, printing a status line every 5 s; with a "follow"
 setting in the board file it follows that wall once standing (hexapod.follow); with a
 "battery" setting it watches the pack on that ADC pin (hexapod.battery). Edit BOARD and
@@ -10,15 +11,15 @@ ROBOT to match yours (files in boards/ and robots/).
 import time
 
 from machine import I2C, Pin, time_pulse_us
-from runner import Runner, release
+from runner import BOOT_ONLY, FRAME_MS, Runner, release
 
 from drivers import hcsr04, pca9685
-from hexapod import geometry
+from hexapod import geometry, sensors
 
 BOARD = "pico"
 ROBOT = "default"
 STATUS_FRAMES = 250  # 5 s of 20 ms frames
-# Pings per median, drivers.hcsr04 order: each sensor pings every 100 ms, so a median of n
+# Pings per median, hexapod.sensors order: each sensor pings every 100 ms, so a median of n
 # lags about (n - 1) * 50 ms. The wall follower steers on the side sonars: no median there
 # (its PID takes each fresh reading once); the front one keeps 3 against a stray echo.
 SONAR_SAMPLES = (3, 1, 1, 1, 1)
@@ -26,22 +27,25 @@ SONAR_SAMPLES = (3, 1, 1, 1, 1)
 
 def build(board_name=BOARD, robot_name=ROBOT, clock=time, max_range=10000, samples=SONAR_SAMPLES, bank=None):
     """The Runner for a board and robot on this machine's I2C and pins (max_range: 0.1 mm;
-    samples: pings per median for each sensor, drivers.hcsr04 order; bank: where frames go,
+    samples: pings per median for each sonar, hexapod.sensors order; bank: where frames go,
     None for the board's PCA9685s on its I2C)."""
-    from hexapod import board as boards  # boot only: main() releases it (runner.release)
+    from hexapod import board as boards  # boot only: main() releases these (runner.release)
+    from hexapod import robotcal
 
     board = boards.load(board_name)
     robot_module = __import__("robots." + robot_name, None, None, ("NAME",))
-    table = boards.servo_table(board)
+    robot = geometry.load(robot_module)
+    cal = robotcal.load(robot_name, robot.limits)
+    table = boards.servo_table(board, robotcal.servo_maps(cal))
     if bank is None:
         bus = board["i2c"]
         i2c = I2C(bus["id"], scl=Pin(bus["scl"]), sda=Pin(bus["sda"]), freq=bus["freq"])
         bank = pca9685.servo_bank(i2c, board["pca9685"], table, sleep_us=clock.sleep_us)
-    sensors = []
-    pins = boards.sensor_pins(board)
+    rangers = []
+    pins = boards.sonar_pins(board)
     for k in range(len(pins)):
         trigger, echo = pins[k]
-        sensors.append(
+        rangers.append(
             hcsr04.HCSR04(
                 Pin(trigger, Pin.OUT),
                 Pin(echo, Pin.IN),
@@ -60,13 +64,14 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=time, max_range=10000, sampl
 
         monitor = battery.Monitor(*boards.battery_args(board["battery"]))
         adc = ADC(Pin(board["battery"]["pin"]))
+    sonars = sensors.Sonars(hcsr04.RoundRobin(rangers, tick_ms=FRAME_MS), len(rangers))
     r = Runner(
-        geometry.load(robot_module),
+        robot,
         [row[2] for row in table],
         bank,
-        sensors,
+        sonars,
         clock,
-        boards.sensor_mounts(board),
+        robotcal.sensor_mounts(cal),
         battery=monitor,
         adc=adc,
     )
@@ -87,7 +92,8 @@ def main(frames=-1, clock=time, board_name=BOARD, robot_name=ROBOT, reader=None,
     the board file's on_exit) and leaves `runner` for the REPL."""
     global runner
     r = runner = build(board_name, robot_name, clock)
-    release("hexapod.board", "hexapod.robotfile", "robots." + robot_name)  # boot-only: its heap back to the loop
+    # The boot-only modules (the board and robot files and their checks): their heap back to the loop.
+    release(*BOOT_ONLY, "robots." + robot_name, "robots.%s_cal" % robot_name)
     r.bring_up(reader, boot, calibrated)
     if reader is not None and r.board.get("watchdog_ms"):
         from machine import WDT

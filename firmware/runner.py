@@ -1,10 +1,11 @@
 """The robot's control loop with its drivers handed in: a robot geometry, the servo calibration,
-a servo bank (drivers.pca9685.ServoBank or the CircuitPython one), the sonars and a clock (the
+a servo bank (drivers.pca9685.ServoBank or the CircuitPython one), its sensors and a clock (the
 `time` module on MicroPython; the virtual clock in tests). main.py builds one on a board.
 
-Each step is one 50 Hz frame: one sonar ping (round robin), the wall follower when it is on
-(hexapod.follow: PID -> walk command), one control tick, one burst per PCA9685. Nothing in a
-step raises on bus or sensor trouble: faults are counted and kept in plain attributes for a
+Each step is one 50 Hz frame: each sensor's share of the frame (hexapod.sensors' frame sensor:
+the sonars' round-robin slot first, then any other sensor handed in), the wall follower when it
+is on (hexapod.follow: PID -> walk command), one control tick, one burst per PCA9685. Nothing in
+a step raises on bus or sensor trouble: faults are counted and kept in plain attributes for a
 console to show, and the loop goes on.
 
 Wall following from code (a console wires `wall left|right CM`, `wall off`, `pid KP KI KD`):
@@ -15,9 +16,8 @@ State for a reply or the status line: runner.follower.mode_name, .used, .distanc
 .distance, .angle, .error, .output, .front, .faults, .fault_total, .reason_name.
 """
 
-from drivers import hcsr04
 from hexapod import battery as batteries
-from hexapod import follow, tick
+from hexapod import follow, limits, sensors, tick
 
 FRAME_MS = 20
 FRAME_US = 20000
@@ -42,28 +42,30 @@ BOOT_NOTICES = (
 class Runner:
     """Robot + servo bank + sonars -> a loop of 20 ms frames; step() runs one."""
 
-    def __init__(self, geometry, servo_maps, bank, sensors, clock, mounts=None, battery=None, adc=None):
+    def __init__(self, geometry, servo_maps, bank, sonars, clock, mounts=None, battery=None, adc=None, others=()):
         """geometry: hexapod.geometry.load(...); servo_maps: 18 ServoMaps (leg/joint order);
-        bank: has write_frame(pulses), failed_frames, reinits; sensors: hcsr04 rangers in
-        drivers.hcsr04 order; clock: ticks_ms/ticks_us/ticks_add/ticks_diff/sleep_ms/sleep_us; mounts: the five
-        sensors' (x, y, heading), 0.1 mm and cdeg (hexapod.board.sensor_mounts; default: the
-        shipped board files'); battery: a hexapod.battery.Monitor (None: no monitor) and adc
-        what it reads (machine.ADC: read_u16()), read once now and every SAMPLE_FRAMES frames."""
+        bank: has write_frame(pulses), failed_frames, reinits; sonars: hexapod.sensors.Sonars
+        (the round robin of hcsr04 rangers, hexapod.sensors order); clock: ticks_ms/ticks_us/
+        ticks_add/ticks_diff/sleep_ms/sleep_us; mounts: the five sonars' (x, y, heading), 0.1 mm
+        and cdeg (hexapod.robotcal.sensor_mounts; default: the shipped robot's); battery: a
+        hexapod.battery.Monitor (None: no monitor) and adc what it reads (machine.ADC:
+        read_u16()), read once now and every SAMPLE_FRAMES frames; others: more frame sensors
+        (hexapod.sensors: frame(now_ms), faults), each asked once a frame after the sonars."""
         self.clock = clock
         self.bank = bank
         self.robot = tick.Robot(geometry, servo_maps, bank)
-        self.sonar = hcsr04.RoundRobin(sensors, tick_ms=FRAME_MS)
-        self.distances = [hcsr04.NO_DISTANCE] * len(sensors)  # 0.1 mm, NO_DISTANCE when not OK
-        self.sonar_status = [hcsr04.WAIT] * len(sensors)  # WAIT until a sensor has a first result
-        self.sonar_faults = 0  # pings that came back NO_ECHO, STUCK or OUT_OF_RANGE
+        self.sonars = sonars
+        self.others = tuple(others)  # asked after the sonars, in this order
+        self.distances = sonars.distances  # 0.1 mm, NO_DISTANCE when not OK (the sonars' buffers)
+        self.sonar_status = sonars.status
         self.frames = 0
         self.held = 0  # ticks whose frame the robot held back (hexapod.tick reason codes)
         self.next_us = clock.ticks_us()  # the next frame's start
-        self.follower = follow.Follower(self.robot, follow.DEFAULT_MOUNTS if mounts is None else mounts)
+        self.follower = follow.Follower(self.robot, sensors.DEFAULT_MOUNTS if mounts is None else mounts)
         self._start = None  # a follow setting waiting for the robot to stand
         self.console = None  # console.Console: polled once a frame when set (console.start)
         self.watchdog = None  # machine.WDT (the board file's watchdog_ms): fed once a frame
-        self.sonar_pins = None  # (trigger, echo) per sonar, drivers.hcsr04 order (main.build): selftest's hints
+        self.sonar_pins = None  # (trigger, echo) per sonar, hexapod.sensors order (main.build): selftest's hints
         self.boot = BOOT_NOT_YET  # what power_up did (BOOT_WORDS)
         self.battery = battery
         self.adc = adc
@@ -142,7 +144,7 @@ class Runner:
     def follow_when_standing(self, setting):
         """Start following once the robot stands (main.py's start-up): setting is a board
         file's "follow" dict (side, setpoint, optional speed and form), checked now."""
-        follow.check_request(setting["side"], setting["setpoint"], setting.get("speed"), setting.get("form", "yaw"))
+        limits.check_request(setting["side"], setting["setpoint"], setting.get("speed"), setting.get("form", "yaw"))
         self._start = setting
 
     def step(self):
@@ -156,11 +158,11 @@ class Runner:
                 self._battery_changed(b.update(self.adc.read_u16()))
             if b.state == batteries.CUTOFF and self.robot.mode != tick.RELAXED:
                 self._shut_down()
-        i = self.sonar.tick(self.distances, self.sonar_status)
-        if i >= 0:
-            st = self.sonar_status[i]
-            if st != hcsr04.OK and st != hcsr04.WAIT:
-                self.sonar_faults += 1
+        i = self.sonars.frame(now)
+        others = self.others
+        if others:  # none on the shipped boards: the frame pays one test for the hook
+            for k in range(len(others)):
+                others[k].frame(now)
         if self.follower.mode:
             self.follower.update(now, i, self.distances, self.sonar_status)
         elif self._start is not None and self.robot.mode == tick.STANDING:
@@ -218,6 +220,11 @@ class Runner:
         if left > 0:
             clock.sleep_us(left)
 
+    @property
+    def sonar_faults(self):
+        """Pings that came back OUT_OF_RANGE, NO_ECHO, STUCK or TOO_CLOSE."""
+        return self.sonars.faults
+
     def run(self, frames=-1, status_every=0):
         """Run frames (forever when -1), each on its 20 ms boundary; print status_line every
         status_every frames (0: never)."""
@@ -240,6 +247,11 @@ class Runner:
         self.follower.off()
         if not hold:
             self.robot.go_limp()
+
+
+# What main.main and code.py's main release once the runner is built, with the robot's two files:
+# the board file's validator, the robot file's and the calibration file's checks, their helpers.
+BOOT_ONLY = ("hexapod.board", "hexapod.robotfile", "hexapod.robotcal", "hexapod.check")
 
 
 def release(*names):

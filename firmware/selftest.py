@@ -19,8 +19,7 @@ around the angle it holds and back, at SWEEP_CDEG_PER_S, every step through Robo
 
 import gc
 
-from drivers import hcsr04
-from hexapod import VERSION, tick
+from hexapod import VERSION, sensors, tick
 from hexapod.units import format_fixed
 
 FRAME_MS = 20
@@ -29,7 +28,6 @@ SWEEP_CDEG_PER_S = 2000  # 20 deg/s: 0.4 degree a frame
 STEP_CDEG = SWEEP_CDEG_PER_S * FRAME_MS // 1000
 HEAP_LOW = 16384  # bytes free below which the heap check fails
 JOINTS = ("coxa", "femur", "tibia")
-_SONAR_WORDS = ("ok", "out_of_range", "no_echo", "stuck", "too_close", "wait")
 _RESETS = ("PWRON_RESET", "HARD_RESET", "WDT_RESET", "DEEPSLEEP_RESET", "SOFT_RESET")
 _RESET_WORDS = ("power_on", "hard", "watchdog", "deepsleep", "soft")
 _GROUND = "common ground with the Pico?"
@@ -61,7 +59,7 @@ class _Watch:
     def __init__(self, inner, n):
         self.inner = inner
         self.status = [-1] * n
-        self.distance = [hcsr04.NO_DISTANCE] * n
+        self.distance = [sensors.NO_DISTANCE] * n
         self.left = n
 
     def tick(self, dist, status):
@@ -85,10 +83,10 @@ class Checks:
         self.frames = 0
         r = self.runner
         n = len(r.distances)
-        self.watch = _Watch(r.sonar, n)
+        self.watch = _Watch(r.sonars.ring, n)
         # every sensor fired and collected inside the window: a round robin cycle and one tick more
-        self.limit = len(getattr(r.sonar, "slots", ())) + 2
-        r.sonar = self.watch
+        self.limit = len(getattr(r.sonars.ring, "slots", ())) + 2
+        r.sonars.ring = self.watch
 
     def _line(self, out, ok, text):
         self.count += 1
@@ -110,8 +108,8 @@ class Checks:
         return out
 
     def _restore(self):
-        if self.runner.sonar is self.watch:
-            self.runner.sonar = self.watch.inner
+        if self.runner.sonars.ring is self.watch:
+            self.runner.sonars.ring = self.watch.inner
 
     def abort(self):
         """A new line came in: the end line now (the checks done so far were printed)."""
@@ -227,24 +225,24 @@ class Checks:
         pins = getattr(r, "sonar_pins", None)
         for k in range(len(w.status)):
             st = w.status[k]
-            name = "sonar " + hcsr04.SENSOR_NAMES[k]
-            if st == hcsr04.OK:
+            name = "sonar " + sensors.SENSOR_NAMES[k]
+            if st == sensors.OK:
                 self._line(out, True, "%s ok %s mm" % (name, format_fixed(w.distance[k], 1)))
                 continue
-            word = _SONAR_WORDS[st] if 0 <= st < len(_SONAR_WORDS) else "wait"
+            word = sensors.STATUS_NAMES[st] if 0 <= st < len(sensors.STATUS_NAMES) else "wait"
             wires = "trigger on pin %s, echo on pin %s" % pins[k] if pins else "its trigger and echo pins"
-            if st == hcsr04.NO_ECHO:
+            if st == sensors.NO_ECHO:
                 why = "the echo never rose: module on 5 V? %s? the echo's 1k/2k divider in place? %s" % (wires, _GROUND)
-            elif st == hcsr04.STUCK:
+            elif st == sensors.STUCK:
                 why = "the echo was high before the trigger: echo shorted high, or the divider's ground leg open"
                 why += " (%s)" % wires
-            elif st == hcsr04.OUT_OF_RANGE:
+            elif st == sensors.OUT_OF_RANGE:
                 why = (
                     "nothing within %s mm: point it at a wall 10-50 cm away (a soft or slanted target "
-                    % (format_fixed(r.sonar.sensors[k].max_range, 1),)
+                    % (format_fixed(r.sonars.ring.sensors[k].max_range, 1),)
                     + "returns no echo)"
                 )
-            elif st == hcsr04.TOO_CLOSE:
+            elif st == sensors.TOO_CLOSE:
                 why = "closer than 20.0 mm: something on the transducers, or a bent one hearing its own burst"
             else:
                 why = "no result while the test watched (%d frames): is the loop's round robin running?" % self.frames
@@ -262,7 +260,7 @@ class Checks:
             self._line(
                 out,
                 False,
-                "calibration %s: the board file's defaults are in use at boot (in force now: %s): calibrate and "
+                "calibration %s: the robot file's defaults are in use at boot (in force now: %s): calibrate and "
                 "'save' (docs/jog.md)" % (e, src),
             )
             return

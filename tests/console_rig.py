@@ -17,11 +17,12 @@ import _stub_pins
 import hcsr04_model
 import stub_board
 from hexapod import board as boards
+from hexapod import robotcal
 import console
 import main
 
 BOARD = stub_board.reset("pico")
-TABLE = boards.servo_table(BOARD)
+TABLE = boards.servo_table(BOARD, robotcal.servo_maps(robotcal.load("default")))
 bus, chips = stub_board.pca9685_models(BOARD)
 SONAR = stub_board.sonar_models(BOARD, [3000 + 1000 * k for k in range(5)])
 r = main.build(clock=clock)

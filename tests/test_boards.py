@@ -1,5 +1,7 @@
 """Board files and their validation: the three boards pass; many mutations of them fail with a clear
-ValueError naming the board, the place and the rule, identically on CPython and MicroPython."""
+ValueError naming the board, the place and the rule, identically on CPython and MicroPython. A
+board file holds the board's data only: the robot's calibration and sonar mounts are refused
+there with a message saying where they went (tests/test_robot_cal.py checks those files)."""
 
 import pytest
 
@@ -12,10 +14,16 @@ P, E, F = BOARDS
 MUTATIONS = [
     (P, (), [], "board '?': board: expected a dict, got list"),
     (P, ("i2cc",), {}, "unknown key 'i2cc'"),
-    (P, ("servos",), DELETE, "board: missing key 'servos'"),
+    (P, ("channels",), DELETE, "board: missing key 'channels'"),
     (P, ("name",), "", "name: '', allowed a non-empty identifier"),
     (P, ("name",), 5, "name: 5, allowed"),
     (P, ("runtime",), "cpython", "runtime: 'cpython', allowed micropython or circuitpython"),
+    (P, ("arch",), DELETE, "board: missing key 'arch'"),
+    (P, ("arch",), "armv7", "arch: 'armv7', allowed an mpy-cross -march name: x86, x64, armv6, armv6m"),
+    (E, ("arch",), None, "arch: None, allowed an mpy-cross -march name"),
+    (F, ("arch",), "armv6m", "arch: 'armv6m', allowed None: CircuitPython boards get .py sources, no mpy-cross"),
+    (P, ("servos",), (), 'servos: moved: the channel map stays here as "channels"; the calibration moved to robots/'),
+    (E, ("sensors",), (), 'sensors: moved: "sonars": (name, trigger, echo) stay here; the mounts moved to robots/'),
     (P, ("i2c",), None, "i2c: expected a dict, got NoneType"),
     (P, ("i2c", "id"), -1, "i2c.id: -1, allowed 0..9"),
     (P, ("i2c", "id"), None, "i2c.id: None, allowed 0..9"),
@@ -38,53 +46,35 @@ MUTATIONS = [
     (P, ("pca9685", "chips", 0, "osc_hz"), 30000000, "pca9685.chips[0].osc_hz: 30000000, allowed 22500000..27500000"),
     (P, ("pca9685", "chips", 0), (0x40, 25000000), "pca9685.chips[0]: expected a dict, got tuple"),
     (P, ("pca9685", "chips", 0, "trim"), 1, "pca9685.chips[0]: unknown key 'trim'"),
-    (P, ("pca9685", "chips", 1), DELETE, "servos[9] (leg 4 coxa) address: 65 is not one of the chips (0x40)"),
-    (P, ("servos", 1, 3), 0, "servos[1] (leg 1 femur): chip 0x40 channel 0 already drives leg 1 coxa"),
-    (E, ("servos", 17, 3), 0, "servos[17] (leg 6 tibia): chip 0x41 channel 0 already drives leg 4 coxa"),
-    (P, ("servos", 17), DELETE, "servos: missing servo leg 6 tibia"),
-    (P, ("servos",), [], "servos: missing servo leg 1 coxa"),
-    (P, ("servos", 4, 0), 1, "servos[4] (leg 1 femur): listed twice (first at servos[1])"),
-    (P, ("servos", 0, 0), 7, "servos[0] leg: 7, allowed 1..6"),
-    (P, ("servos", 0, 0), "1", "servos[0] leg: '1', allowed 1..6"),
-    (P, ("servos", 0, 1), "knee", "servos[0] joint: 'knee', allowed coxa, femur, tibia"),
-    (P, ("servos", 0, 2), 0x42, "servos[0] (leg 1 coxa) address: 66 is not one of the chips (0x40, 0x41)"),
-    (P, ("servos", 0, 2), True, "servos[0] (leg 1 coxa) address: True is not one of the chips"),
-    (P, ("servos", 0, 3), 16, "servos[0] (leg 1 coxa) channel: 16, allowed 0..15"),
-    (P, ("servos", 0, 3), -1, "channel: -1, allowed 0..15"),
-    (P, ("servos", 0, 6), 400, "servos[0] (leg 1 coxa): min_us: 400 is outside 500..2500 us"),
-    (P, ("servos", 0, 7), 2600, "servos[0] (leg 1 coxa): max_us: 2600 is outside 500..2500 us"),
-    (P, ("servos", 3, 4), 2450, "servos[3] (leg 2 coxa): need min_us <= centre_us <= max_us, got 600, 2450, 2400"),
-    (P, ("servos", 3, 4), 100, "centre_us: 100 is outside 500..2500 us"),
-    (P, ("servos", 0, 5), 0, "servos[0] (leg 1 coxa): direction: 0, allowed 1 or -1"),
-    (P, ("servos", 0, 4), "1500", "servos[0] (leg 1 coxa) centre_us: '1500', allowed an integer"),
-    (P, ("servos", 0, 6), 500.0, "servos[0] (leg 1 coxa) min_us: 500.0, allowed an integer"),
-    (P, ("servos", 0, 5), True, "direction: True, allowed an integer"),
-    (P, ("servos", 0), [1, "coxa", 0x40, 0], "servos[0]: expected 8 items (leg, joint, address, channel,"),
-    (P, ("servos", 0), "coxa", "servos[0]: expected a tuple (leg, joint"),
-    (P, ("servos",), (APPEND, (7, "coxa", 0x41, 9, 1500, 1, 600, 2400)), "servos[18] leg: 7, allowed 1..6"),
-    (P, ("servos",), (APPEND, (6, "coxa", 0x41, 9, 1500, 1, 600, 2400)), "servos[18] (leg 6 coxa): listed twice"),
-    (P, ("servos",), None, "servos: expected a tuple of servo tuples, got NoneType"),
-    (P, ("sensors",), None, "sensors: expected a tuple of sensor tuples, got NoneType"),
-    (P, ("sensors", 0, 2), DELETE, "sensors[0]: expected 6 items (name, trigger, echo, x, y, heading), got 5"),
-    (P, ("sensors", 2, 2), None, "sensor left_rear echo: no pin given"),
-    (P, ("sensors", 2, 1), None, "sensor left_rear trigger: no pin given"),
-    (P, ("sensors", 1, 1), 7, "sensor left_front trigger: pin 7 is already used as sensor front echo"),
-    (P, ("sensors", 0, 1), 4, "sensor front trigger: pin 4 is already used as i2c.sda"),
-    (E, ("sensors", 3, 2), 34, "sensor right_front echo: pin 34 is already used as sensor front echo"),
-    (F, ("sensors", 4, 1), "SCL", "sensor right_rear trigger: pin 'SCL' is already used as i2c.scl"),
-    (F, ("sensors", 0, 1), 6, "sensor front trigger: 6, allowed a `board` pin name"),
-    (P, ("sensors", 0, 2), [7], "sensor front echo: [7], allowed a GPIO number"),
-    (P, ("sensors", 0, 0), "rear", "sensors[0] name: 'rear', allowed front, left_front, left_rear"),
-    (P, ("sensors", 1, 0), "front", "sensor front: listed twice"),
-    (P, ("sensors", 4), DELETE, "sensors: missing sensor right_rear"),
-    (P, ("sensors", 0, 5), 20000, "sensor front heading: 20000, allowed -18000..18000 (0.01 deg)"),
-    (P, ("sensors", 0, 3), 20000, "sensor front x: 20000, allowed -10000..10000 (0.1 mm)"),
-    (P, ("sensors", 0, 4), 1.5, "sensor front y: 1.5, allowed"),
-    (P, ("sensors", 0), ("front", 6, 7), "sensors[0]: expected 6 items"),
-    (P, ("sensors", 0), {}, "sensors[0]: expected a tuple (name, trigger"),
-    (P, ("sensors", 1, 5), 4500, "sensors: sensor mounts: left_front heading 4500 cdeg, allowed 8000..10000"),
-    (E, ("sensors", 4, 3), 1000, "sensors: sensor mounts: right_front x 1000 must be at least 500 (50 mm) ahead"),
-    (F, ("sensors", 2, 4), -2100, "sensors: sensor mounts: left_rear y -2100 must be > 0 (left)"),
+    (P, ("pca9685", "chips", 1), DELETE, "channels[3][0] (leg 4 coxa) address: 65 is not one of the chips (0x40)"),
+    (P, ("channels", 0, 1, 1), 0, "channels[0][1] (leg 1 femur): chip 0x40 channel 0 already drives leg 1 coxa"),
+    (E, ("channels", 5, 2, 1), 0, "channels[5][2] (leg 6 tibia): chip 0x41 channel 0 already drives leg 4 coxa"),
+    (P, ("channels", 5), DELETE, "channels: expected 6 items (one per leg: ((address, channel) of its coxa, femur"),
+    (P, ("channels",), [], "channels: expected 6 items"),
+    (P, ("channels", 2), ((0x40, 6), (0x40, 7)), "channels[2]: expected 3 items ((address, channel) of its coxa"),
+    (P, ("channels", 0, 2), (0x40,), "channels[0][2] (leg 1 tibia): expected 2 items (address, channel), got 1"),
+    (P, ("channels", 0, 2), 0x40, "channels[0][2] (leg 1 tibia): expected a tuple (address, channel), got int"),
+    (P, ("channels", 0, 0, 0), 0x42, "channels[0][0] (leg 1 coxa) address: 66 is not one of the chips (0x40, 0x41)"),
+    (P, ("channels", 0, 0, 0), True, "channels[0][0] (leg 1 coxa) address: True is not one of the chips"),
+    (P, ("channels", 0, 0, 1), 16, "channels[0][0] (leg 1 coxa) channel: 16, allowed 0..15"),
+    (P, ("channels", 0, 0, 1), -1, "channel: -1, allowed 0..15"),
+    (P, ("channels", 0, 0, 1), 1.0, "channels[0][0] (leg 1 coxa) channel: 1.0, allowed 0..15"),
+    (P, ("channels",), None, "channels: expected a tuple (one per leg"),
+    (P, ("sonars",), None, "sonars: expected a tuple of sonar tuples, got NoneType"),
+    (P, ("sonars", 0, 2), DELETE, "sonars[0]: expected 3 items (name, trigger, echo), got 2"),
+    (P, ("sonars", 2, 2), None, "sonar left_rear echo: no pin given"),
+    (P, ("sonars", 2, 1), None, "sonar left_rear trigger: no pin given"),
+    (P, ("sonars", 1, 1), 7, "sonar left_front trigger: pin 7 is already used as sonar front echo"),
+    (P, ("sonars", 0, 1), 4, "sonar front trigger: pin 4 is already used as i2c.sda"),
+    (E, ("sonars", 3, 2), 34, "sonar right_front echo: pin 34 is already used as sonar front echo"),
+    (F, ("sonars", 4, 1), "SCL", "sonar right_rear trigger: pin 'SCL' is already used as i2c.scl"),
+    (F, ("sonars", 0, 1), 6, "sonar front trigger: 6, allowed a `board` pin name"),
+    (P, ("sonars", 0, 2), [7], "sonar front echo: [7], allowed a GPIO number"),
+    (P, ("sonars", 0, 0), "rear", "sonars[0] name: 'rear', allowed front, left_front, left_rear"),
+    (P, ("sonars", 1, 0), "front", "sonar front: listed twice"),
+    (P, ("sonars", 4), DELETE, "sonars: missing sonar right_rear"),
+    (P, ("sonars", 0), ("front", 6, 7, 1300, 0, 0), "sonars[0]: expected 3 items (name, trigger, echo), got 6"),
+    (P, ("sonars", 0), {}, "sonars[0]: expected a tuple (name, trigger"),
     (P, ("follow",), "left", "follow: expected a dict, got str"),
     (P, ("follow",), {"side": "left"}, "follow: missing key 'setpoint'"),
     (P, ("follow",), {"side": "left", "setpoint": 800, "gain": 1}, "follow: unknown key 'gain'"),
@@ -95,10 +85,10 @@ MUTATIONS = [
 ]
 
 
-# check() imports the whole core from source (board -> follow -> tick -> walk -> _walk_viper) inside the VM:
-# its compiler fits in ~250 KB, but whether a given heap does depends on fragmentation (main at
-# 97c1045 failed at 236-248 KB and at 292 KB, passed at 252-288 KB; measured 2026-11-24): 512 KB.
-HEAP = "512k"
+# check() used to import the whole core from source (board -> follow -> tick -> walk -> _walk_viper)
+# inside the VM, which needed a 512 KB heap; board.py now imports only hexapod.check, .limits and
+# .sensors (test_board_validation_imports_nothing_above_the_data_it_checks): the VM's default.
+HEAP = "256k"
 
 
 def test_the_three_boards_pass_and_unchanged_copies_pass_too(rt):
@@ -123,7 +113,7 @@ def test_messages_are_identical_on_both_runtimes(both_runtimes):
 
 @pytest.mark.parametrize("name", BOARDS)
 def test_every_channel_and_pin_mutation_is_caught(rt, name):
-    # systematic: each servo moved onto every other servo's channel, each sensor pin onto every other pin
+    # systematic: each servo moved onto every other servo's channel, each sonar pin onto every other pin
     total, caught = rt.call("scenarios.boards:channel_and_pin_moves", name)
     assert total == 18 * 17 + 10 * 11
     assert caught == total
@@ -142,8 +132,32 @@ def test_loading_an_unknown_board_is_a_value_error(rt, name, fragment):
 
 
 def test_tables_come_out_in_leg_joint_and_driver_order(rt):
-    table, sensor_pins, same_order = rt.call("scenarios.boards:pico_tables")
-    assert same_order
-    assert table[0] == (0x40, 0, 1, 600) and table[17] == (0x41, 8, -1, 600)
+    table, sonar_pins = rt.call("scenarios.boards:pico_tables")
+    assert [row[2] for row in table] == [True] * 18  # the robot's maps, in leg/joint order
     assert [row[:2] for row in table] == [(0x40 if k < 9 else 0x41, k % 9) for k in range(18)]
-    assert sensor_pins == ((6, 7), (8, 9), (10, 11), (12, 13), (14, 15))
+    assert sonar_pins == ((6, 7), (8, 9), (10, 11), (12, 13), (14, 15))
+
+
+# What a board file's checks need: the checks' helpers, the command limits (the "follow"
+# setting) and the sensor contract (the sonars' names). Never the walker and what it stands on.
+BOARD_IMPORTS = {"hexapod", "hexapod.board", "hexapod.check", "hexapod.limits", "hexapod.sensors"}
+IMPORTS = """
+import sys
+before = set(sys.modules)
+from hexapod import board
+board.load("pico")
+print(sorted(m for m in sys.modules if m not in before and m.startswith("hexapod")))
+"""
+
+
+def test_board_validation_imports_nothing_above_the_data_it_checks(mp):
+    import subprocess
+    import sys
+
+    from hexapod_host import mpvm
+
+    env = dict(__import__("os").environ, PYTHONPATH=mpvm.search_path())
+    cpython = subprocess.run([sys.executable, "-c", IMPORTS], capture_output=True, text=True, env=env, check=True)
+    for out in (cpython.stdout, mp.run(IMPORTS)):
+        loaded = set(__import__("ast").literal_eval(out.strip().splitlines()[-1]))
+        assert loaded == BOARD_IMPORTS, loaded

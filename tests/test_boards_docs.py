@@ -1,9 +1,11 @@
-"""docs/wiring.md carries, for every board file, the wiring tables rendered from that file's data."""
+"""docs/wiring.md and the README carry, for every board file, the wiring tables rendered from that
+file's data, and for the robot's calibration file its servo and sonar tables."""
 
 import importlib
 import os
 
 from hexapod import board as hb
+from hexapod import robotcal
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TITLES = {
@@ -31,20 +33,36 @@ def render(name):
     lines.append(
         "| %s SCL (%d kHz) | %s | SCL of both PCA9685 boards |" % (bus, i2c["freq"] // 1000, pin_fmt % i2c["scl"])
     )
-    for s in b["sensors"]:
+    for s in b["sonars"]:
         lines.append("| %s trigger | %s | HC-SR04 Trig |" % (s[0], pin_fmt % s[1]))
         lines.append("| %s echo | %s | HC-SR04 Echo through the 1k/2k divider |" % (s[0], pin_fmt % s[2]))
     lines += ["", "| PCA9685 | address | oscillator trim | frame rate |", "|---|---|---|---|"]
     for k, chip in enumerate(pca["chips"]):
         lines.append("| chip %d | 0x%02x | %d Hz | %d Hz |" % (k, chip["address"], chip["osc_hz"], pca["pwm_hz"]))
     lines += ["", "| leg | coxa | femur | tibia |", "|---|---|---|---|"]
-    table = hb.servo_table(b)
+    table = hb.servo_table(b, [None] * 18)
     for leg in range(1, 7):
         cells = ["0x%02x ch %d" % table[(leg - 1) * 3 + j][:2] for j in range(3)]
         lines.append("| %s | %s |" % (LEG_NAMES[leg], " | ".join(cells)))
-    lines += ["", "| sensor | x (mm) | y (mm) | heading (deg) |", "|---|---|---|---|"]
-    for s in b["sensors"]:
-        lines.append("| %s | %s | %s | %d |" % (s[0], mm(s[3]), mm(s[4]), s[5] // 100))
+    return "\n".join(lines) + "\n"
+
+
+def render_robot(name):
+    """The markdown tables for one robot's calibration file (robots/<name>_cal.py)."""
+    c = robotcal.load(name)
+    ref = c["REFERENCE"]
+    lines = ["### Robot `%s`: `robots/%s_cal.py`" % (name, name), ""]
+    lines += ["| leg | coxa | femur | tibia |", "|---|---|---|---|"]
+    lines.append("| reference angle | %s |" % " | ".join("%d deg" % (a // 100) for a in ref))
+    rows = {}
+    for s in c["SERVOS"]:
+        rows[(s[0], s[1])] = "%d us, %+d, %d..%d" % (s[2], s[3], s[4], s[5])
+    for leg in range(1, 7):
+        cells = [rows[(leg, j)] for j in ("coxa", "femur", "tibia")]
+        lines.append("| %s | %s |" % (LEG_NAMES[leg], " | ".join(cells)))
+    lines += ["", "| sonar | x (mm) | y (mm) | heading (deg) |", "|---|---|---|---|"]
+    for s in c["SONARS"]:
+        lines.append("| %s | %s | %s | %d |" % (s[0], mm(s[1]), mm(s[2]), s[3] // 100))
     return "\n".join(lines) + "\n"
 
 
@@ -66,3 +84,7 @@ def test_wiring_doc_matches_the_board_files():
                 name,
                 render(name),
             )
+        assert render_robot("default") in doc, "%s is stale for robots/default_cal.py:\n%s" % (
+            doc_name,
+            render_robot("default"),
+        )

@@ -1,4 +1,4 @@
-"""mpy-cross compiles every board file and this edge's firmware files; a failure names file and line."""
+"""mpy-cross compiles every board and robot file and this edge's firmware files; a failure names file and line."""
 
 import glob
 import os
@@ -10,11 +10,14 @@ import pytest
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 FILES = sorted(
     [os.path.relpath(p, ROOT) for p in glob.glob(os.path.join(ROOT, "boards", "*.py"))]
+    + [os.path.relpath(p, ROOT) for p in glob.glob(os.path.join(ROOT, "robots", "*.py"))]
     + [
         "firmware/drivers/__init__.py",
         "firmware/drivers/hcsr04.py",
         "firmware/drivers/cp_hcsr04.py",
         "firmware/hexapod/board.py",
+        "firmware/hexapod/check.py",
+        "firmware/hexapod/robotcal.py",
     ]
 )
 
@@ -33,8 +36,9 @@ def compile_mpy(path, out_dir):
     return proc.returncode == 0 and os.path.getsize(out) > 0, (proc.stdout + proc.stderr).strip()
 
 
-def test_the_file_list_covers_every_board():
+def test_the_file_list_covers_every_board_and_robot_file():
     assert {"boards/pico.py", "boards/esp32_devkit.py", "boards/feather_rp2040.py"} <= set(FILES)
+    assert {"robots/default.py", "robots/default_cal.py"} <= set(FILES)
 
 
 @pytest.mark.parametrize("path", FILES)

@@ -26,7 +26,7 @@ def test_format_round_trips_and_refuses_damage(rt):
     assert out[2] == "checksum mismatch (corrupt)"
     assert out[3] == "checksum mismatch (corrupt)"  # the CRC covers the version line too
     assert out[4] == "row 1: range 2400..2300, allowed 500 <= min < max <= 2500 us"
-    assert out[5][:2] == ["hexapod-cal 1", "1 coxa -9 1 700 2300"] and out[5][2].startswith("crc ")
+    assert out[5][:2] == ["hexapod-cal 2", "1 coxa -9 1 700 2300"] and out[5][2].startswith("crc ")
 
 
 def test_a_save_cut_at_every_step_keeps_old_or_new(rt):
@@ -84,7 +84,7 @@ print(repr(_w[_w.index("cal") : _w.index("cal") + 2]))
     assert out[8] == ["cal", "file"]
 
 
-def test_boot_with_missing_or_broken_file_says_so_once_and_uses_the_board_file(rt):
+def test_boot_with_missing_or_broken_file_says_so_once_and_uses_the_robot_file(rt):
     src = (
         RIG
         + STUB_FS
@@ -96,17 +96,98 @@ for files in ({}, {calstore.FILE: good[:40]}, {calstore.FILE: good.replace("25",
     said = []
     c = console.start(r, None, fs, fs.open, out=said.append)
     print(repr((said, c.cal_source, c.trims[0], r.robot.servos[0].centre_us)))
-    c.do("defaults")  # the next boot starts from the board file again
+    c.do("defaults")  # the next boot starts from the robot file again
 """
     )
     out = [ast.literal_eval(x) for x in rt.run(src, heapsize="4m").splitlines()]
-    assert out[0] == (["cal: no hexapod_cal.txt; the board file's calibration is in use"], "defaults", 0, 1500)
+    assert out[0] == (["cal: no hexapod_cal.txt; the robot file's calibration is in use"], "defaults", 0, 1500)
     assert out[1] == (
-        ["cal: hexapod_cal.txt truncated (no checksum line); the board file's calibration is in use"],
+        ["cal: hexapod_cal.txt truncated (no checksum line); the robot file's calibration is in use"],
         "defaults",
         0,
         1500,
     )
-    assert out[2][0] == ["cal: hexapod_cal.txt checksum mismatch (corrupt); the board file's calibration is in use"]
+    assert out[2][0] == ["cal: hexapod_cal.txt checksum mismatch (corrupt); the robot file's calibration is in use"]
     assert out[3] == ([], "file", 25, 1525)
     assert out[4] == ([], "file", 25, 1525)  # a complete temp file left by a cut save
+
+
+def test_versions_read_and_refused(rt):
+    """save writes version 2; a version 1 file (written before the tibia's reference moved to -90
+    degrees) still decodes; any other version line, with a right checksum, is refused naming both."""
+    src = """
+import calstore
+ROWS = [(k - 9, -1 if k % 2 else 1, 700 + k, 2300 - k) for k in range(18)]
+v2 = calstore.encode(ROWS)
+body = v2[: v2.rfind("crc ")]
+def signed(b):
+    return b + "crc %04x\\n" % calstore.crc16(b.encode())
+v1 = signed(body.replace("hexapod-cal 2", "hexapod-cal 1"))
+v3 = signed(body.replace("hexapod-cal 2", "hexapod-cal 3"))
+def why(t):
+    try:
+        return calstore.decode(t) == ROWS
+    except ValueError as e:
+        return str(e)
+print(repr([calstore.version(v2), calstore.version(v1), calstore.version(v3), calstore.version("")]))
+print(repr([why(v2), why(v1), why(v3)]))
+"""
+    out = [ast.literal_eval(x) for x in rt.run(src).splitlines()]
+    assert out[0] == [2, 1, 0, 0]
+    assert out[1][:2] == [True, True]
+    assert out[1][2] == "version line 'hexapod-cal 3', this firmware reads 'hexapod-cal 1' or 'hexapod-cal 2'"
+
+
+def test_a_version_1_file_loads_with_its_pulses_unless_it_flips_a_tibia(both_runtimes):
+    """Version 1 trims were added to the pulse at angle 0, version 2's to the pulse at the
+    reference: the same shift, so a version 1 file means the same pulses (a trim of 20 us on leg 2's
+    tibia: 2420 us at 0 degrees, 1520 at -90, 10 us per degree). A version 1 file that flips a
+    tibia's direction mirrored it about 0 degrees, which version 2 cannot say: refused, naming the
+    servo, and the robot file's calibration stays in force."""
+    src = (
+        RIG
+        + STUB_FS
+        + """
+import calstore
+def v1(rows):
+    body = calstore.encode(rows)
+    body = body[: body.rfind("crc ")].replace("hexapod-cal 2", "hexapod-cal 1")
+    return body + "crc %04x\\n" % calstore.crc16(body.encode())
+base = [(0, s.direction, s.min_us, s.max_us) for s in r.robot.servos]
+trimmed = list(base)
+trimmed[5] = (20, 1, 600, 2400)
+flipped = list(base)
+flipped[14] = (0, 1, 600, 2400)  # leg 5 tibia: direction -1 in robots/default_cal.py
+for rows in (trimmed, flipped):
+    fs = StubFS({calstore.FILE: v1(rows)})
+    said = []
+    c = console.start(r, None, fs, fs.open, out=said.append)
+    print(repr((said, c.cal_source, [r.robot.servos[5].raw(a) for a in (0, -9000)], c.cal_line(5))))
+    print(repr(c.do("load")))
+    c.do("defaults")
+fs = StubFS({calstore.FILE: v1(trimmed)})
+c = console.start(r, None, fs, fs.open, out=said.append)
+print(repr((c.do("save"), fs.files[calstore.FILE].split("\\n")[:7:6])))
+"""
+    )
+    cp, mp = both_runtimes(src, heapsize="4m")
+    assert cp == mp
+    out = [ast.literal_eval(x) for x in cp.splitlines()]
+    assert out[0] == (
+        [],
+        "file",
+        [2420, 1520],
+        "ok leg 2 joint tibia centre_us 1500 ref_deg -90.00 trim 20 dir 1 min_us 600 max_us 2400",
+    )
+    assert out[1] == "ok loaded hexapod_cal.txt"
+    why = (
+        "hexapod_cal.txt is version 1 and flips leg 5 tibia, which it mirrored about 0 deg; now its reference "
+        "is -90.00 deg: 'defaults', set it again and 'save'"
+    )
+    assert out[2] == (["cal: load: " + why], "defaults", [2400, 1500], out[2][3])
+    assert out[2][3].endswith("trim 0 dir 1 min_us 600 max_us 2400")
+    assert out[3] == "err load: " + why
+    assert out[4][0].startswith("ok saved hexapod_cal.txt crc ") and out[4][1] == [
+        "hexapod-cal 2",
+        "2 tibia 20 1 600 2400",
+    ]

@@ -32,7 +32,7 @@ def test_jogging_matches_the_float_ik_and_the_servo_map(rt):
         angles = [float(v) for v in m.group(2, 3, 4)]
         want = reference.ik(x, y, z, **LEG)
         assert max(abs(a - w) for a, w in zip(angles, want, strict=True)) <= 0.011
-        # pico.py leg 2: coxa, femur centre 1500, tibia centre 2400, all direction 1, 10 us/deg
+        # default_cal leg 2: coxa, femur 1500 us at 0, tibia 1500 at -90 deg (2400 at 0), direction 1, 10 us/deg
         pulses = [int(v) for v in m.group(5, 6, 7)]
         assert [
             abs(p - q) <= 0.5 + 1e-9
@@ -82,10 +82,11 @@ def test_commands_reply_one_line_each_on_both_runtimes(both_runtimes):
     )
     assert replies[3].startswith("ok leg 2 angles 0.00 12.50 ") and " pulses 1500 1625 " in replies[3]
     assert " angles 0.00 12.50 -80.00 pulses 1500 1625 1600 " in replies[4]  # 2400 + 10 x -80
-    assert replies[5] == "ok leg 2 joint femur centre_us 1500 trim 0 dir 1 min_us 600 max_us 2400"
-    assert replies[6] == "ok leg 2 joint femur centre_us 1500 trim 20 dir 1 min_us 600 max_us 2400"
-    assert replies[7] == "ok leg 2 joint coxa centre_us 1500 trim 0 dir -1 min_us 600 max_us 2400"
-    assert replies[8] == "ok leg 2 joint tibia centre_us 2400 trim 0 dir 1 min_us 700 max_us 2300"
+    assert replies[5] == "ok leg 2 joint femur centre_us 1500 ref_deg 0.00 trim 0 dir 1 min_us 600 max_us 2400"
+    assert replies[6] == "ok leg 2 joint femur centre_us 1500 ref_deg 0.00 trim 20 dir 1 min_us 600 max_us 2400"
+    assert replies[7] == "ok leg 2 joint coxa centre_us 1500 ref_deg 0.00 trim 0 dir -1 min_us 600 max_us 2400"
+    # the tibia's centre_us is its pulse at the -90 degree knee (robots/default_cal.py REFERENCE)
+    assert replies[8] == "ok leg 2 joint tibia centre_us 1500 ref_deg -90.00 trim 0 dir 1 min_us 700 max_us 2300"
     assert replies[9] == "ok mode moving"
     assert replies[10:12] == ["ok gait ripple", "ok gait ripple"]
     assert replies[12:14] == ["ok pid 25.000 0.500 1.000", "ok pid 20.000 0.250 2.000"]
@@ -168,7 +169,8 @@ BAD = [
     "cal 2 foot",
     "trim 2 femur 301",
     "trim 2 femur -301",
-    "trim 2 tibia 101",
+    "trim 2 tibia 301",
+    "trim 2 tibia -301",
     "trim 2 femur 1.5",
     "dir 2 femur 0",
     "dir 2 femur 2",
@@ -404,3 +406,43 @@ print(repr(con.echo))
     assert out[:4] == [need % "maybe", need % "on off", need % "ON", need % "1"]
     assert out[4] == "err echo: this console has no raw output to echo to"  # the rig's console has none
     assert out[5] == need % "on off" and out[6] is False  # refused: echo stays off
+
+
+def test_tibia_trim_has_room_both_ways_at_its_reference(both_runtimes):
+    """The tibia is calibrated at its -90 degree knee (1500 us), mid-range: trims of +-10 and
+    +-300 us act at once; before, its reference was angle 0 at 2400 us, the end of its range, and
+    a held servo there refused any trim up. The pulses for an angle are unchanged by the
+    reference: 2400 us at 0 degrees, as seed 001's map gives (1500 + 10 us per degree x 90)."""
+    lines = [
+        "joint 2 tibia 0",
+        "joint 2 tibia -90",
+        "trim 2 tibia 10",
+        "get 2",
+        "trim 2 tibia -10",
+        "get 2",
+        "trim 2 tibia 300",
+        "trim 2 tibia -300",
+        "get 2",
+        "joint 5 tibia -90",
+        "trim 5 tibia 10",
+        "get 5",
+        "dir 5 tibia 1",
+        "get 5",
+        "joint 5 tibia -80",
+    ]
+    src = RIG + "\nfor line in %r:\n    print(repr(say(line)))\nprint(unsafe())\n" % (lines,)
+    cp, mp = both_runtimes(src, heapsize="4m")
+    assert cp == mp
+    r = [ast.literal_eval(x) for x in cp.splitlines()]
+    pulses = [LEG_LINE.match(x).group(7) if LEG_LINE.match(x) else x for x in r[:-1]]
+    assert pulses[0] == "2400" and pulses[1] == "1500"
+    assert r[2].endswith("trim 10 dir 1 min_us 600 max_us 2400") and pulses[3] == "1510"
+    assert r[4].endswith("trim -10 dir 1 min_us 600 max_us 2400") and pulses[5] == "1490"
+    assert r[6].endswith(" trim 300 dir 1 min_us 600 max_us 2400")
+    assert r[7].endswith(" trim -300 dir 1 min_us 600 max_us 2400") and pulses[8] == "1200"
+    # leg 5 is mirrored (direction -1): at -90 degrees 1500 us, trimmed +10 -> 1510; flipping its
+    # direction mirrors it about the reference, so -90 degrees stays 1510 us and -80 goes to 1610.
+    assert pulses[9] == "1500" and pulses[11] == "1510"
+    assert r[12].endswith("trim 10 dir 1 min_us 600 max_us 2400") and pulses[13] == "1510"
+    assert pulses[14] == "1610"
+    assert r[-1] == []

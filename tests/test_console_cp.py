@@ -39,7 +39,7 @@ def test_console_runs_in_code_py_and_saves_through_os(rig, monkeypatch, tmp_path
     stdin.feed("get 2\r\nfoot 2 130 0 -80\r\ntrim 2 femur 15\r\nsave\r\n\xff\r\n")
     r = g.code.main(frames=200, clock=g.clock, reader=console.SerialReader(), boot="stand", calibrated=True)
     out = capsys.readouterr().out.splitlines()
-    assert out.pop(0) == "cal: no hexapod_cal.txt; the board file's calibration is in use"
+    assert out.pop(0) == "cal: no hexapod_cal.txt; the robot file's calibration is in use"
     assert out[0] == "boot: standing up (the board file's boot setting is stand, the servos are calibrated)"
     # standing up; leg 2 is in the middle pair, which the soft start leaves off for its first 8 frames
     assert out[1].startswith("ok leg 2 angles 0.00 ") and " pulses 0 0 0 " in out[1]
@@ -49,4 +49,4 @@ def test_console_runs_in_code_py_and_saves_through_os(rig, monkeypatch, tmp_path
     assert out[4].startswith("ok saved hexapod_cal.txt crc ")
     assert out[5] == "err non-text byte 0xff in line (allowed: printable ASCII)"
     assert len(out) == 6 and r.frames == 200
-    assert (tmp_path / "hexapod_cal.txt").read_text().startswith("hexapod-cal 1\n1 coxa 0 1 600 2400\n")
+    assert (tmp_path / "hexapod_cal.txt").read_text().startswith("hexapod-cal 2\n1 coxa 0 1 600 2400\n")

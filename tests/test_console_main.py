@@ -42,7 +42,7 @@ print(repr((r2 is main.runner, r2.frames, channels(), r2.robot.mode, r2.watchdog
         % (on_exit,)
     )
     out = rt.run(src, heapsize="4m").splitlines()
-    assert out[0] == "cal: no hexapod_cal.txt; the board file's calibration is in use"
+    assert out[0] == "cal: no hexapod_cal.txt; the robot file's calibration is in use"
     # boot="stand", calibrated=True: the host run vouches for the calibration the file would give
     assert out[1] == "boot: standing up (the board file's boot setting is stand, the servos are calibrated)"
     assert out[2].startswith("ok leg 1 angles ")  # the console answered while the loop ran

@@ -21,11 +21,12 @@ from scenarios.runner import unsafe_outputs
 
 from drivers import cp_clock, hcsr04
 from hexapod import board as boards
+from hexapod import robotcal
 from hexapod_host import FIRMWARE
 from hexapod_host.stubs import circuitpython as fakes_cp
 
 BOARD = boards.load("feather_rp2040")
-TABLE = boards.servo_table(BOARD)
+TABLE = boards.servo_table(BOARD, robotcal.servo_maps(robotcal.load("default")))
 RANGER = "drivers.cp_hcsr04_pulsein"
 
 
@@ -48,7 +49,7 @@ class Rig:
         start = fakes_cp.SUPERVISOR_PERIOD_MS - wrap_after_ms  # supervisor.ticks_ms wraps during the run
         self.cp = fakes_cp.CircuitPython(self.bus, ticks_start_ms=start).install(monkeypatch)
         self.sonar = [
-            hcsr04_model.HCSR04(t, e, distance=3000 + 1000 * k) for k, (t, e) in enumerate(boards.sensor_pins(BOARD))
+            hcsr04_model.HCSR04(t, e, distance=3000 + 1000 * k) for k, (t, e) in enumerate(boards.sonar_pins(BOARD))
         ]
         fakes_cp.forget(RANGER)
         self.code = load_code()
@@ -96,7 +97,7 @@ def test_stands_walks_and_measures(rig):
     assert r.robot.mode == 4  # walking
     assert 450 * 20000 <= vclock.now_us() - t0 <= 450 * 20000 + 40000  # every frame on its 20 ms boundary
     assert sum(sum(m.flags.values()) for m in g.sonar) == 0  # no short trigger, crosstalk or ping within 60 ms
-    assert r.sonar.max_block_us == 10
+    assert r.sonars.ring.max_block_us == 10
 
 
 def test_main_prints_a_status_line_every_5_s(rig, capsys):

@@ -37,7 +37,8 @@ def expected(board, entry, drivers):
     files.append("boards/%s.py" % board)
     if entry == "code.py":
         files.append("boot.py")  # CircuitPython: gives code.py the flash for `save`
-    return sorted(files + ["robots/__init__.py", "robots/default.py", entry])
+    # the robot's build and its calibration file (servo rows, sonar mounts: hexapod.robotcal)
+    return sorted(files + ["robots/__init__.py", "robots/default.py", "robots/default_cal.py", entry])
 
 
 def as_mpy(paths):
@@ -470,3 +471,21 @@ def test_a_circuitpython_drive_gets_no_micropython_emitter_decorators(tmp_path):
     assert carrying == []
     natives = [p for p in MP_DRIVERS + CORE if "@micropython." in flash._read(os.path.join(FIRMWARE, p))]
     assert "drivers/pca9685.py" in natives and "drivers/pca9685.py" in image
+
+
+def test_the_board_file_names_its_arch_and_what_it_refuses_is_never_staged(tmp_path, monkeypatch):
+    # The code emitters by chip: the RP2040's Cortex-M0+ is armv6m, the ESP32's LX6 xtensawin; a
+    # CircuitPython board gets sources. The robots are the build files, not their calibrations.
+    assert [flash.board_arch(b) for b in flash.boards()] == ["xtensawin", None, "armv6m"]
+    assert flash.boards() == ["esp32_devkit", "feather_rp2040", "pico"] and flash.robots() == ["default"]
+    out = tmp_path / "stage"
+    with pytest.raises(flash.FlashError, match="robot 'spider': no robots/spider_cal.py .*; nothing was staged"):
+        flash.stage("pico", "spider", str(out))
+    good = flash.board_data("pico")
+    monkeypatch.setattr(flash, "board_data", lambda board: dict(good, arch="armv7"))
+    with pytest.raises(flash.FlashError, match=r"board 'pico': arch: 'armv7', allowed an mpy-cross -march name"):
+        flash.stage("pico", "default", str(out))
+    monkeypatch.setattr(flash, "board_data", lambda board: dict(good, servos=()))
+    with pytest.raises(flash.FlashError, match="board 'pico': servos: moved: .*; nothing was staged"):
+        flash.stage("pico", "default", str(out))
+    assert not out.exists()

@@ -9,8 +9,7 @@ from scenarios.rig import Rig as StandRig
 
 import robots.default
 from drivers import hcsr04
-from hexapod import board as hb
-from hexapod import follow, geometry, pid, tick
+from hexapod import follow, geometry, pid, robotcal, sensors, tick
 from hexapod.turns import sweep_command
 
 SLOTS = (0, 4, 1, 3, 2)  # drivers.hcsr04.plan for five sensors at 20 ms: front, RR, LF, RF, LR
@@ -68,27 +67,11 @@ class Rig:
 SIDES = ["left", "right"]
 
 
-def test_constants_agree_with_the_driver_and_the_boards():
-    assert follow.SENSOR_NAMES == hcsr04.SENSOR_NAMES == hb.SENSORS
-    assert (follow.FRONT, follow.LEFT_FRONT, follow.LEFT_REAR, follow.RIGHT_FRONT, follow.RIGHT_REAR) == (
-        hcsr04.FRONT,
-        hcsr04.LEFT_FRONT,
-        hcsr04.LEFT_REAR,
-        hcsr04.RIGHT_FRONT,
-        hcsr04.RIGHT_REAR,
-    )
-    assert (follow._OK, follow._OUT_OF_RANGE, follow._NO_ECHO, follow._STUCK, follow._TOO_CLOSE, follow._WAIT) == (
-        hcsr04.OK,
-        hcsr04.OUT_OF_RANGE,
-        hcsr04.NO_ECHO,
-        hcsr04.STUCK,
-        hcsr04.TOO_CLOSE,
-        hcsr04.WAIT,
-    )
-    assert follow._MIN_RANGE == hcsr04.MIN_RANGE
+def test_the_round_robin_mounts_and_gains_the_rig_assumes():
+    # The order, names and codes are hexapod.sensors' alone (tests/test_sensors.py); the rig's
+    # slot table and mounts are the driver's plan and the robot file's.
     assert hcsr04.plan(5, 20, hcsr04.NEIGHBOURS, 60, 38) == SLOTS
-    for name in ("pico", "esp32_devkit", "feather_rp2040"):
-        assert hb.sensor_mounts(hb.load(name)) == follow.DEFAULT_MOUNTS
+    assert robotcal.sensor_mounts(robotcal.load("default")) == sensors.DEFAULT_MOUNTS
     assert (pid.KP, pid.KI, pid.KD) == (25000, 500, 1000)  # seed 000's Kp = 25, Ki = 0.5, Kd = 1
 
 
@@ -412,12 +395,12 @@ def test_follow_refuses_a_robot_that_is_not_standing_and_changes_nothing():
 @pytest.mark.parametrize(
     "mounts, match",
     [
-        (follow.DEFAULT_MOUNTS[:4], "need 5"),
-        (((1300, 0, 4500),) + follow.DEFAULT_MOUNTS[1:], "front heading 4500"),
-        (follow.DEFAULT_MOUNTS[:1] + ((1000, -2100, 9000),) + follow.DEFAULT_MOUNTS[2:], "left_front y -2100"),
-        (follow.DEFAULT_MOUNTS[:2] + ((1000, 2100, 9000),) + follow.DEFAULT_MOUNTS[3:], "left_front x 1000 must be"),
-        (follow.DEFAULT_MOUNTS[:4] + ((0, 0, -9000),), "right_rear y 0"),
-        (follow.DEFAULT_MOUNTS[:4] + ((0, -2100, -9000.0),), "right_rear"),
+        (sensors.DEFAULT_MOUNTS[:4], "need 5"),
+        (((1300, 0, 4500),) + sensors.DEFAULT_MOUNTS[1:], "front heading 4500"),
+        (sensors.DEFAULT_MOUNTS[:1] + ((1000, -2100, 9000),) + sensors.DEFAULT_MOUNTS[2:], "left_front y -2100"),
+        (sensors.DEFAULT_MOUNTS[:2] + ((1000, 2100, 9000),) + sensors.DEFAULT_MOUNTS[3:], "left_front x 1000 must be"),
+        (sensors.DEFAULT_MOUNTS[:4] + ((0, 0, -9000),), "right_rear y 0"),
+        (sensors.DEFAULT_MOUNTS[:4] + ((0, -2100, -9000.0),), "right_rear"),
     ],
 )
 def test_bad_mounts_are_refused(mounts, match):

@@ -1,8 +1,8 @@
 """`hexapod jog`: the command layer (keys -> console lines, reply lines -> the view) against the real
 board console (firmware/console.py) on the pico board's loop on the stub machine
 (tests/console_link.py), and the terminal tool driven in tmux as a person would.
-Expected angles come from the float reference IK (hexapod_host.testing.reference), pulses from the pico
-board file's rows worked by hand (centre_us + direction * 10 us per degree)."""
+Expected angles come from the float reference IK (hexapod_host.testing.reference), pulses from the default
+robot's calibration rows worked by hand (centre_us + direction * 10 us per degree from the reference)."""
 
 import os
 import re
@@ -45,7 +45,22 @@ def assert_leg(view, foot_mm):
 def test_start_shows_leg_1_standing():
     _, tool = started()
     assert_leg(tool.view, (130.0, 0.0, -80.0))
-    assert tool.view.cal == {"centre_us": 1500, "trim": 0, "dir": 1, "min_us": 600, "max_us": 2400}
+    assert tool.view.cal == {"centre_us": 1500, "ref_deg": "0.00", "trim": 0, "dir": 1, "min_us": 600, "max_us": 2400}
+
+
+def test_key_0_puts_the_tibia_at_its_reference_where_trim_has_room_both_ways():
+    fake, tool = started()
+    press(tool, "5", "t")  # leg 5 tibia: robots/default_cal.py centre 1500 us at -90 deg, direction -1
+    assert tool.view.cal["ref_deg"] == "-90.00" and tool.view.cal["centre_us"] == 1500
+    fake.lines.clear()
+    press(tool, "0")
+    assert fake.lines == ["joint 5 tibia -90.00", "cal 5 tibia"]
+    assert tool.view.angles[2] == "-90.00" and tool.view.pulses[2] == 1500
+    press(tool, "}", "}")  # +10 us twice, then back down past the reference pulse
+    assert tool.view.cal["trim"] == 20 and tool.view.pulses[2] == 1520
+    press(tool, "{", "{", "{", "{")
+    assert tool.view.cal["trim"] == -20 and tool.view.pulses[2] == 1480
+    assert "cal    tibia: centre 1500 at -90.00 deg trim -20 dir -1 range 600..2400 us" in jog.render(tool.view)
 
 
 def test_arrows_move_the_picked_leg_by_the_step_and_nothing_else():
@@ -57,9 +72,9 @@ def test_arrows_move_the_picked_leg_by_the_step_and_nothing_else():
     press(tool, "UP")
     assert fake.lines == ["nudge 2 10 0 0"]
     t1, t2, t3 = assert_leg(tool.view, (140.0, 0.0, -80.0))
-    # Leg 2 (pico rows: coxa 1500 +1, femur 1500 +1, tibia 2400 +1; 10 us per degree): half a us of
+    # Leg 2 (coxa 1500 +1, femur 1500 +1, tibia 1500 at -90 deg +1; 10 us per degree): half a us of
     # rounding plus the angle error (0.02 deg = 0.2 us).
-    want = (1500 + 10 * t1, 1500 + 10 * t2, 2400 + 10 * t3)
+    want = (1500 + 10 * t1, 1500 + 10 * t2, 1500 + 10 * (t3 + 90))
     assert all(abs(p - w) <= 0.5 + 0.2 for p, w in zip(tool.view.pulses, want, strict=True)), (tool.view.pulses, want)
     assert [fake.leg_line(n) for n in (1, 3, 4, 5, 6)] == before
     press(tool, "-", "-", "-", "-", "LEFT", "PGDN", "RIGHT", "RIGHT", "DOWN", "PGUP")  # step 0.5 mm
@@ -86,11 +101,11 @@ def test_servo_nudges_in_microseconds_and_trim():
         "pulse 3 femur %d" % (p0[1] + 99),
     ]
     assert tool.view.pulses == (p0[0], p0[1] + 99, p0[2])
-    # 99 us at 10 us per degree is 9.90 degrees more femur (pico leg 3 femur: direction +1).
+    # 99 us at 10 us per degree is 9.90 degrees more femur (leg 3 femur: direction +1).
     assert abs(float(tool.view.angles[1]) - (reference.ik(130.0, 0.0, -80.0, **LEG)[1] + 9.9)) <= 0.02
     press(tool, "0")
     assert tool.view.angles[1] == "0.00" and tool.view.pulses[1] == 1500
-    assert tool.view.message == "joint 3 femur 0: ok"  # the key's own command, not the refresh after it
+    assert tool.view.message == "joint 3 femur 0.00: ok"  # the key's own command, not the refresh after it
     press(tool, ">", "}")  # trim +5 us
     assert fake.lines[-2:] == ["trim 3 femur 5", "get 3"]
     assert tool.view.cal["trim"] == 5 and tool.view.pulses[1] == 1505
@@ -262,7 +277,7 @@ def test_jog_end_to_end_through_the_virtual_board(tmp_path):
         assert_leg(tool.view, (130.0, 0.0, -80.0))
         press(tool, "+", "+", "UP")
         t1, t2, t3 = assert_leg(tool.view, (140.0, 0.0, -80.0))
-        want = (1500 + 10 * t1, 1500 + 10 * t2, 2400 + 10 * t3)  # pico leg 2 rows, 10 us per degree
+        want = (1500 + 10 * t1, 1500 + 10 * t2, 1500 + 10 * (t3 + 90))  # robots/default_cal.py leg 2, 10 us per degree
         assert all(abs(p - w) <= 0.7 for p, w in zip(tool.view.pulses, want, strict=True)), tool.view.pulses
         # The model holds 12-bit counts of 4.88 us at 50 Hz: within half a count of the pulse sent.
         got = settled(link, lambda g: abs(g[4] - tool.view.pulses[1]) <= 2.5)
@@ -310,7 +325,7 @@ def test_jog_in_a_terminal_on_the_virtual_board(tmp_path):
         assert "leg 4" in shown and "foot   x    120.0  y     10.0  z    -65.0" in shown, shown
         pulses = [ln for ln in shown.splitlines() if ln.startswith("pulses")][0].split()
         t1, t2, t3 = reference.ik(120.0, 10.0, -65.0, **LEG)
-        want = (1500 + 10 * t1, 1500 - 10 * t2, 600 - 10 * t3)  # pico leg 4: coxa +1, femur and tibia mirrored
+        want = (1500 + 10 * t1, 1500 - 10 * t2, 600 - 10 * t3)  # default_cal leg 4: coxa +1, femur, tibia mirrored
         assert all(abs(int(p) - w) <= 0.7 for p, w in zip(pulses[2:7:2], want, strict=True)), (pulses, want)
         tmux("send-keys", "-t", "jog", "q")
         end = time.monotonic() + 5

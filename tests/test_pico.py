@@ -154,7 +154,7 @@ def load(names):
 # released module alive for the conservative collector.
 load(%r)
 import runner
-runner.release("hexapod.board", "hexapod.robotfile", "robots.default")  # as main.main does
+runner.release(*runner.BOOT_ONLY, "robots.default", "robots.default_cal")  # as main.main does
 gc.collect()
 print("resident", gc.mem_free())
 load(%r)
@@ -182,7 +182,7 @@ load(%r)
     # 2026-11-27 it holds for the running set: main.main forgets the board file's validator and the
     # robot file once the runner is built (runner.release); `selftest` comes and goes on demand.)
     assert free0 > 200000 and resident > 90000, (free0, left, resident)
-    assert resident - left > 7000  # the validator's and the robot file's code really went
+    assert resident - left > 7000  # the validators' and the robot's files' code really went
     # While `selftest` runs its checks (never during a walk: nothing else needs the heap then),
     # 3/16 of the heap (45 KB) is still free: the new qstr pool its names may open included.
     assert in_selftest > 45000, in_selftest

@@ -23,8 +23,9 @@ import json, sys, time
 from machine import I2C, Pin
 from drivers import pca9685
 from hexapod import board as boards
+from hexapod import robotcal
 board = boards.load("pico")
-table = boards.servo_table(board)
+table = boards.servo_table(board, robotcal.servo_maps(robotcal.load("default")))
 bus = board["i2c"]
 i2c = I2C(bus["id"], scl=Pin(bus["scl"]), sda=Pin(bus["sda"]), freq=bus["freq"])
 power = Pin(%d, Pin.OUT, value=0)

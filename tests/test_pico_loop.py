@@ -106,9 +106,10 @@ def test_main_py_with_a_calibration_file_boots_relaxed_too(tmp_path):
     # no pulse before `stand` (issue 20), only the notice says why differently.
     import calstore
 
-    from hexapod import board as boards
+    from hexapod import robotcal
 
-    rows = [(0, m.direction, m.min_us, m.max_us) for _, _, m in boards.servo_table(boards.load("pico"))]
+    # the robot's calibration rows (robots/default_cal.py), trim 0
+    rows = [(0, m.direction, m.min_us, m.max_us) for m in robotcal.servo_maps(robotcal.load("default"))]
     cal = tmp_path / calstore.FILE
     cal.write_text(calstore.encode(rows))
     with pico.flashed(extra=[(str(cal), calstore.FILE)]) as fs:

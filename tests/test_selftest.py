@@ -26,13 +26,13 @@ HINT_0x41 = "is its A0 jumper bridged (and no other)? is its VCC on 3V3? SDA and
 
 
 def cal_crc():
-    """The CRC of the scenario's calibration file (the pico board file's rows, trim 0), by hand."""
-    # pico.py: right legs all direction 1; left legs coxa 1, femur and tibia -1; 600..2400 us
+    """The CRC of the scenario's calibration file (the default robot's rows, trim 0), by hand."""
+    # robots/default_cal.py: right legs all direction 1; left legs coxa 1, femur and tibia -1; 600..2400 us
     rows = []
     for k in range(18):
         d = -1 if k >= 9 and k % 3 else 1
         rows.append("%d %s 0 %d 600 2400\n" % (k // 3 + 1, ("coxa", "femur", "tibia")[k % 3], d))
-    body = "hexapod-cal 1\n" + "".join(rows)
+    body = "hexapod-cal 2\n" + "".join(rows)  # save writes version 2 (the tibia at its -90 degree reference)
     return binascii.crc_hqx(body.encode(), 0xFFFF)
 
 
@@ -116,7 +116,7 @@ def test_selftest_standing_moves_no_servo(rt):
         (
             "cal_corrupt",
             [
-                "err calibration hexapod_cal.txt checksum mismatch (corrupt): the board file's defaults are in use "
+                "err calibration hexapod_cal.txt checksum mismatch (corrupt): the robot file's defaults are in use "
                 "at boot (in force now: defaults): calibrate and 'save' (docs/jog.md)",
                 "err selftest 14 checks, 1 failed",
             ],
@@ -124,7 +124,7 @@ def test_selftest_standing_moves_no_servo(rt):
         (
             "cal_missing",
             [
-                "err calibration no hexapod_cal.txt: the board file's defaults are in use at boot (in force now: "
+                "err calibration no hexapod_cal.txt: the robot file's defaults are in use at boot (in force now: "
                 "defaults): calibrate and 'save' (docs/jog.md)",
                 "err selftest 14 checks, 1 failed",
             ],
@@ -185,7 +185,7 @@ def test_servo_sweep_moves_only_that_leg_slowly_and_comes_back(rt):
 
 def test_servo_sweep_refused_by_a_calibrated_range_goes_back(rt):
     p, r1, lines, pulses, mode = rt.with_heapsize("4m").call("scenarios.selftest:sweep_refused")
-    assert r1 == ["ok leg 2 joint femur centre_us 1500 trim 0 dir 1 min_us 600 max_us %d" % (p + 50)]
+    assert r1 == ["ok leg 2 joint femur centre_us 1500 ref_deg 0.00 trim 0 dir 1 min_us 600 max_us %d" % (p + 50)]
     assert lines[0].startswith("ok servo 2 coxa swept ")
     # 50 us of room is 5 degrees; the first step past it (5.2 degrees, 13 steps of 0.4) is refused
     assert lines[1].startswith("err servo 2 femur: refused at ")

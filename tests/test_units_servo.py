@@ -65,6 +65,24 @@ def test_seed001_pulse_map():
     assert r.clamp(3000) == 2300 and r.clamp(10) == 700 and r.clamp(1500) == 1500
 
 
+def test_a_reference_angle_changes_the_reference_not_the_mapping():
+    # seed 001's tibia: 2400 us at 0 deg, 10 us per degree (1500 us at -90): the same pulse for every
+    # angle whether the calibration point is 0 or -90 deg, on both mounting directions.
+    for old, new in (
+        (ServoMap(centre_us=2400), ServoMap(centre_us=1500, ref_cdeg=-9000)),
+        (ServoMap(centre_us=600, direction=-1), ServoMap(centre_us=1500, direction=-1, ref_cdeg=-9000)),
+    ):
+        assert [new.raw(a) for a in range(-18000, 1)] == [old.raw(a) for a in range(-18000, 1)]
+        assert new.raw(-9000) == 1500 and new.centre_us == 1500 and old.centre_us in (600, 2400)
+    s = ServoMap(centre_us=1500, ref_cdeg=-9000)
+    s.centre_us = 1510  # a trim of +10 us at the reference: every angle 10 us more
+    assert (s.raw(-9000), s.raw(0), s.raw(-18000)) == (1510, 2410, 610)
+    s.direction = -1  # mirrored about the reference: -90 deg keeps its pulse
+    assert (s.raw(-9000), s.raw(0), s.raw(-18000), s.centre_us) == (1510, 610, 2410, 1510)
+    assert s.raw_at(-8000, 1500, 1) == 1600 and s.raw_at(-8000, 1500, -1) == 1400  # another calibration's pulse
+    assert s.angle(s.raw(-4500)) == -4500
+
+
 @pytest.mark.parametrize(
     "kwargs,message",
     [
@@ -79,6 +97,14 @@ def test_seed001_pulse_map():
         ({"us_per_degree": 10.0}, "us_per_degree: 10.0 is outside"),
         ({"centre_us": 1500.5}, "centre_us: 1500.5 is outside"),
         ({"min_us": "600"}, "min_us: '600' is outside"),
+        ({"ref_cdeg": 18001}, "ref_cdeg: 18001 is outside -18000..18000"),
+        ({"ref_cdeg": -18001}, "ref_cdeg: -18001 is outside"),
+        ({"ref_cdeg": "-90"}, "ref_cdeg: '-90' is outside"),
+        ({"ref_cdeg": True}, "ref_cdeg: True is outside"),
+        ({"ref_cdeg": -9000.0}, "ref_cdeg: -9000.0 is outside"),
+        ({"ref_cdeg": -9005}, "ref_cdeg: -9005 at 1000"),
+        ({"ref_cdeg": 3, "us_per_degree": 1000}, "ref_cdeg: 3 at 1000"),
+        ({"ref_cdeg": 9000, "centre_us": 2450}, "need min_us <= centre_us <= max_us"),
     ],
 )
 def test_bad_servo_calibration_is_refused(kwargs, message):

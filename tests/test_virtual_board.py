@@ -88,14 +88,16 @@ def test_calibration_survives_a_restart_through_the_vms_filesystem(board, tmp_pa
     assert sorted(os.listdir(tmp_path)) == ["hexapod_cal.txt"]
     link.close()
     path2, link2 = board()
-    assert link2.request("cal 2 femur") == "ok leg 2 joint femur centre_us 1500 trim -40 dir 1 min_us 600 max_us 2400"
+    assert link2.request("cal 2 femur") == (
+        "ok leg 2 joint femur centre_us 1500 ref_deg 0.00 trim -40 dir 1 min_us 600 max_us 2400"
+    )
     assert link2.request("cal 2 tibia").endswith("min_us 700 max_us 2350")
     assert " cal file boot " in link2.request("status")
     (tmp_path / "hexapod_cal.txt").write_text("hexapod-cal 1\ngarbage\n")
     link2.close()
     _, link3 = board()
     assert link3.request("cal 2 femur").endswith("trim 0 dir 1 min_us 600 max_us 2400")
-    assert "cal: hexapod_cal.txt truncated (no checksum line); the board file's calibration is in use" in link3.other
+    assert "cal: hexapod_cal.txt truncated (no checksum line); the robot file's calibration is in use" in link3.other
     link3.close()
 
 

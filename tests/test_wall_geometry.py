@@ -13,7 +13,7 @@ import pytest
 from scenarios.rig import stand
 
 import robots.default
-from hexapod import follow, geometry, tick
+from hexapod import follow, geometry, sensors, tick
 from hexapod_host.testing.reference import fk
 
 G = geometry.load(robots.default)
@@ -47,7 +47,7 @@ def envelope(commands, ticks=150):
     return points
 
 
-def clearance(points, side, angle_deg, mounts=follow.DEFAULT_MOUNTS):
+def clearance(points, side, angle_deg, mounts=sensors.DEFAULT_MOUNTS):
     """Smallest distance (mm) from the wall to any point, with the side's nearer sonar at 8 cm."""
     sign = 1 if side == "left" else -1
     a = math.radians(angle_deg)
@@ -84,5 +84,5 @@ def test_an_8_cm_reading_keeps_every_foot_and_link_clear(walks, side):
 def test_the_old_mounts_would_put_the_wall_inside_the_feet(walks):
     """The check has teeth: side sonars 65 mm out (the first board files) fail it."""
     straight, _ = walks
-    old = ((1300, 0, 0), (700, 650, 9000), (-700, 650, 9000)) + follow.DEFAULT_MOUNTS[3:]
+    old = ((1300, 0, 0), (700, 650, 9000), (-700, 650, 9000)) + sensors.DEFAULT_MOUNTS[3:]
     assert clearance(straight, "left", 0, old) == pytest.approx(65 + 80 - 207.5, abs=0.2)

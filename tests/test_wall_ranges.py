@@ -13,7 +13,7 @@ from tests.test_leg_ranges import SMALL, Checker
 from tests.test_tick_ranges import InstrumentedCore
 
 SCRIPT = """
-from hexapod import follow, pid, tick
+from hexapod import follow, limits, pid, tick
 
 for gains in ((pid.GAIN_MAX,) * 3, (1, pid.GAIN_MAX, 0), (pid.GAIN_MAX, 0, pid.GAIN_MAX)):
     p = pid.PID(*gains, out_max=pid.OUT_LIMIT, i_max=pid.OUT_LIMIT)
@@ -102,7 +102,7 @@ def drive(robot, side, setpoint, speed, frames, t, form="yaw"):
 
 
 for side in ("left", "right"):
-    for setpoint, speed in ((follow.SETPOINT_MIN, 3000), (follow.SETPOINT_MAX, 3000), (800, follow.SPEED_MIN)):
+    for setpoint, speed in ((limits.SETPOINT_MIN, 3000), (limits.SETPOINT_MAX, 3000), (800, limits.SPEED_MIN)):
         f, total = drive(FakeRobot(), side, setpoint, speed, 1400, (1 << 30) - 14000)
         out((f.mode, total, f.turned))
 
@@ -116,7 +116,7 @@ def full_turn(walker, left, right, out):
 
 
 follow.sweep_command = full_turn
-f, total = drive(FakeRobot(), "right", follow.SETPOINT_MAX, 3000, 1400, 0, "sweeps")
+f, total = drive(FakeRobot(), "right", limits.SETPOINT_MAX, 3000, 1400, 0, "sweeps")
 out((f.mode, total, f.turned))
 """
 

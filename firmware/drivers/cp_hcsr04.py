@@ -1,7 +1,7 @@
 """HC-SR04 on CircuitPython through Adafruit's adafruit_hcsr04, behind drivers.hcsr04's interface.
 
-Same units and status codes as drivers.hcsr04 (0.1 mm, 0.01 degC, us), same median filter and
-round robin. What Adafruit's library cannot tell apart is reported as NO_ECHO: its
+Same units as drivers.hcsr04 (0.1 mm, 0.01 degC, us), the status codes of hexapod.sensors, same
+median filter and round robin. What Adafruit's library cannot tell apart is reported as NO_ECHO: its
 RuntimeError("Timed out") covers a missing echo, an echo stuck high and an echo longer than
 its timeout. It assumes 340 m/s; the distance is rescaled to the configured temperature.
 Floats are unavoidable here (the library returns cm as a float), so unlike the MicroPython
@@ -10,13 +10,8 @@ driver a ping allocates.
 
 import adafruit_hcsr04
 
-from drivers.hcsr04 import (
-    MIN_CYCLE_US,
-    NO_ECHO,
-    WAIT,
-    MedianRanger,
-    speed_x100,
-)
+from drivers.hcsr04 import MIN_CYCLE_US, MedianRanger, speed_x100
+from hexapod.sensors import NO_ECHO, WAIT
 
 ADAFRUIT_SPEED_X100 = 34000000  # adafruit_hcsr04: distance_cm = pulse_us * 0.017, i.e. 340 m/s
 ADAFRUIT_MIN_TIMEOUT_S = 0.05  # the library's advice: a shorter timeout cuts off the 38 ms no-echo hold

@@ -1,7 +1,7 @@
 """HC-SR04 on CircuitPython that never waits for its echo: pulseio.PulseIn times it in the background.
 
-Same interface, units and status codes as drivers.hcsr04 (MedianRanger: ping, measure_into,
-max_block_us; 0.1 mm, 0.01 degC, us). On its slot a sensor reads the echo PulseIn captured
+Same interface and units as drivers.hcsr04 (MedianRanger: ping, measure_into, max_block_us;
+0.1 mm, 0.01 degC, us), the status codes of hexapod.sensors. On its slot a sensor reads the echo PulseIn captured
 since its previous ping, then fires the next ping (10 us trigger) and returns: it blocks for
 the trigger only, where adafruit_hcsr04 waits up to twice its 50 ms timeout.
 
@@ -29,7 +29,8 @@ import microcontroller
 import pulseio
 from micropython import const
 
-from drivers.hcsr04 import NO_ECHO, OUT_OF_RANGE, TRIGGER_US, WAIT, MedianRanger
+from drivers.hcsr04 import TRIGGER_US, MedianRanger
+from hexapod.sensors import NO_ECHO, OUT_OF_RANGE, WAIT
 
 MAXLEN = const(4)  # pulse widths PulseIn keeps: ours, then room to see a stray one
 MIN_CYCLE_MS = const(60)  # datasheet: >= 60 ms between pings of one module

@@ -3,7 +3,8 @@ filter, a five-sensor round robin.
 
 Units: distances in 0.1 mm, temperature in 0.01 degC, pulse and block times in us, tick in ms.
 Pins, the clock (`time` on a board, `_stub_clock` in tests) and time_pulse_us are passed in.
-A ping reports a status; a distance is written only with OK, never in place of a fault.
+A ping reports a status; a distance is written only with OK, never in place of a fault. The
+sonar order, names and status codes are the sensor contract's (hexapod.sensors).
 
 With irq=True (main.py) the echo pin's IRQ stores ticks_us() at the echo's rise and fall into
 a preallocated array (a hard IRQ: no allocation), so nothing waits for the echo: the round robin
@@ -16,18 +17,46 @@ from array import array
 
 from micropython import const
 
-OK = const(0)
-OUT_OF_RANGE = const(1)  # echo longer than max_range allows (incl. the module's 38 ms no-echo hold)
-NO_ECHO = const(2)  # echo never rose within the timeout (missing echo, unplugged module)
-STUCK = const(3)  # echo already high before the trigger: nothing fired
-TOO_CLOSE = const(4)  # echo shorter than the module's 2 cm minimum
-WAIT = const(5)  # asked again within 60 ms of its last ping: nothing fired, buffers untouched
-PENDING = const(6)  # fired, the echo still within its timeouts: nothing to report yet
-NO_DISTANCE = const(-1)  # what dist[i] holds whenever status[i] is not OK
+from hexapod.sensors import (  # noqa: F401 (the contract's names, importable from the driver too)
+    FRONT,
+    LEFT_FRONT,
+    LEFT_REAR,
+    MIN_RANGE,
+    NO_DISTANCE,
+    NO_ECHO,
+    OK,
+    OUT_OF_RANGE,
+    PENDING,
+    RIGHT_FRONT,
+    RIGHT_REAR,
+    STUCK,
+    TOO_CLOSE,
+    WAIT,
+)
 
-STATUS_NAMES = ("ok", "out of range", "no echo", "echo stuck high", "too close", "wait", "pending")
+# The contract's codes copied as private constants, folded into the code (the ping's path reads
+# them every frame; an imported name is a dictionary lookup each time). The import above keeps
+# them importable from here; tests/test_viper_twins.py checks each copy against its source.
+_FRONT = const(0)  # hexapod.sensors.FRONT
+_LEFT_FRONT = const(1)  # hexapod.sensors.LEFT_FRONT
+_LEFT_REAR = const(2)  # hexapod.sensors.LEFT_REAR
+_RIGHT_FRONT = const(3)  # hexapod.sensors.RIGHT_FRONT
+_RIGHT_REAR = const(4)  # hexapod.sensors.RIGHT_REAR
+_MIN_RANGE = const(200)  # hexapod.sensors.MIN_RANGE
+_NO_DISTANCE = const(-1)  # hexapod.sensors.NO_DISTANCE
+_NO_ECHO = const(2)  # hexapod.sensors.NO_ECHO
+_OK = const(0)  # hexapod.sensors.OK
+_OUT_OF_RANGE = const(1)  # hexapod.sensors.OUT_OF_RANGE
+_PENDING = const(6)  # hexapod.sensors.PENDING
+_STUCK = const(3)  # hexapod.sensors.STUCK
+_TOO_CLOSE = const(4)  # hexapod.sensors.TOO_CLOSE
+_WAIT = const(5)  # hexapod.sensors.WAIT
 
-MIN_RANGE = const(200)  # 2 cm
+# What the statuses mean here: OUT_OF_RANGE, an echo longer than max_range allows (incl. the
+# module's 38 ms no-echo hold); NO_ECHO, no rise within the timeout; STUCK, the echo high before
+# the trigger (nothing fired); TOO_CLOSE, an echo under MIN_RANGE (2 cm); WAIT, asked again within
+# 60 ms of its last ping (nothing fired, buffers untouched); PENDING, fired and its echo still
+# within its timeouts. dist[i] holds NO_DISTANCE whenever status[i] is not OK.
 MAX_RANGE = const(40000)  # 4 m
 TRIGGER_US = const(10)
 MIN_CYCLE_US = const(60000)  # datasheet: >= 60 ms between pings of one module
@@ -35,14 +64,8 @@ RISE_US = const(1000)  # allowance for the 8-cycle 40 kHz burst before echo rise
 _SHIFT = const(14)
 _HALF = const(8192)  # rounding for >> _SHIFT
 
-FRONT = const(0)
-LEFT_FRONT = const(1)
-LEFT_REAR = const(2)
-RIGHT_FRONT = const(3)
-RIGHT_REAR = const(4)
-SENSOR_NAMES = ("front", "left_front", "left_rear", "right_front", "right_rear")  # seed 000, Fig. 2
 # Pairs that face the same wall or corner: each can hear the other's burst.
-NEIGHBOURS = ((FRONT, LEFT_FRONT), (FRONT, RIGHT_FRONT), (LEFT_FRONT, LEFT_REAR), (RIGHT_FRONT, RIGHT_REAR))
+NEIGHBOURS = ((_FRONT, _LEFT_FRONT), (_FRONT, _RIGHT_FRONT), (_LEFT_FRONT, _LEFT_REAR), (_RIGHT_FRONT, _RIGHT_REAR))
 
 
 def speed_x100(temp_centi_c):
@@ -66,11 +89,11 @@ class MedianRanger:
 
     def __init__(self, samples, max_range, temp_centi_c):
         _check_int("samples", samples, 1, 9, "pings")
-        _check_int("max_range", max_range, MIN_RANGE, MAX_RANGE, "(0.1 mm)")
+        _check_int("max_range", max_range, _MIN_RANGE, MAX_RANGE, "(0.1 mm)")
         _check_int("temp_centi_c", temp_centi_c, -4000, 6000, "(0.01 degC)")
         self.max_range = max_range
-        self.distance = NO_DISTANCE  # 0.1 mm, valid after a ping returned OK
-        self._win = array("i", [NO_DISTANCE] * samples)
+        self.distance = _NO_DISTANCE  # 0.1 mm, valid after a ping returned OK
+        self._win = array("i", [_NO_DISTANCE] * samples)
         self._sorted = array("i", [0] * samples)
         self._head = 0
         self.set_temperature(temp_centi_c)
@@ -96,11 +119,11 @@ class MedianRanger:
     def accept(self, d):
         """Status of a measured distance d (0.1 mm); OK keeps it in self.distance."""
         if d > self.max_range:
-            return OUT_OF_RANGE
-        if d < MIN_RANGE:
-            return TOO_CLOSE
+            return _OUT_OF_RANGE
+        if d < _MIN_RANGE:
+            return _TOO_CLOSE
         self.distance = d
-        return OK
+        return _OK
 
     def measure_into(self, dist, status, i):
         """Ping; write status[i] and dist[i] (median 0.1 mm, or NO_DISTANCE); return the status.
@@ -110,16 +133,16 @@ class MedianRanger:
         return self._record(self.ping(), dist, status, i)
 
     def _record(self, s, dist, status, i):
-        if s == WAIT:
+        if s == _WAIT:
             return s
         win = self._win
-        win[self._head] = self.distance if s == OK else NO_DISTANCE
+        win[self._head] = self.distance if s == _OK else _NO_DISTANCE
         self._head += 1
         if self._head == len(win):
             self._head = 0
         status[i] = s
-        if s != OK:
-            dist[i] = NO_DISTANCE
+        if s != _OK:
+            dist[i] = _NO_DISTANCE
         elif len(win) == 1:
             dist[i] = self.distance  # one sample: its own median (a call less: 0.15 ms on a Pico)
         else:
@@ -174,7 +197,7 @@ class HCSR04(MedianRanger):
         self._pulse = time_pulse_us
         self._last = 0  # ticks_us of the last trigger
         self._fired = False
-        self._state = WAIT  # of the ping fire() sent: PENDING while listening, else what to report
+        self._state = _WAIT  # of the ping fire() sent: PENDING while listening, else what to report
         self._t0 = 0  # ticks_us when the trigger fell: the rise timeout counts from here
         # The IRQ's only memory: edges since the trigger (0..3), ticks_us at the rise and the fall.
         self._edges = array("i", [0, 0, 0])
@@ -192,10 +215,10 @@ class HCSR04(MedianRanger):
         clock = self._clock
         now = clock.ticks_us()
         if self._fired and clock.ticks_diff(now, self._last) < MIN_CYCLE_US:
-            return WAIT
+            return _WAIT
         self._edges[0] = 0
         if self._echo.value():
-            return STUCK
+            return _STUCK
         t = self._trigger
         t.value(0)
         clock.sleep_us(2)
@@ -204,7 +227,7 @@ class HCSR04(MedianRanger):
         t.value(0)
         self._last = now
         self._fired = True
-        return PENDING
+        return _PENDING
 
     def fire(self):
         """Trigger a ping and return at once: PENDING (the IRQ listens), or WAIT / STUCK, which
@@ -218,30 +241,30 @@ class HCSR04(MedianRanger):
         """Status of the ping fire() sent, from the IRQ's timestamps (as time_pulse_us would
         judge it); PENDING while the echo may still rise or fall; OK sets self.distance."""
         s = self._state
-        if s != PENDING:
+        if s != _PENDING:
             return s
         clock = self._clock
         e = self._edges
         n = e[0]
         to = self.timeout_us
         if n == 0:
-            return PENDING if clock.ticks_diff(clock.ticks_us(), self._t0) < to else NO_ECHO
+            return _PENDING if clock.ticks_diff(clock.ticks_us(), self._t0) < to else _NO_ECHO
         rise = clock.ticks_diff(e[1], self._t0)
         if rise < 0 or rise >= to:  # rose before our trigger fell (not ours), or too late
-            return NO_ECHO
+            return _NO_ECHO
         if n == 1:
-            return PENDING if clock.ticks_diff(clock.ticks_us(), e[1]) < to else OUT_OF_RANGE
+            return _PENDING if clock.ticks_diff(clock.ticks_us(), e[1]) < to else _OUT_OF_RANGE
         us = clock.ticks_diff(e[2], e[1])
         if us >= to:
-            return OUT_OF_RANGE
+            return _OUT_OF_RANGE
         return self.accept(self.to_distance(us))
 
     def _wait_result(self):
         s = self.result()
-        while s == PENDING:  # only when asked early (a ping(), or a tick sooner than max_block_us)
+        while s == _PENDING:  # only when asked early (a ping(), or a tick sooner than max_block_us)
             self._clock.sleep_us(100)
             s = self.result()
-        self._state = WAIT  # reported once
+        self._state = _WAIT  # reported once
         return s
 
     def collect_into(self, dist, status, i):
@@ -256,13 +279,13 @@ class HCSR04(MedianRanger):
             self.fire()
             return self._wait_result()
         s = self._fire()
-        if s != PENDING:
+        if s != _PENDING:
             return s
         us = self._pulse(self._echo, 1, self.timeout_us)
         if us == -2:
-            return NO_ECHO
+            return _NO_ECHO
         if us < 0:
-            return OUT_OF_RANGE
+            return _OUT_OF_RANGE
         return self.accept(self.to_distance(us))
 
 

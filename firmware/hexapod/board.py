@@ -1,76 +1,60 @@
 """Board files: load one from boards/ and check it whole before any pin or bus is touched.
 
-Pure: no hardware imports. A board file is plain data, a dict named BOARD (see boards/pico.py).
-Any mistake raises one ValueError that names the board, where in the file, what is wrong and
-what is allowed; nothing else ever escapes from validate(). Units as everywhere: lengths in
-0.1 mm, headings in centidegrees (counter-clockwise from forward), pulses in us, rates in Hz.
+Pure: no hardware imports. A board file is plain data, a dict named BOARD (see boards/pico.py):
+what belongs to the board, its runtime, the code emitter of its .mpy files (arch), the I2C bus,
+the PCA9685 chips, which chip channel drives which servo, the sonars' pins. What belongs to the
+robot (each servo's calibration, where each sonar sits) is in robots/<robot>_cal.py
+(hexapod.robotcal). Any mistake raises one ValueError that names the board, where in the
+file, what is wrong and what is allowed; nothing else ever escapes from validate(). Units as
+everywhere: pulses in us, rates in Hz.
 """
 
-from hexapod.servo import ServoMap
+from micropython import const
+
+from hexapod.check import Check, is_identifier
+from hexapod.limits import check_request
+from hexapod.sensors import SENSOR_NAMES
 
 JOINTS = ("coxa", "femur", "tibia")
-SENSORS = ("front", "left_front", "left_rear", "right_front", "right_rear")  # drivers.hcsr04 order
 RUNTIMES = ("micropython", "circuitpython")
+# mpy-cross -march names in the order of MicroPython's .mpy header (arch number = index + 1).
+ARCHES = ("x86", "x64", "armv6", "armv6m", "armv7m", "armv7em", "armv7emsp", "armv7emdp", "xtensa", "xtensawin")
+ARCHES += ("rv32imc",)
 LEGS = 6
+# The private tables below are const(): folded into the code, no name kept on the board (each
+# module-level name is a qstr, which stays in the heap after runner.release forgets this module).
 
-_TOP = ("name", "runtime", "i2c", "pca9685", "servos", "sensors")
-_OPTIONAL = ("notes", "follow", "watchdog_ms", "on_exit", "walk_timeout_ms", "boot", "battery")
+_TOP = const(("name", "runtime", "arch", "i2c", "pca9685", "channels", "sonars"))
+_OPTIONAL = const(("notes", "follow", "watchdog_ms", "on_exit", "walk_timeout_ms", "boot", "battery"))
 ON_EXIT = ("relax", "hold")  # what leaving the loop (Ctrl-C) does to the servos
 # What power-up does: stay relaxed (no pulse until `stand`), or stand, and only with a valid
 # calibration file (runner.power_up).
 BOOT = ("relaxed", "stand")
 # The battery monitor (hexapod.battery): the ADC pin and the divider's ratio; the cell count
 # and the per-cell thresholds default to a 2S LiPo's (hexapod.battery says where they come from).
-_BATTERY = ("pin", "divider_permille")
-_BATTERY_OPTIONAL = ("cells", "cell_warn_mv", "cell_cutoff_mv", "cell_resume_mv")
-_FOLLOW = ("side", "setpoint")
-_FOLLOW_OPTIONAL = ("speed", "form")
-_I2C = ("id", "sda", "scl", "freq")
-_PCA = ("pwm_hz", "chips")
-_CHIP = ("address", "osc_hz")
-_SERVO = "(leg, joint, address, channel, centre_us, direction, min_us, max_us)"
-_SENSOR = "(name, trigger, echo, x, y, heading)"
-_ALLCALL = 0x70  # a PCA9685 answers there by default (MODE1.ALLCALL): no chip may use it
+_BATTERY = const(("pin", "divider_permille"))
+_BATTERY_OPTIONAL = const(("cells", "cell_warn_mv", "cell_cutoff_mv", "cell_resume_mv"))
+_FOLLOW = const(("side", "setpoint"))
+_FOLLOW_OPTIONAL = const(("speed", "form"))
+_I2C = const(("id", "sda", "scl", "freq"))
+_PCA = const(("pwm_hz", "chips"))
+_CHIP = const(("address", "osc_hz"))
+_ALLCALL = const(0x70)  # a PCA9685 answers there by default (MODE1.ALLCALL): no chip may use it
 
 
-class _Check:
-    """Carries the board's name into every message."""
+class _Check(Check):
+    """A board file's checks: its name in every message, and pins."""
 
     def __init__(self, board):
-        self.name = "?"
-        if isinstance(board, dict) and isinstance(board.get("name"), str) and board["name"]:
-            self.name = board["name"]
-
-    def fail(self, where, msg):
-        raise ValueError("board %r: %s: %s" % (self.name, where, msg))
-
-    def dict_of(self, where, v, required, optional=()):
-        if not isinstance(v, dict):
-            self.fail(where, "expected a dict, got %s" % (type(v).__name__,))
-        for k in v:
-            if k not in required and k not in optional:
-                self.fail(where, "unknown key %r (allowed: %s)" % (k, ", ".join(required + optional)))
-        for k in required:
-            if k not in v:
-                self.fail(where, "missing key %r" % (k,))
-        return v
-
-    def seq(self, where, v, length=-1, shape=""):
-        if not isinstance(v, (tuple, list)):
-            self.fail(where, "expected a tuple %s, got %s" % (shape, type(v).__name__))
-        if length >= 0 and len(v) != length:
-            self.fail(where, "expected %d items %s, got %d" % (length, shape, len(v)))
-        return v
-
-    def int_in(self, where, v, lo, hi, unit=""):
-        if not isinstance(v, int) or isinstance(v, bool) or v < lo or v > hi:
-            self.fail(where, "%r, allowed %d..%d%s" % (v, lo, hi, unit))
-        return v
+        name = "?"
+        if isinstance(board, dict) and is_identifier(board.get("name")):
+            name = board["name"]
+        Check.__init__(self, "board", name)
 
     def pin(self, where, v, runtime):
         if v is None:
             self.fail(where, "no pin given")
-        if isinstance(v, str) and v and _is_identifier(v):
+        if isinstance(v, str) and is_identifier(v):
             return v
         if runtime == "micropython" and isinstance(v, int) and not isinstance(v, bool) and 0 <= v <= 63:
             return v
@@ -79,24 +63,33 @@ class _Check:
         self.fail(where, "%r, allowed a GPIO number 0..63 or a pin name" % (v,))
 
 
-def _is_identifier(s):
-    for i in range(len(s)):
-        c = s[i]
-        if not (c == "_" or "a" <= c <= "z" or "A" <= c <= "Z" or (i and "0" <= c <= "9")):
-            return False
-    return True
-
-
 def validate(board):
     """Check a BOARD dict; return it unchanged, or raise ValueError naming the first mistake."""
     ck = _Check(board)
+    if isinstance(board, dict):
+        # Keys of the board files before the robot's data moved out (docs/wiring.md says how to move
+        # them), written out here: a module-level name would stay in the board's heap (a qstr).
+        for key, why in (
+            (
+                "servos",
+                'moved: the channel map stays here as "channels"; the calibration moved to robots/<robot>_cal.py',
+            ),
+            ("sensors", 'moved: "sonars": (name, trigger, echo) stay here; the mounts moved to robots/<robot>_cal.py'),
+        ):
+            if key in board:
+                ck.fail(key, why + " (docs/wiring.md)")
     ck.dict_of("board", board, _TOP, _OPTIONAL)
     name = board["name"]
-    if not isinstance(name, str) or not name or not _is_identifier(name):
+    if not is_identifier(name):
         ck.fail("name", "%r, allowed a non-empty identifier" % (name,))
     runtime = board["runtime"]
     if runtime not in RUNTIMES:
         ck.fail("runtime", "%r, allowed %s" % (runtime, " or ".join(RUNTIMES)))
+    arch = board["arch"]
+    if runtime == "circuitpython" and arch is not None:
+        ck.fail("arch", "%r, allowed None: CircuitPython boards get .py sources, no mpy-cross" % (arch,))
+    if runtime == "micropython" and arch not in ARCHES:
+        ck.fail("arch", "%r, allowed an mpy-cross -march name: %s" % (arch, ", ".join(ARCHES)))
     pins = {}
 
     def claim(where, pin):
@@ -128,8 +121,13 @@ def validate(board):
         addresses.append(a)
         ck.int_in(where + ".osc_hz", chip["osc_hz"], 22500000, 27500000, " Hz (25 MHz +-10 %)")
 
-    _servos(ck, ck.seq("servos", board["servos"], -1, "of servo tuples"), addresses)
-    _sensors(ck, ck.seq("sensors", board["sensors"], -1, "of sensor tuples"), runtime, claim)
+    _servos(ck, board["channels"], addresses)
+    sonars = ck.named("sonars", board["sonars"], 3, "(name, trigger, echo)", SENSOR_NAMES, "sonar")
+    for name in SENSOR_NAMES:
+        where = "sonar %s trigger" % name
+        claim(where, ck.pin(where, sonars[name][1], runtime))
+        where = "sonar %s echo" % name
+        claim(where, ck.pin(where, sonars[name][2], runtime))
     _follow(ck, board)
     _console(ck, board)
     _battery(ck, board, runtime, claim)
@@ -187,86 +185,44 @@ def _console(ck, board):
 
 
 def _follow(ck, board):
-    """Sensor mounts the wall follower can use, and the optional start-up wall following: None,
-    or {"side", "setpoint"[, "speed", "form"]} (hexapod.follow's units)."""
-    from hexapod import follow
-
-    try:
-        follow.check_mounts(sensor_mounts(board))
-    except ValueError as e:
-        ck.fail("sensors", str(e))
+    """The optional start-up wall following: None, or {"side", "setpoint"[, "speed", "form"]}
+    (hexapod.limits.check_request's units)."""
     setting = board.get("follow")
     if setting is None:
         return
     ck.dict_of("follow", setting, _FOLLOW, _FOLLOW_OPTIONAL)
     try:
-        follow.check_request(setting["side"], setting["setpoint"], setting.get("speed"), setting.get("form", "yaw"))
+        check_request(setting["side"], setting["setpoint"], setting.get("speed"), setting.get("form", "yaw"))
     except ValueError as e:
         ck.fail("follow", str(e))
 
 
-def _servos(ck, servos, addresses):
-    seen = {}
-    channels = {}
-    for i in range(len(servos)):
-        where = "servos[%d]" % i
-        s = ck.seq(where, servos[i], 8, _SERVO)
-        leg = ck.int_in(where + " leg", s[0], 1, LEGS)
-        if s[1] not in JOINTS:
-            ck.fail(where + " joint", "%r, allowed %s" % (s[1], ", ".join(JOINTS)))
-        who = "leg %d %s" % (leg, s[1])
-        where = "%s (%s)" % (where, who)
-        if who in seen:
-            ck.fail(where, "listed twice (first at servos[%d])" % seen[who])
-        seen[who] = i
-        a = s[2]
-        if not isinstance(a, int) or isinstance(a, bool) or a not in addresses:
-            ck.fail(
-                where + " address", "%r is not one of the chips (%s)" % (a, ", ".join("0x%02x" % x for x in addresses))
-            )
-        ch = ck.int_in(where + " channel", s[3], 0, 15)
-        key = a * 16 + ch
-        if key in channels:
-            ck.fail(where, "chip 0x%02x channel %d already drives %s" % (a, ch, channels[key]))
-        channels[key] = who
-        for k, field in ((4, "centre_us"), (5, "direction"), (6, "min_us"), (7, "max_us")):
-            v = s[k]
-            if not isinstance(v, int) or isinstance(v, bool):
-                ck.fail(where + " " + field, "%r, allowed an integer" % (v,))
-        try:
-            ServoMap(centre_us=s[4], direction=s[5], min_us=s[6], max_us=s[7])
-        except ValueError as e:
-            ck.fail(where, str(e))
-    for leg in range(1, LEGS + 1):
-        for joint in JOINTS:
-            if "leg %d %s" % (leg, joint) not in seen:
-                ck.fail("servos", "missing servo leg %d %s" % (leg, joint))
-
-
-def _sensors(ck, sensors, runtime, claim):
-    seen = []
-    for i in range(len(sensors)):
-        where = "sensors[%d]" % i
-        s = ck.seq(where, sensors[i], 6, _SENSOR)
-        if s[0] not in SENSORS:
-            ck.fail(where + " name", "%r, allowed %s" % (s[0], ", ".join(SENSORS)))
-        where = "sensor %s" % s[0]
-        if s[0] in seen:
-            ck.fail(where, "listed twice")
-        seen.append(s[0])
-        claim(where + " trigger", ck.pin(where + " trigger", s[1], runtime))
-        claim(where + " echo", ck.pin(where + " echo", s[2], runtime))
-        ck.int_in(where + " x", s[3], -10000, 10000, " (0.1 mm)")
-        ck.int_in(where + " y", s[4], -10000, 10000, " (0.1 mm)")
-        ck.int_in(where + " heading", s[5], -18000, 18000, " (0.01 deg)")
-    for name in SENSORS:
-        if name not in seen:
-            ck.fail("sensors", "missing sensor %s" % name)
+def _servos(ck, channels, addresses):
+    """Six legs of three (address, channel): coxa, femur, tibia; each output drives one servo."""
+    used = {}
+    ck.seq("channels", channels, LEGS, "(one per leg: ((address, channel) of its coxa, femur, tibia))")
+    for leg in range(LEGS):
+        ck.seq("channels[%d]" % leg, channels[leg], 3, "((address, channel) of its coxa, femur, tibia)")
+        for j in range(3):
+            who = "leg %d %s" % (leg + 1, JOINTS[j])
+            where = "channels[%d][%d] (%s)" % (leg, j, who)
+            pair = ck.seq(where, channels[leg][j], 2, "(address, channel)")
+            a = pair[0]
+            if not isinstance(a, int) or isinstance(a, bool) or a not in addresses:
+                ck.fail(
+                    where + " address",
+                    "%r is not one of the chips (%s)" % (a, ", ".join("0x%02x" % x for x in addresses)),
+                )
+            ch = ck.int_in(where + " channel", pair[1], 0, 15)
+            key = a * 16 + ch
+            if key in used:
+                ck.fail(where, "chip 0x%02x channel %d already drives %s" % (a, ch, used[key]))
+            used[key] = who
 
 
 def load(name):
     """Import boards/<name>.py and return its validated BOARD."""
-    if not isinstance(name, str) or not name or not _is_identifier(name):
+    if not is_identifier(name):
         raise ValueError("board name %r: allowed a file name in boards/ without .py" % (name,))
     try:
         module = __import__("boards." + name, None, None, ("BOARD",))
@@ -278,29 +234,16 @@ def load(name):
     return validate(board)
 
 
-def servo_table(board):
-    """18 (address, channel, ServoMap) in leg/joint order: index (leg - 1) * 3 + joint."""
-    table = [None] * (LEGS * 3)
-    for s in board["servos"]:
-        table[(s[0] - 1) * 3 + JOINTS.index(s[1])] = (
-            s[2],
-            s[3],
-            ServoMap(centre_us=s[4], direction=s[5], min_us=s[6], max_us=s[7]),
-        )
-    return tuple(table)
+def servo_table(board, servo_maps):
+    """18 (address, channel, ServoMap) in leg/joint order (index (leg - 1) * 3 + joint): the
+    board's channel map joined with the robot's 18 servo maps (hexapod.robotcal.servo_maps)."""
+    ch = board["channels"]
+    return tuple((ch[k // 3][k % 3][0], ch[k // 3][k % 3][1], servo_maps[k]) for k in range(LEGS * 3))
 
 
-def sensor_mounts(board):
-    """Five (x, y, heading) in drivers.hcsr04 order: 0.1 mm and cdeg, body frame."""
+def sonar_pins(board):
+    """Five (trigger, echo) pins in hexapod.sensors order: front, left_front, left_rear, ..."""
     by_name = {}
-    for s in board["sensors"]:
-        by_name[s[0]] = (s[3], s[4], s[5])
-    return tuple(by_name[n] for n in SENSORS)
-
-
-def sensor_pins(board):
-    """Five (trigger, echo) pins in drivers.hcsr04 order: front, left_front, left_rear, ..."""
-    by_name = {}
-    for s in board["sensors"]:
+    for s in board["sonars"]:
         by_name[s[0]] = (s[1], s[2])
-    return tuple(by_name[n] for n in SENSORS)
+    return tuple(by_name[n] for n in SENSOR_NAMES)

@@ -1,8 +1,9 @@
 """Wall following (seed 000): side sonars -> distance and angle to the wall -> PID -> yaw rate.
 
 Pure: each frame the loop (runner.Runner) hands update() the loop time, the index of the sonar
-pinged this frame and the distances/status buffers it keeps, in drivers.hcsr04 order (front,
-left_front, left_rear, right_front, right_rear; 0.1 mm; hcsr04 status codes); the follower
+whose reading came in this frame and the sonars' distance/status buffers, in the sensor
+contract's order (hexapod.sensors: front, left_front, left_rear, right_front, right_rear;
+0.1 mm; its status codes); the follower
 commands the Robot (Robot.walk, or seed 000's coxa sweeps). It allocates nothing per frame.
 
 Units: lengths 0.1 mm, angles cdeg, speeds 0.1 mm/s, yaw rates cdeg/s, time ms. The set point
@@ -37,26 +38,23 @@ fresh reading (once per round robin): a stale reading is never fed twice.
 from micropython import const
 
 from hexapod.fixmath import atan2, mul_q15, sin, to_cdeg
+from hexapod.limits import FORMS, check_request
 from hexapod.pid import KD, KI, KP, PID
+from hexapod.sensors import DEFAULT_MOUNTS, FRONT, LEFT_FRONT, LEFT_REAR, RIGHT_FRONT, RIGHT_REAR, check_mounts
 from hexapod.tick import BUSY, MOVING, NOT_STANDING, OK, STANDING, WALKING
 from hexapod.turns import sweep_command
-from hexapod.walk import SPEED_MAX
 from hexapod.walk import STOPPED as WALKER_STOPPED
 
-# drivers.hcsr04's sensor order and status codes (tests/test_follow.py checks they agree).
-FRONT = const(0)
-LEFT_FRONT = const(1)
-LEFT_REAR = const(2)
-RIGHT_FRONT = const(3)
-RIGHT_REAR = const(4)
-SENSOR_NAMES = ("front", "left_front", "left_rear", "right_front", "right_rear")
-_OK = const(0)
-_OUT_OF_RANGE = const(1)
-_NO_ECHO = const(2)
-_STUCK = const(3)
-_TOO_CLOSE = const(4)
-_WAIT = const(5)
-_MIN_RANGE = const(200)  # the HC-SR04's 2 cm: what a TOO_CLOSE front ping is taken as
+# The sensor contract's statuses, copied as private constants (folded into the code, no name kept
+# on the board; tests/test_viper_twins.py checks each against its source).
+_OK = const(0)  # hexapod.sensors.OK
+_OUT_OF_RANGE = const(1)  # hexapod.sensors.OUT_OF_RANGE
+_NO_ECHO = const(2)  # hexapod.sensors.NO_ECHO
+_STUCK = const(3)  # hexapod.sensors.STUCK
+_TOO_CLOSE = const(4)  # hexapod.sensors.TOO_CLOSE
+_WAIT = const(5)  # hexapod.sensors.WAIT
+# What a TOO_CLOSE front ping is taken as.
+_MIN_RANGE = const(200)  # hexapod.sensors.MIN_RANGE
 _NEAR = const(400)  # from under 4 cm a side sonar going out of range has come too close, 0.1 mm
 
 # Modes.
@@ -96,28 +94,14 @@ NO_WALL = const(2)
 FAILED = const(3)
 STATE_NAMES = ("waiting", "ok", "no wall", "failed")
 
-FORMS = ("yaw", "sweeps")  # the PID output as a yaw rate (Robot.walk) or as seed 000's coxa sweeps
-SIDES = ("left", "right")
 # The sensors each side uses, by bit (1: side front, 2: side rear).
 USED_NAMES = (
     ("none", "left_front", "left_rear", "left_front+left_rear"),
     ("none", "right_front", "right_rear", "right_front+right_rear"),
 )
 
-# Mounts of the shipped board files: (x, y, heading), 0.1 mm and cdeg, drivers.hcsr04 order.
-DEFAULT_MOUNTS = (
-    (1300, 0, 0),
-    (1000, 2100, 9000),
-    (-1000, 2100, 9000),
-    (1000, -2100, -9000),
-    (-1000, -2100, -9000),
-)
-
 # Defaults (the simulator tunes them; docs/wall.md explains each).
 SPEED = const(800)  # forward speed, 0.1 mm/s
-SPEED_MIN = const(100)
-SETPOINT_MIN = const(400)  # set point (the side sonar's reading), 0.1 mm
-SETPOINT_MAX = const(5000)
 YAW_MAX = const(3000)  # the follower's largest yaw rate (PID output clamp), cdeg/s
 I_MAX = const(1000)  # integral clamp, cdeg/s
 LOOKAHEAD = const(1000)  # L: the look-ahead point ahead of the sensor pair, 0.1 mm
@@ -139,50 +123,6 @@ _DEG360 = const(3600000)
 _WRAP = const(0x3FFFFFFF)
 
 
-def check_request(side, setpoint, speed=None, form="yaw"):
-    """ValueError naming the first bad value among side, setpoint (0.1 mm), speed (0.1 mm/s), form."""
-    if side not in SIDES:
-        raise ValueError("side: %r, allowed 'left' or 'right'" % (side,))
-    if not _whole(setpoint) or setpoint < SETPOINT_MIN or setpoint > SETPOINT_MAX:
-        raise ValueError(
-            "setpoint: %r is outside %d..%d (0.1 mm, the side sonar's reading)" % (setpoint, SETPOINT_MIN, SETPOINT_MAX)
-        )
-    if speed is not None and (not _whole(speed) or speed < SPEED_MIN or speed > SPEED_MAX):
-        raise ValueError("speed: %r is outside %d..%d (0.1 mm/s)" % (speed, SPEED_MIN, SPEED_MAX))
-    if form not in FORMS:
-        raise ValueError("form: %r, allowed 'yaw' or 'sweeps'" % (form,))
-
-
-def check_mounts(mounts):
-    """ValueError unless mounts are 5 (x, y, heading) in drivers.hcsr04 order that the follower can
-    use: front facing forward, side sensors facing their side (+-10 deg), front one ahead of rear."""
-    if not isinstance(mounts, (tuple, list)) or len(mounts) != 5:
-        raise ValueError("sensor mounts: need 5 (x, y, heading) in the order %s" % (", ".join(SENSOR_NAMES),))
-    for k in range(5):
-        m = mounts[k]
-        if not isinstance(m, (tuple, list)) or len(m) != 3 or not (_whole(m[0]) and _whole(m[1]) and _whole(m[2])):
-            raise ValueError("sensor mounts: %s: %r, allowed (x, y, heading) integers" % (SENSOR_NAMES[k], m))
-        want = (0, 9000, 9000, -9000, -9000)[k]
-        if m[2] < want - 1000 or m[2] > want + 1000:
-            raise ValueError(
-                "sensor mounts: %s heading %d cdeg, allowed %d..%d" % (SENSOR_NAMES[k], m[2], want - 1000, want + 1000)
-            )
-        if k and (m[1] <= 0 if k < 3 else m[1] >= 0):
-            raise ValueError(
-                "sensor mounts: %s y %d must be %s" % (SENSOR_NAMES[k], m[1], "> 0 (left)" if k < 3 else "< 0 (right)")
-            )
-    for f, r in ((LEFT_FRONT, LEFT_REAR), (RIGHT_FRONT, RIGHT_REAR)):
-        if mounts[f][0] - mounts[r][0] < 500:
-            raise ValueError(
-                "sensor mounts: %s x %d must be at least 500 (50 mm) ahead of %s x %d"
-                % (SENSOR_NAMES[f], mounts[f][0], SENSOR_NAMES[r], mounts[r][0])
-            )
-
-
-def _whole(v):
-    return isinstance(v, int) and not isinstance(v, bool)
-
-
 def yaw_for_radius(speed, radius):
     """Yaw rate (cdeg/s) that walks a circle of radius (0.1 mm) at speed (0.1 mm/s)."""
     return speed * 5730 // radius  # 18000 / pi = 5729.6 cdeg per radian
@@ -192,7 +132,7 @@ class Follower:
     """Follows the left or the right wall on the side sonars by commanding robot (a tick.Robot)."""
 
     def __init__(self, robot, mounts=DEFAULT_MOUNTS):
-        """robot: tick.Robot; mounts: 5 (x, y, heading) (0.1 mm, cdeg) in drivers.hcsr04 order."""
+        """robot: tick.Robot; mounts: 5 (x, y, heading) (0.1 mm, cdeg) in hexapod.sensors order."""
         check_mounts(mounts)
         self.robot = robot
         self.mounts = tuple(tuple(m) for m in mounts)

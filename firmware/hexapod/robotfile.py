@@ -4,14 +4,17 @@ imports it, main.main forgets it once the robot is built (runner.release). Units
 robots/default.py: lengths 0.1 mm, angles cdeg.
 """
 
+from micropython import const
+
 from hexapod.fixmath import sin
 from hexapod.gait import CYCLE_MS_MAX, CYCLE_MS_MIN, NAMES
 from hexapod.geometry import Geometry, leg_from
 from hexapod.leg import OK, describe
 
 LEG_NAMES = ("RF", "RM", "RR", "LR", "LM", "LF")
-MOUNT_MAX = 5000  # largest |x|, |y| of a coxa axis, 0.1 mm
-HEIGHT_MAX = 3000  # largest body height, 0.1 mm
+# Private constants (folded, no name kept on the board: a name is a qstr that outlives the release).
+_MOUNT_MAX = const(5000)  # largest |x|, |y| of a coxa axis, 0.1 mm
+_HEIGHT_MAX = const(3000)  # largest body height, 0.1 mm
 # The optional SERVO dict of a robot file: key -> (smallest, largest allowed, unit).
 SERVO_FIELDS = (
     ("stall_torque_mnm", 50, 100000, "mN m"),
@@ -24,19 +27,21 @@ SERVO_FIELDS = (
 )
 # Absent: the walk does not limit joint speeds, nor how far out a stance foot goes.
 SERVO_OPTIONAL = ("planner_share_permille", "stance_out_max")
-_FIELDS = (
-    "COXA",
-    "FEMUR",
-    "TIBIA",
-    "FEMUR_OFFSET",
-    "LIMITS",
-    "MOUNTS",
-    "NEUTRAL_REACH",
-    "BODY_HEIGHT",
-    "BODY_HEIGHT_MIN",
-    "BODY_HEIGHT_MAX",
-    "SIT_HEIGHT",
-    "FOOT_CLEARANCE",
+_FIELDS = const(
+    (
+        "COXA",
+        "FEMUR",
+        "TIBIA",
+        "FEMUR_OFFSET",
+        "LIMITS",
+        "MOUNTS",
+        "NEUTRAL_REACH",
+        "BODY_HEIGHT",
+        "BODY_HEIGHT_MIN",
+        "BODY_HEIGHT_MAX",
+        "SIT_HEIGHT",
+        "FOOT_CLEARANCE",
+    )
 )
 
 
@@ -65,8 +70,8 @@ def from_data(name, data):
     _check_mounts(pre, data["MOUNTS"])
     reach = data["COXA"] + data["FEMUR"] + data["TIBIA"]
     _int(pre, "NEUTRAL_REACH", data["NEUTRAL_REACH"], data["COXA"] + 1, reach - 1)
-    _int(pre, "BODY_HEIGHT_MIN", data["BODY_HEIGHT_MIN"], 1, HEIGHT_MAX)
-    _int(pre, "BODY_HEIGHT_MAX", data["BODY_HEIGHT_MAX"], data["BODY_HEIGHT_MIN"], HEIGHT_MAX)
+    _int(pre, "BODY_HEIGHT_MIN", data["BODY_HEIGHT_MIN"], 1, _HEIGHT_MAX)
+    _int(pre, "BODY_HEIGHT_MAX", data["BODY_HEIGHT_MAX"], data["BODY_HEIGHT_MIN"], _HEIGHT_MAX)
     _int(pre, "BODY_HEIGHT", data["BODY_HEIGHT"], data["BODY_HEIGHT_MIN"], data["BODY_HEIGHT_MAX"])
     _int(pre, "SIT_HEIGHT", data["SIT_HEIGHT"], 0, data["BODY_HEIGHT_MIN"] - 1)
     _int(pre, "FOOT_CLEARANCE", data["FOOT_CLEARANCE"], 0, data["SIT_HEIGHT"])
@@ -129,8 +134,8 @@ def _check_mounts(pre, mounts):
         leg = "MOUNTS leg %d (%s)" % (i + 1, LEG_NAMES[i])
         if not isinstance(m, (tuple, list)) or len(m) != 3:
             raise ValueError(pre + leg + ": need (x, y, angle), got %r" % (m,))
-        _int(pre, leg + " x", m[0], -MOUNT_MAX, MOUNT_MAX)
-        _int(pre, leg + " y", m[1], -MOUNT_MAX, MOUNT_MAX)
+        _int(pre, leg + " x", m[0], -_MOUNT_MAX, _MOUNT_MAX)
+        _int(pre, leg + " y", m[1], -_MOUNT_MAX, _MOUNT_MAX)
         _int(pre, leg + " angle", m[2], -18000, 18000)
         # Legs 1-3 are on the right (y < 0), 4-6 on the left, and each points to its side.
         right = i < 3

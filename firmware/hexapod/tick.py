@@ -709,10 +709,11 @@ class Robot:
         return OK
 
     def calibrate(self, k, centre_us, direction, min_us, max_us):
-        """Servo k (0..17)'s map: centre_us (pulse at angle 0, 500..2500), direction 1/-1 and
-        min_us < max_us within 500..2500 (ValueError naming the bad one). Refused (WALKING_NOW,
-        BUSY, or JOG_SERVO with jog_excess) when the servo is driven and its present angle would
-        map outside the new range; otherwise the driven servo moves to its new pulse at once."""
+        """Servo k (0..17)'s map: centre_us (the pulse at its reference angle, ServoMap.ref_cdeg;
+        500..2500), direction 1/-1 (mirrored about the reference) and min_us < max_us within
+        500..2500 (ValueError naming the bad one). Refused (WALKING_NOW, BUSY, or JOG_SERVO with
+        jog_excess) when the servo is driven and its present angle would map outside the new
+        range; otherwise the driven servo moves to its new pulse at once."""
         if not isinstance(k, int) or isinstance(k, bool) or k < 0 or k > 17:
             raise ValueError("servo: %r, allowed 0..17" % (k,))
         for name, v in (("centre_us", centre_us), ("min_us", min_us), ("max_us", max_us)):
@@ -728,13 +729,13 @@ class Robot:
         s = self.servos[k]
         p = 0
         if self.pulses[k]:
-            p = centre_us + direction * ((self.angles[k] * s.us_per_degree + 5000) // 10000)
+            p = s.raw_at(self.angles[k], centre_us, direction)
             if p < min_us:
                 return self._servo_refused(k, 1, min_us - p)
             if p > max_us:
                 return self._servo_refused(k, 2, p - max_us)
-        s.centre_us = centre_us
         s.direction = direction
+        s.centre_us = centre_us
         s.min_us = min_us
         s.max_us = max_us
         if p:

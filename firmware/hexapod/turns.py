@@ -9,7 +9,7 @@ any centre, and yaw alone pivots about the body centre. Off the tick (it allocat
 
 from hexapod.body import FINE_SHIFT
 from hexapod.fixmath import atan2, mul_q15, to_cdeg
-from hexapod.walk import SPEED_MAX, YAW_RATE_MAX, is_whole
+from hexapod.limits import SPEED_MAX, YAW_RATE_MAX, is_whole
 
 
 def coxa_sweep(walker, i, vx, w):

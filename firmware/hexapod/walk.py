@@ -32,6 +32,11 @@ from micropython import const
 from hexapod.body import FINE, FINE_SHIFT, Body
 from hexapod.fixmath import ONE, cos, isqrt, mul_q15, sin
 from hexapod.gait import TICK_MS, TRIPOD, GaitClock, actual_cycle_ms, check_cycle_ms, check_gait, swing_stance_ticks
+from hexapod.limits import (  # largest |vx|, |vy| (0.1 mm/s) and |yaw rate| (cdeg/s) accepted
+    SPEED_MAX,
+    YAW_RATE_MAX,
+    is_whole,
+)
 from hexapod.reach import servo_radii
 from hexapod.trajectory import swing_shape, swing_stroke
 
@@ -61,8 +66,6 @@ OK = const(0)
 SERVO_SPEED = const(28)  # configure: even a step of nothing would turn a joint too fast
 LIFT_SHARE_PERMILLE = const(900)  # most of the servo budget a swing without a step may use
 
-SPEED_MAX = const(3000)  # largest |vx|, |vy| accepted, 0.1 mm/s
-YAW_RATE_MAX = const(9000)  # largest |yaw rate| accepted, cdeg/s
 STEP_MIN = const(50)  # step length (half a stride: seed 003's x amplitude), 0.1 mm
 STEP_MAX = const(600)
 LIFT_MIN = const(100)  # lift height, 0.1 mm
@@ -720,11 +723,6 @@ class Walker:
 def _words(n, v=0):
     """n machine words (array("i")), each v."""
     return array("i", [v] * n)
-
-
-def is_whole(v):
-    """True for an int that is not a bool."""
-    return isinstance(v, int) and not isinstance(v, bool)
 
 
 def _bad(name, v, lim, unit):

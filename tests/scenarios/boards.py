@@ -12,6 +12,7 @@ GOOD = {
     "esp32_devkit": boards.esp32_devkit.BOARD,
     "feather_rp2040": boards.feather_rp2040.BOARD,
 }
+MAPS = ["map %d" % k for k in range(18)]  # stand-ins for the robot's 18 ServoMaps
 DELETE = "<delete>"
 APPEND = "<append>"
 
@@ -50,7 +51,9 @@ def check(b):
 def good_boards(names):
     """Per board (load() gives the file's dict, check of it, check of a thawed copy, servo table length),
     then the checks of four optional-key changes."""
-    out = [(hb.load(n) is GOOD[n], check(GOOD[n]), check(thaw(GOOD[n])), len(hb.servo_table(GOOD[n]))) for n in names]
+    out = [
+        (hb.load(n) is GOOD[n], check(GOOD[n]), check(thaw(GOOD[n])), len(hb.servo_table(GOOD[n], MAPS))) for n in names
+    ]
     out.append(check(mutated("pico", ("notes",), "spare servo in the drawer")))
     out.append(check(mutated("pico", ("follow",), {"side": "left", "setpoint": 800})))
     out.append(check(mutated("esp32_devkit", ("follow",), {"side": "right", "setpoint": 1600, "form": "sweeps"})))
@@ -64,30 +67,29 @@ def checks(mutations):
 
 
 def channel_and_pin_moves(name):
-    """(moves, moves refused as such): each servo onto every other servo's channel, each sensor pin
+    """(moves, moves refused as such): each servo onto every other servo's channel, each sonar pin
     onto every other pin of the board."""
     b = GOOD[name]
     out = []
     for i in range(18):
         for j in range(18):
             if i != j:
-                m = mutated(name, ("servos", i, 2), b["servos"][j][2])
-                m["servos"][i][3] = b["servos"][j][3]
+                m = mutated(name, ("channels", i // 3, i % 3), list(b["channels"][j // 3][j % 3]))
                 out.append("already drives" in check(m))
     pins = [b["i2c"]["sda"], b["i2c"]["scl"]]
-    for s in b["sensors"]:
+    for s in b["sonars"]:
         pins += [s[1], s[2]]
     for k in range(5):
         for col in (1, 2):
             for p in pins:
-                if p != b["sensors"][k][col]:
-                    out.append("is already used as" in check(mutated(name, ("sensors", k, col), p)))
+                if p != b["sonars"][k][col]:
+                    out.append("is already used as" in check(mutated(name, ("sonars", k, col), p)))
     return (len(out), out.count(True))
 
 
 def failing_validation():
     """(the refused copy unchanged, refused as a channel clash, the board file unchanged)."""
-    b = mutated("pico", ("servos", 1, 3), 0)
+    b = mutated("pico", ("channels", 0, 1, 1), 0)
     before = repr(b)
     r = check(b)
     return (repr(b) == before, "already drives" in r, repr(GOOD["pico"]) == repr(boards.pico.BOARD))
@@ -99,10 +101,7 @@ def load_error(name):
 
 
 def pico_tables():
-    """([(address, channel, direction, min_us)] of the servo table, sensor pins, whether hcsr04's
-    sensor order is the board's)."""
-    from drivers import hcsr04
-
+    """([(address, channel, whether the map is the robot's k-th)] of the servo table, sonar pins)."""
     b = GOOD["pico"]
-    t = hb.servo_table(b)
-    return ([(a, c, m.direction, m.min_us) for a, c, m in t], hb.sensor_pins(b), hcsr04.SENSOR_NAMES == hb.SENSORS)
+    t = hb.servo_table(b, MAPS)
+    return ([(a, c, m is MAPS[k]) for k, (a, c, m) in enumerate(t)], hb.sonar_pins(b))

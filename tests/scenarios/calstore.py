@@ -136,7 +136,7 @@ def format_checks():
         calstore.decode(text) == rows,
         [why(text[:n]) for n in (0, 10, len(text) // 2, len(text) - 1)],
         why(text.replace("2 femur -5", "2 femur -6")),
-        why(text.replace("hexapod-cal 1", "hexapod-cal 2")),
+        why(text.replace("hexapod-cal 2", "hexapod-cal 3")),
         why(body + "crc %04x\n" % calstore.crc16(body.encode())),
         text.splitlines()[:2] + text.splitlines()[-1:],
     ]

@@ -9,8 +9,6 @@ import console
 import main
 import stub_board
 
-from hexapod import board as boards
-
 
 class Lines(console.BufferReader):
     """Console input fed line by line, one after each `every` frames (a maker typing); it also
@@ -59,12 +57,14 @@ def boot(folder, cal, setting, frames, typed=(), every=50, calibrated=None):
     pulse any PCA9685 channel put out (-1: none), the most servos that went from no pulse to a
     pulse in one frame)."""
     board = stub_board.reset("pico")
-    table = boards.servo_table(board)
     _, chips = stub_board.pca9685_models(board)
     stub_board.sonar_models(board, [3000 + 1000 * k for k in range(5)])
     here = os.getcwd()
     os.chdir(folder)
     try:
+        # After the chdir: the VM's path starts with '' (the working folder), so a `robots` package
+        # imported before it would look for robots.default in this folder.
+        table = stub_board.servo_table(board)
         for name in (calstore.FILE, calstore.TMP):
             if name in os.listdir():
                 os.remove(name)
@@ -88,9 +88,10 @@ def boot(folder, cal, setting, frames, typed=(), every=50, calibrated=None):
 
 
 def released(folder):
-    """After main.main: which boot-only modules are still imported (hexapod.board, hexapod.robotfile,
-    robots.default)."""
+    """After main.main: whether each boot-only module is still imported (hexapod.board,
+    hexapod.robotfile, hexapod.robotcal, hexapod.check, robots.default, robots.default_cal)."""
     import sys
 
     boot(folder, "none", None, 1)
-    return ["hexapod.board" in sys.modules, "hexapod.robotfile" in sys.modules, "robots.default" in sys.modules]
+    names = ("hexapod.board", "hexapod.robotfile", "hexapod.robotcal", "hexapod.check", "robots.default")
+    return [name in sys.modules for name in names + ("robots.default_cal",)]

@@ -6,8 +6,6 @@ import main
 import stub_board
 from scenarios.heap import heap_bytes
 
-from hexapod import board as boards
-
 
 def unsafe_outputs(table, bus, chips):
     """[(servo, ns)] of the servos whose output is neither off nor inside min..max (give or take half a
@@ -32,7 +30,7 @@ class Loop:
     def __init__(self, board=None):
         self.board_name = board
         self.board = stub_board.reset(board or "pico")
-        self.table = boards.servo_table(self.board)
+        self.table = stub_board.servo_table(self.board)
         self.bus, self.chips = stub_board.pca9685_models(self.board, attach=False)
         self.sonar = stub_board.sonar_models(self.board, [3000 + 1000 * k for k in range(5)])
         self.r = None
@@ -173,4 +171,4 @@ def irq_sonar(frames):
         r.step()
         blocked = max(blocked, clock.now_us() - t0)
         r.wait()
-    return (r.sonar.split, blocked, r.distances)
+    return (r.sonars.ring.split, blocked, r.distances)

@@ -13,13 +13,12 @@ import main
 import stub_board
 from scenarios.calstore import StubFS
 
-from hexapod import board as boards
 from hexapod import tick
 
 
 def rows(board):
-    """The board file's calibration as calibration-file rows (trim 0)."""
-    return [(0, m.direction, m.min_us, m.max_us) for _, _, m in boards.servo_table(board)]
+    """The robot file's calibration as calibration-file rows (trim 0)."""
+    return [(0, m.direction, m.min_us, m.max_us) for _, _, m in stub_board.servo_table(board)]
 
 
 class Board:
@@ -168,7 +167,7 @@ def sweep(leg=2):
         b.frame()
     for _ in range(3):
         b.frame()
-    table = boards.servo_table(b.r.board)
+    table = stub_board.servo_table(b.r.board)
     k0 = 3 * (leg - 1)
 
     def outputs():

@@ -1,11 +1,10 @@
-"""hexapod.tick.Robot's jog mode on a FrameBuffer, the pico board file's servo rows."""
+"""hexapod.tick.Robot's jog mode on a FrameBuffer, the default robot's calibration rows (robots/default_cal.py)."""
 
 from scenarios.refusal import message
 from scenarios.rig import TICK_MS
 
 import robots.default as robot_file
-from hexapod import geometry, tick
-from hexapod.board import load, servo_table
+from hexapod import geometry, robotcal, tick
 
 
 def jog_session():
@@ -13,7 +12,7 @@ def jog_session():
     and going limp: see the test for each row."""
     g = geometry.load(robot_file)
     fb = tick.FrameBuffer()
-    robot = tick.Robot(g, [row[2] for row in servo_table(load("pico"))], fb)
+    robot = tick.Robot(g, robotcal.servo_maps(robotcal.load("default")), fb)
     t = [0]
 
     def run(n):

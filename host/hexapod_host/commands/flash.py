@@ -63,7 +63,7 @@ def flash_micropython(args):
     staged = args.stage_dir or os.path.join(flash.ROOT, "build", "flash", args.board)
     print(
         "# flash %s (MicroPython, %s), robot %s, staged in %s"
-        % (args.board, flash.ARCH.get(args.board), args.robot, staged)
+        % (args.board, flash.board_arch(args.board), args.robot, staged)
     )
     print("# compile")
     commands, image, _ = flash.stage(args.board, args.robot, staged)

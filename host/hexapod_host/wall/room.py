@@ -20,7 +20,7 @@ import math
 
 import robots.default
 from hexapod import board as boards
-from hexapod import geometry
+from hexapod import geometry, robotcal
 from hexapod_host.testing.reference import fk
 
 BEAM_HALF = math.radians(15)  # HC-SR04: about 15 degrees either side of its axis
@@ -132,13 +132,13 @@ class Body:
     """The robot in the room: pose, legs from pulses, sensors, outline."""
 
     def __init__(self, board_name="pico", robot=robots.default):
-        board = boards.load(board_name)
-        self.maps = [row[2] for row in boards.servo_table(board)]
         self.g = geometry.load(robot)
         g = self.g
+        cal = robotcal.load(robot.__name__.rsplit(".", 1)[-1], g.limits)
+        self.maps = [row[2] for row in boards.servo_table(boards.load(board_name), robotcal.servo_maps(cal))]
         self.lengths = [(lg.coxa / 10, lg.femur / 10, lg.tibia / 10, lg.femur_offset / 10) for lg in g.legs]
         self.mounts = [(g.mount_x[i] / 10, g.mount_y[i] / 10, math.radians(g.mount_angle[i] / 100)) for i in range(6)]
-        self.sensors = [(x / 10, y / 10, math.radians(h / 100)) for x, y, h in boards.sensor_mounts(board)]
+        self.sensors = [(x / 10, y / 10, math.radians(h / 100)) for x, y, h in robotcal.sensor_mounts(cal)]
         bx, by = BODY_HALF
         corners = ((bx, by), (-bx, by), (-bx, -by), (bx, -by))
         self.outline = [corners[k] + corners[(k + 1) % 4] for k in range(4)]

@@ -12,6 +12,7 @@ from _stub_i2c import shared_bus
 from pca9685_model import PCA9685Model
 
 from hexapod import board as boards
+from hexapod import robotcal
 
 
 def reset(board_name="pico"):
@@ -21,6 +22,12 @@ def reset(board_name="pico"):
     _stub_i2c.reset()
     _stub_adc.reset()
     return boards.load(board_name)
+
+
+def servo_table(board, robot="default"):
+    """The 18 (address, channel, ServoMap) main.build drives: the board's channel map joined with
+    robots/<robot>_cal.py's servo rows (hexapod.board.servo_table)."""
+    return boards.servo_table(board, robotcal.servo_maps(robotcal.load(robot)))
 
 
 def pca9685_models(board, attach=True):
@@ -37,7 +44,7 @@ def pca9685_models(board, attach=True):
 
 
 def sonar_models(board, distances):
-    """HC-SR04 models on the board's trigger/echo pins (drivers.hcsr04 order), each answering its
+    """HC-SR04 models on the board's trigger/echo pins (hexapod.sensors order), each answering its
     distance (0.1 mm)."""
-    pins = boards.sensor_pins(board)
+    pins = boards.sonar_pins(board)
     return [hcsr04_model.HCSR04(pins[k][0], pins[k][1], distance=distances[k]) for k in range(len(pins))]
