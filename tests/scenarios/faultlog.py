@@ -1,0 +1,99 @@
+"""The fault log (hexapod.faultlog) and its keepers (drivers.faultkeep) on both runtimes, with
+stand-ins for machine.mem32 and machine.RTC that hold what was written where."""
+
+from scenarios.heap import heap_bytes
+
+from drivers import faultkeep
+from hexapod import faultlog
+
+
+class Mem32:
+    """machine.mem32 stand-in: a dict of address -> word; unwritten addresses read `fill`."""
+
+    def __init__(self, fill=0):
+        self.cells = {}
+        self.fill = fill
+
+    def __getitem__(self, addr):
+        return self.cells.get(addr, self.fill)
+
+    def __setitem__(self, addr, value):
+        self.cells[addr] = value
+
+
+class Rtc:
+    """machine.RTC stand-in: memory() reads, memory(buf) keeps a copy."""
+
+    def __init__(self, data=b""):
+        self.data = bytearray(data)
+
+    def memory(self, buf=None):
+        if buf is None:
+            return bytes(self.data)
+        if len(self.data) != len(buf):
+            self.data = bytearray(len(buf))
+        for i in range(len(buf)):  # a copy, as the port's memcpy into RTC RAM, without a heap object
+            self.data[i] = buf[i]
+
+
+def entries(log):
+    return [list(log.entry(i)) for i in range(log.count())]
+
+
+def pushes(records):
+    """[(words, entries) after each record] in a log without a keeper."""
+    log = faultlog.FaultLog()
+    out = []
+    for kind, what, frame in records:
+        log.record(kind, what, frame)
+        out.append([list(log.words), entries(log)])
+    return out
+
+
+def scratch(records, fill=0, preset=()):
+    """Record into a log kept in Mem32 (preset: (address, word) written first, as a reset leaves
+    them): [the cells written, a second log's (kept, entries) loaded from the same cells]."""
+    mem = Mem32(fill)
+    for a, w in preset:
+        mem[a] = w
+    log = faultlog.FaultLog(faultkeep.Rp2Scratch(mem))
+    first = [log.kept, entries(log)]
+    for kind, what, frame in records:
+        log.record(kind, what, frame)
+    again = faultlog.FaultLog(faultkeep.Rp2Scratch(mem))
+    return [first, [list(c) for c in sorted(mem.cells.items())], again.kept, entries(again)]
+
+
+def rtc(records, data=b""):
+    """Record into a log kept in an Rtc: [its memory bytes, a second log's entries]."""
+    r = Rtc(data)
+    log = faultlog.FaultLog(faultkeep.RtcMemory(r))
+    for kind, what, frame in records:
+        log.record(kind, what, frame)
+    again = faultlog.FaultLog(faultkeep.RtcMemory(r))
+    return [list(r.data), again.kept, entries(again)]
+
+
+def kept_then_new(n_new):
+    """4 faults kept from before a reset, then n_new new ones: (kept, entries)."""
+    mem = Mem32()
+    log = faultlog.FaultLog(faultkeep.Rp2Scratch(mem))
+    for k in range(4):
+        log.record(faultlog.SONAR, k, 100 + k)
+    log = faultlog.FaultLog(faultkeep.Rp2Scratch(mem))
+    for k in range(n_new):
+        log.record(faultlog.I2C, 1, 7 + k)
+    return [log.kept, entries(log)]
+
+
+def record_heap(keeper):
+    """Heap bytes left by 10 records (and a clear) with a keeper ('rp2', 'rtc', None)."""
+    k = {"rp2": faultkeep.Rp2Scratch(Mem32()), "rtc": faultkeep.RtcMemory(Rtc()), None: None}[keeper]
+    log = faultlog.FaultLog(k)
+    log.record(faultlog.I2C, 0, 1)  # the stand-ins' first store makes their dict entry / bytes
+
+    def ten(lg):
+        for i in range(10):
+            lg.record(faultlog.SONAR, i & 7, 1000 + i)
+
+    return heap_bytes(ten, log)
