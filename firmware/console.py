@@ -18,7 +18,7 @@ from runner import BOOT_WORDS, counters
 
 from drivers import hcsr04
 from hexapod import battery as batteries
-from hexapod import follow, gait, tick
+from hexapod import faultlog, follow, gait, tick
 from hexapod.leg import describe as leg_describe
 from hexapod.units import format_fixed, parse_fixed
 
@@ -28,9 +28,28 @@ WALK_TIMEOUT_MS = const(1000)
 JOINTS = ("coxa", "femur", "tibia")
 COMMANDS = (
     "help status stand sit relax foot nudge joint pulse get walk stop gait sonar wall pid "
-    "cal trim dir range save load defaults echo selftest"
+    "cal trim dir range save load defaults echo selftest faults"
 )
 _STATUS_WORDS = ("ok", "out_of_range", "no_echo", "stuck", "too_close", "wait")
+
+
+def fault_text(log, bank):
+    """'none', or 'N logged (oldest first) KIND WHAT frame F[ before_reset]; ...' (runner.faultlog)."""
+    n = log.count()
+    if not n:
+        return "none"
+    parts = []
+    chips = getattr(bank, "chips", ())
+    for i in range(n):
+        kind, what, frame, before = log.entry(i)
+        if kind == faultlog.SONAR:
+            where = " " + hcsr04.SENSOR_NAMES[what] if what < len(hcsr04.SENSOR_NAMES) else ""
+        elif kind == faultlog.I2C or kind == faultlog.BROWNOUT:
+            where = " 0x%02x" % chips[what].address if what < len(chips) else ""
+        else:
+            where = ""
+        parts.append("%s%s frame %d%s" % (faultlog.KIND_NAMES[kind], where, frame, " before_reset" if before else ""))
+    return "%d logged (oldest first) %s" % (n, "; ".join(parts))
 
 
 class PollReader:
@@ -150,6 +169,7 @@ class Console:
             "defaults": self._defaults,
             "echo": self._echo,
             "selftest": self._selftest,
+            "faults": self._faults,
         }
 
     # -- the frame's part ---------------------------------------------------------------
@@ -715,6 +735,15 @@ class Console:
         if args:
             self.echo = args[0] == "on"
         return "ok echo " + ("on" if self.echo else "off")
+
+    def _faults(self, args):
+        if len(args) > 1 or (args and args[0] != "clear"):
+            raise ValueError("need clear or nothing (list), got %r" % (" ".join(args)[:20],))
+        log = self.runner.faultlog
+        if args:
+            log.clear()
+            return "ok faults cleared"
+        return "ok faults " + fault_text(log, self.runner.bank)
 
     # -- multi-line replies (selftest) ------------------------------------------------------
 

@@ -78,3 +78,63 @@ def test_new_faults_push_out_the_kept_ones_first(rt, n_new, kept):
 @pytest.mark.parametrize("keeper", ["rp2", "rtc", None])
 def test_recording_allocates_nothing_in_the_vm(mp, keeper):
     assert mp.call("scenarios.faultlog:record_heap", keeper) == 0
+
+
+# -- the loop notices faults (the stub board: PCA9685 and HC-SR04 models) ----------------------
+# Frame k is the runner's k-th step (counted from 0). A chip unplugged before frame k fails its
+# write in frame k. The round robin pings sonar 2 (left_rear) every 5th frame and collects the
+# echo in the next; a ping whose echo never rose is a fault in the frame it is collected.
+
+
+def faults_reply(rt, plan):
+    lines, words = rt.with_heapsize("4m").call("scenarios.faultlog:on_the_board", plan)
+    assert len(lines) == 1
+    return lines[0], words
+
+
+def test_a_chip_unplugged_for_many_frames_is_one_fault(rt):
+    line, _ = faults_reply(rt, [(10, "unplug_0x41")])
+    assert line == "ok faults 1 logged (oldest first) i2c 0x41 frame 10"
+
+
+def test_a_chip_unplugged_again_after_good_frames_is_a_second_fault(rt):
+    line, _ = faults_reply(rt, [(10, "unplug_0x41"), (20, "replug_0x41"), (40, "unplug_0x41")])
+    first, second = line.split("; ")
+    assert first == "ok faults 2 logged (oldest first) i2c 0x41 frame 10"
+    # the replugged chip is set up again by the driver (offline -> init) within its retry period, then
+    # frames go through; its next failure is frame 40
+    assert second == "i2c 0x41 frame 40"
+
+
+def test_a_chip_found_reset_is_a_brownout(rt):
+    line, words = faults_reply(rt, [(10, "reset_0x41")])
+    assert line.startswith("ok faults 1 logged (oldest first) brownout 0x41 frame ")
+    frame = int(line.split()[-1])
+    assert 10 <= frame < 20  # the driver reads MODE1 back every 10 frames (docs/pca9685.md)
+    assert words[0] == word(BROWNOUT, 1, frame)
+
+
+def test_a_sonar_without_echo_is_one_fault_until_it_answers_again(rt):
+    line, _ = faults_reply(rt, [(10, "mute_2"), (30, "unmute_2"), (45, "mute_2")])
+    parts = line.split("; ")
+    assert parts[0].startswith("ok faults 2 logged (oldest first) sonar left_rear frame ")
+    f1 = int(parts[0].split()[-1])
+    f2 = int(parts[1].split()[-1])
+    assert parts[1] == "sonar left_rear frame %d" % f2
+    assert 10 <= f1 < 16 and 45 <= f2 < 51  # the first of its pings (every 5 frames) after the mute
+
+
+def test_a_watchdog_reset_is_logged_once_and_clear_empties_the_log(rt):
+    line, _ = faults_reply(rt, [(0, "wdt"), (1, "wdt")])
+    assert line == "ok faults 1 logged (oldest first) watchdog frame 0"
+    line, words = faults_reply(rt, [(5, "unplug_0x41"), (10, "replug_0x41"), (30, "clear")])
+    assert (line, words) == ("ok faults none", [0, 0, 0, 0])
+
+
+def test_bad_faults_lines_are_refused_and_change_nothing(rt):
+    bad = ["faults x", "faults clear now", "faults CLEAR", "faults 1", "faults clear clear", "faults -"]
+    out, same, nonempty = rt.with_heapsize("4m").call("scenarios.faultlog:refused", bad)
+    assert nonempty and same
+    for line, got in zip(bad, out, strict=True):
+        arg = line[len("faults ") :]
+        assert got == ["err faults: need clear or nothing (list), got %r" % arg], line

@@ -97,3 +97,50 @@ def record_heap(keeper):
             lg.record(faultlog.SONAR, i & 7, 1000 + i)
 
     return heap_bytes(ten, log)
+
+
+def on_the_board(plan):
+    """The stub board's loop (scenarios.selftest.Board, console attached) run frame by frame with
+    faults put into the models at given frames. plan: [(frame, action)], actions "unplug_0x41",
+    "replug_0x41", "reset_0x41", "mute_2", "unmute_2", "wdt", "clear". Runs 60 frames; returns
+    [the `faults` reply, each action's frame as the runner counted it, the log's words]."""
+    from scenarios.selftest import Board
+
+    b = Board()
+    todo = dict(plan)
+    for n in range(60):
+        a = todo.get(n)
+        if a == "unplug_0x41":
+            b.bus.detach(0x41)
+        elif a == "replug_0x41":
+            b.bus.attach(b.chips[0x41])
+        elif a == "reset_0x41":
+            b.chips[0x41].reset()
+        elif a == "mute_2":
+            b.sonars[2].missing_echo = True
+        elif a == "unmute_2":
+            b.sonars[2].missing_echo = False
+        elif a == "wdt":
+            b.r.note_reset(True)
+        elif a == "clear":
+            b.say("faults clear", end="ok faults")
+            continue
+        b.frame()
+    lines, _ = b.say("faults", end="ok faults")
+    return [lines, list(b.r.faultlog.words)]
+
+
+def refused(lines):
+    """Each bad `faults` line's reply, and whether the log's words stayed the same."""
+    from scenarios.selftest import Board
+
+    b = Board()
+    b.bus.detach(0x41)
+    for _ in range(3):
+        b.frame()
+    before = list(b.r.faultlog.words)
+    out = []
+    for line in lines:
+        got, _ = b.say(line, end="ok faults")
+        out.append(got)
+    return [out, before == list(b.r.faultlog.words), before != [0, 0, 0, 0]]

@@ -5,7 +5,7 @@
         lines = link.request_lines("selftest")   # a multi-line reply: every line, the end line last
 
 A command in MULTI_LINE answers with several `ok`/`err` lines and then its end line, the one whose
-second word is the command itself (`ok selftest 14 checks, 0 failed`, `err selftest: ...`);
+second word is the command itself (`ok selftest 15 checks, 0 failed`, `err selftest: ...`);
 request() returns that end line and keeps the lines before it in `link.body`.
 
 Lines from the board that start with neither `ok` nor `err` (boot text, a calibration notice,
