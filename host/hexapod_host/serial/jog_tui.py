@@ -23,18 +23,36 @@ def draw(screen, lines):
     screen.refresh()
 
 
+# Keys at the prompt -> jog.prompt_key's names; any other code below 32 is dropped there.
+PROMPT_KEYS = {10: "ENTER", 13: "ENTER", curses.KEY_ENTER: "ENTER", 27: "ESC", 3: "CTRL-C"}
+PROMPT_KEYS.update({8: "BACKSPACE", 127: "BACKSPACE", curses.KEY_BACKSPACE: "BACKSPACE"})
+
+
+def prompt_name(code):
+    """A curses key code as jog.prompt_key takes it ('' for a key with no character)."""
+    if code in PROMPT_KEYS:
+        return PROMPT_KEYS[code]
+    return chr(code) if 0 <= code < 256 else ""
+
+
 def ask(screen, prompt):
-    """A line typed at the bottom of the screen (Enter ends it)."""
+    """A line typed at the bottom of the screen: Enter sends it, Esc or Ctrl-C drops it. Raw mode:
+    Ctrl-C comes here as a key (not a signal) and never reaches the board (jog.prompt_key)."""
     height, width = screen.getmaxyx()
-    screen.move(height - 1, 0)
-    screen.clrtoeol()
-    screen.addnstr(height - 1, 0, prompt, width - 1)
-    curses.echo()
+    curses.raw()
     curses.curs_set(1)
+    text, state = "", None
     try:
-        return screen.getstr(height - 1, len(prompt), 95).decode(errors="replace")
+        while state is None:
+            screen.move(height - 1, 0)
+            screen.clrtoeol()
+            screen.addnstr(height - 1, 0, prompt + text, width - 1)
+            screen.refresh()
+            text, state = jog.prompt_key(text, prompt_name(screen.getch()))
+        return text if state == "done" else ""
     finally:
-        curses.noecho()
+        curses.noraw()
+        curses.cbreak()
         curses.curs_set(0)
 
 
