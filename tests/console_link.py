@@ -26,9 +26,13 @@ class ConsoleLink:
         self.reader = console.BufferReader()
         self.replies = []
         self.fs = StubFS()
-        self.console = console.start(self.runner, self.reader, self.fs, self.fs.open, out=self.replies.append)
+        self.console = console.start(self.runner, self.reader, self.fs, self.fs.open, out=self.say)
         self.replies.clear()  # the boot's 'cal: no hexapod_cal.txt ...' line
         self.lines = []  # every line requested, in order
+
+    def say(self, *parts):
+        """The console's out: a line, or a tagged reply's tag and line (print's two arguments)."""
+        self.replies.append(" ".join(parts))
 
     def frames(self, n):
         r = self.runner
@@ -39,7 +43,7 @@ class ConsoleLink:
 
     def request(self, line):
         """The console's reply to line, after the frames it took (one poll per frame, as Runner.run)."""
-        self.lines.append(line)
+        self.lines.append(line.split(" ", 1)[1] if line.startswith("#") else line)  # the command, untagged
         before = len(self.replies)
         self.reader.feed(line.encode() + b"\n")
         for _ in range(20):

@@ -13,6 +13,8 @@ from hexapod_host.serial.link import Link, LinkError
 
 
 class FakePort:
+    """Lines to read back; '#T' in one stands for the tag of the request written last."""
+
     def __init__(self, lines=(), fail_after=None):
         self.lines = list(lines)
         self.written = []
@@ -20,6 +22,9 @@ class FakePort:
 
     def write(self, data):
         self.written.append(data)
+
+    def tag(self):
+        return self.written[-1].split(b" ", 1)[0] if self.written else b"#?"
 
     def flush(self):
         pass
@@ -29,17 +34,17 @@ class FakePort:
             if self.fail_after == 0:
                 raise serial.SerialException("device reports readiness to read but returned no data")
             self.fail_after -= 1
-        return self.lines.pop(0) if self.lines else b""
+        return self.lines.pop(0).replace(b"#T", self.tag()) if self.lines else b""
 
     def close(self):
         pass
 
 
 def test_request_skips_other_lines_and_returns_the_reply():
-    port = FakePort([b"MicroPython v1.22\r\n", b"cal: no hexapod_cal.txt; ...\r\n", b"ok leg 2 angles 0.00\r\n"])
-    lk = Link(port, timeout=0.2, name="/dev/fake")
+    port = FakePort([b"MicroPython v1.22\r\n", b"cal: no hexapod_cal.txt; ...\r\n", b"#T ok leg 2 angles 0.00\r\n"])
+    lk = Link(port, timeout=0.2, name="/dev/fake", first_tag=41)
     assert lk.request("get 2") == "ok leg 2 angles 0.00"
-    assert port.written == [b"get 2\n"]
+    assert port.written == [b"#41 get 2\n"]
     assert lk.other == ["MicroPython v1.22", "cal: no hexapod_cal.txt; ..."]
     with pytest.raises(LinkError, match="one command per request"):
         lk.request("get 2\nget 3")
@@ -53,7 +58,7 @@ def test_a_repl_prompt_and_a_disconnect_are_named():
         "no answer to 'status' from /dev/fake within 0.2 s: is the hexapod firmware running?"
         " (the board is at the REPL: run main.py or reset it)"
     )
-    lk = Link(FakePort([b"ok\r\n"], fail_after=1), timeout=1, name="/dev/fake")
+    lk = Link(FakePort([b"#T ok\r\n"], fail_after=1), timeout=1, name="/dev/fake")
     assert lk.request("stop") == "ok"
     with pytest.raises(LinkError) as e:
         lk.request("status")
