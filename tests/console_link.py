@@ -29,6 +29,7 @@ class ConsoleLink:
         self.console = console.start(self.runner, self.reader, self.fs, self.fs.open, out=self.say)
         self.replies.clear()  # the boot's 'cal: no hexapod_cal.txt ...' line
         self.lines = []  # every line requested, in order
+        self.raw = b""  # every byte that came in over serve_pty
 
     def say(self, *parts):
         """The console's out: a line, or a tagged reply's tag and line (print's two arguments)."""
@@ -73,7 +74,8 @@ class ConsoleLink:
 
 
 def serve_pty(link):
-    """Answer console lines on a new pseudo-terminal; returns (slave path, stop())."""
+    """Answer console lines on a new pseudo-terminal; returns (slave path, stop()). Every byte that
+    came in is kept in link.raw (a control byte sent by a client shows there)."""
     import tty
 
     master, slave = os.openpty()
@@ -89,6 +91,7 @@ def serve_pty(link):
             except OSError:
                 return
             buf += data
+            link.raw += data
             while b"\n" in buf:
                 raw, buf = buf.split(b"\n", 1)
                 line = raw.decode(errors="replace").strip()

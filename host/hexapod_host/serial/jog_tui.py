@@ -36,10 +36,10 @@ def prompt_name(code):
 
 
 def ask(screen, prompt):
-    """A line typed at the bottom of the screen: Enter sends it, Esc or Ctrl-C drops it. Raw mode:
-    Ctrl-C comes here as a key (not a signal) and never reaches the board (jog.prompt_key)."""
+    """A line typed at the bottom of the screen: Enter sends it, Esc or Ctrl-C drops it (raw mode,
+    loop(): Ctrl-C comes here as a key, not a signal) and no control key reaches the board
+    (jog.prompt_key)."""
     height, width = screen.getmaxyx()
-    curses.raw()
     curses.curs_set(1)
     text, state = "", None
     try:
@@ -51,19 +51,22 @@ def ask(screen, prompt):
             text, state = jog.prompt_key(text, prompt_name(screen.getch()))
         return text if state == "done" else ""
     finally:
-        curses.noraw()
-        curses.cbreak()
         curses.curs_set(0)
 
 
 def loop(screen, tool, port):
+    # Raw mode throughout: Ctrl-C (and Ctrl-Z, Ctrl-\\) arrive as keys, never as signals, so no
+    # key press races the prompt's own handling; on the jog screen Ctrl-C quits as q does.
+    curses.raw()
     curses.curs_set(0)
     screen.keypad(True)
     tool.start()
     while not tool.view.quit:
         draw(screen, jog.render(tool.view, port))
         code = screen.getch()
-        if code == ord(":"):
+        if code == 3:
+            tool.key("q")
+        elif code == ord(":"):
             tool.line(ask(screen, ": "))
         elif code in SPECIAL:
             tool.key(SPECIAL[code])
