@@ -81,7 +81,7 @@ for setup, line in CASES:
     heap = gc.mem_alloc() - before
     gc.enable()
     times = sorted(TIMES)
-    row = {"line": line[:28] or "(idle)", "median_us": times[REPEATS // 2], "max_us": times[-1]}
+    row = {"line": line[:24] or "(idle)", "median_us": times[REPEATS // 2], "max_us": times[-1]}
     row["heap_bytes"] = heap
     rows.append(row)
     times = None
