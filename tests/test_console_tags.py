@@ -10,11 +10,6 @@ from tests.console_rig import RIG, clean_stubs  # noqa: F401 (autouse fixture)
 TAGGED = (
     RIG
     + """
-def out(*parts):  # print's two arguments for a tagged reply: the tag, then the line
-    REPLIES.append(" ".join(parts))
-con.out = out
-
-
 def lines(data, n=3):
     before = len(REPLIES)
     reader.feed(data)

@@ -130,29 +130,30 @@ def start_virtual_board(board="pico", robot="default", cal_dir="", frames=-1):
 
 def virtual_board(args):
     _board_ok(args.board)
-    tmp = None
-    cal_dir = args.cal_dir
-    if cal_dir is None:
-        tmp = tempfile.TemporaryDirectory(prefix="hexapod-cal-")
-        cal_dir = tmp.name
-    elif not os.path.isdir(cal_dir):
-        raise UsageError("--cal-dir %r: no such directory" % cal_dir)
-    proc, path, master, slave = start_virtual_board(args.board, args.robot, os.path.abspath(cal_dir))
-    print(path, flush=True)
-    print(
-        "virtual board %s on %s (calibration file in %s); try: hexapod send --port %s status; Ctrl-C stops"
-        % (args.board, path, cal_dir, path),
-        file=sys.stderr,
-        flush=True,
-    )
+    if args.cal_dir is not None and not os.path.isdir(args.cal_dir):
+        raise UsageError("--cal-dir %r: no such directory" % args.cal_dir)
 
     def stop(signum, frame):
         raise KeyboardInterrupt
 
     # SIGTERM, and SIGHUP (the terminal closed): stop the VM and remove the temporary calibration
-    # directory, as Ctrl-C does. (kill -9 cannot be caught: the VM dies with us, _die_with_parent.)
+    # directory, as Ctrl-C does; armed before the directory exists. (kill -9 cannot be caught: the
+    # VM dies with us, _die_with_parent.)
     old = {sig: signal.signal(sig, stop) for sig in (signal.SIGTERM, signal.SIGHUP)}
+    tmp = proc = None
     try:
+        cal_dir = args.cal_dir
+        if cal_dir is None:
+            tmp = tempfile.TemporaryDirectory(prefix="hexapod-cal-")
+            cal_dir = tmp.name
+        proc, path, master, slave = start_virtual_board(args.board, args.robot, os.path.abspath(cal_dir))
+        print(path, flush=True)
+        print(
+            "virtual board %s on %s (calibration file in %s); try: hexapod send --port %s status; Ctrl-C stops"
+            % (args.board, path, cal_dir, path),
+            file=sys.stderr,
+            flush=True,
+        )
         code = proc.wait()
         print("hexapod: error: the virtual board's VM exited with status %d" % code, file=sys.stderr)
         return 1
@@ -161,14 +162,15 @@ def virtual_board(args):
     finally:
         for sig, handler in old.items():
             signal.signal(sig, handler)
-        if proc.poll() is None:
-            proc.terminate()
-            try:
-                proc.wait(5)
-            except subprocess.TimeoutExpired:
-                proc.kill()
-                proc.wait()
-        os.close(master)
-        os.close(slave)
+        if proc is not None:
+            if proc.poll() is None:
+                proc.terminate()
+                try:
+                    proc.wait(5)
+                except subprocess.TimeoutExpired:
+                    proc.kill()
+                    proc.wait()
+            os.close(master)
+            os.close(slave)
         if tmp is not None:
             tmp.cleanup()
