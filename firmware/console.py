@@ -252,26 +252,18 @@ class Console:
         else:
             if self._job is not None:  # a new line ends a multi-line reply under way, with its end line
                 self._job_end(self._job.abort())
-            # From the preallocated view: one copy fewer than bytes(buf[:n]).decode(), so a tagged
-            # line (its tag one more word of the split) costs no more than an untagged one did.
+            # From the preallocated view: one copy fewer than bytes(buf[:n]).decode() (64-96 bytes
+            # less a line, bench tick's console rows).
             words = str(self._view[:n], "ascii").replace("\t", " ").split()
-            buf = self._buf
-            if buf[0] == 35:  # tag_length inline: a call's frame is heap in the VM
-                k = 1
-                while k < n and 48 <= buf[k] <= 57:
-                    k += 1
-                if 1 < k <= TAG_DIGITS + 1 and (k == n or buf[k] == 32 or buf[k] == 9):
-                    tag = words[0]  # a word the split made anyway: echoing it allocates nothing more
+            if self._buf[0] == 35 and tag_length(self._buf, n) > 0:
+                tag = words[0]  # a word the split made anyway: echoing it copies no reply
             reply = self._dispatch(words, tag)
             if reply is None:
                 return
         self._over = 0
         self._bad = -1
         self.lines += 1
-        if tag is None:  # inline, not _say: a call's frame is heap in the VM (bench tick's console rows)
-            self.out(reply)
-        else:
-            self.out(tag, reply)
+        self._say(tag, reply)
 
     def _say(self, tag, line):
         """One line out, after its request's tag when it had one (out(tag, line): print puts a
