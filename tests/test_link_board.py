@@ -142,12 +142,13 @@ def test_an_empty_request_is_refused_before_anything_is_sent(capsys):
         os.close(slave)
 
 
-def _virtual_board():
+def _virtual_board(*options):
     """`hexapod virtual-board` as a user starts it: (process, pty path, calibration directory)."""
     if micropython_missing():
         pytest.skip(micropython_missing())
     exe = os.path.join(os.path.dirname(sys.executable), "hexapod")
-    proc = subprocess.Popen([exe, "virtual-board"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    cmd = [exe, "virtual-board", *options]
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     path = proc.stdout.readline().strip()
     note = proc.stderr.readline()
     cal_dir = note.split("(calibration file in ")[1].split(")")[0]
@@ -183,8 +184,9 @@ def gone(pid, timeout=10.0):
     return False
 
 
-def test_kill_9_leaves_no_vm_serving_the_pty():
-    proc, path, cal_dir = _virtual_board()
+def test_kill_9_leaves_no_vm_serving_the_pty(tmp_path):
+    # --cal-dir: a killed command cannot remove its temporary directory (nothing runs on SIGKILL).
+    proc, path, cal_dir = _virtual_board("--cal-dir", str(tmp_path))
     try:
         # A client keeps the pty open (a terminal, jog): without it the VM would die of EIO anyway.
         with Link.open(path, timeout=1) as link:
