@@ -131,6 +131,8 @@ def ten_thousand_lines(lines):
     for k, line in enumerate(lines):
         frames = ns["r"].frames
         reply = con.do(line)
+        if reply is not None and reply.startswith("#"):
+            reply = reply.split(" ", 1)[1]  # a tagged line ('#12 get 2': random text can make one)
         if reply and reply.startswith("ok"):
             ns["oks"][line.split()[0]] = ns["oks"].get(line.split()[0], 0) + 1
         if reply is not None:
@@ -202,7 +204,9 @@ while reader.pos < len(data):
     frames(1)
     bad += unsafe()
 frames(2)
-odd = [x for x in REPLIES if not (x == "ok" or x.startswith("ok ") or x.startswith("err "))]
+def untagged(x):  # a random '#12 ' starts a tagged request: its reply is '#12 ok ...'
+    return x.split(" ", 1)[1] if x.startswith("#") and " " in x else x
+odd = [x for x in map(untagged, REPLIES) if not (x == "ok" or x.startswith("ok ") or x.startswith("err "))]
 print(repr((r.frames - n0 > 0, bad, odd, [x for x in REPLIES if "internal" in x], len(REPLIES))))
 """
         % (data,)

@@ -239,6 +239,9 @@ RECORDED = [
 
 
 class FakePort:
+    """A board's lines; its replies (ok/err) come tagged with the request written last, as the
+    firmware tags them (docs/console.md)."""
+
     def __init__(self, lines):
         self.lines = [(x + "\r\n").encode() for x in lines]
         self.written = b""
@@ -250,7 +253,12 @@ class FakePort:
         pass
 
     def readline(self):
-        return self.lines.pop(0) if self.lines else b""
+        if not self.lines:
+            return b""
+        line = self.lines.pop(0)
+        if line.startswith((b"ok", b"err")):
+            line = self.written.splitlines()[-1].split(b" ", 1)[0] + b" " + line
+        return line
 
     def close(self):
         pass
@@ -291,8 +299,15 @@ def test_doctor_report_from_a_recorded_reply():
 
 @pytest.fixture
 def vboard(virtual_board):
-    """start() -> pty path of a virtual board with no calibration filesystem (conftest's)."""
-    return lambda: virtual_board("")[0]
+    """start() -> pty path of a virtual board with no calibration filesystem (conftest's), its
+    link closed: the port is free for the command under test."""
+
+    def start():
+        path, link = virtual_board("")
+        link.close()
+        return path
+
+    return start
 
 
 def test_doctor_against_the_virtual_board(vboard, capsys):

@@ -18,13 +18,15 @@ def register(sub):
 
 def run(args):
     from hexapod_host.serial import jog, jog_tui
-    from hexapod_host.serial.link import Link, LinkError
+    from hexapod_host.serial.link import Link, LinkError, PortBusy
 
     if os.sep in args.port and not os.path.exists(args.port):
         raise UsageError("no such port %r (hexapod ports lists them)" % args.port)
     try:
         link = Link.open(args.port, args.timeout)
         link.request("get 1")  # a board that does not answer is found before the screen opens
+    except PortBusy as err:
+        raise UsageError(str(err)) from None
     except LinkError as err:
         print("hexapod jog: error: %s" % err)
         return 1
