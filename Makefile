@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: test sim bench lint clean pico-firmware
+.PHONY: test sim bench lint clean pico-firmware mutants
 # The emulated Pico's MicroPython image, built from Debian's source packages (host/pico/firmware.py,
 # ~2 min on 2 cores) into a git-ignored cache. Without registry access the Pico tests skip and say so;
 # under CI (CI=true) a failed build fails the run.
@@ -33,6 +33,10 @@ sim: $(STAMP)
 
 bench: $(STAMP)
 	$(BIN)/hexapod bench ik --json
+
+# Planted bugs, one at a time, in a scratch copy: caught or survived (tools/mutants.toml, docs/mutants.md).
+mutants: $(STAMP) pico-firmware
+	$(BIN)/python tools/mutants.py --json build/mutants.json
 
 lint: $(STAMP)
 	$(BIN)/ruff check .
