@@ -81,7 +81,7 @@ def test_a_slow_command_says_working_first_only_when_tagged(rt):
 def test_a_multi_line_reply_carries_its_tag_on_every_line(rt):
     got = run(rt, ['lines(b"#21 selftest\\n", 12)', 'lines(b"#22 selftest\\n", 1) + lines(b"#23 get 1\\n", 1)'])
     first = got[0]
-    assert len(first) == 15 and all(x.startswith(("#21 ok ", "#21 err ")) for x in first), first
+    assert len(first) == 16 and all(x.startswith(("#21 ok ", "#21 err ")) for x in first), first  # 15 checks + end
     assert first[-1].split()[2] == "selftest"
     # A new line cuts a reply short: its end line, under its own tag, comes before the new reply.
     cut = got[1]
