@@ -10,8 +10,8 @@ Pin claims: every class takes `claims`, an object with claim(pin, owner) and rel
 
 import _stub_clock as clock
 import _stub_pins as pins
+from _stub_pins import Pin
 from i2c_bus import ADDR_NACK, TIMEOUT
-from machine import Pin
 
 FEATHER_RP2040_PINS = (
     "A0", "A1", "A2", "A3", "D4", "D5", "D6", "D9", "D10", "D11", "D12", "D13", "D24", "D25",
