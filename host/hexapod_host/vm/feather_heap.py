@@ -66,8 +66,10 @@ def run():
     _cp_vm.SERIAL.watch = sample  # polled once a frame, by the console
     r = code.main(frames=cfg["frames"], reader=reader)
     sample()
+    loaded = sorted(sys.modules)
     gc.collect()
     return {
+        "loaded": loaded,
         "after_import": after_import - base,
         "peak": peak[0] - base,
         "end": gc.mem_alloc() - base,
