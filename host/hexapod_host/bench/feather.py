@@ -33,9 +33,10 @@ FRAMES = 1000
 WINDOW = 12  # robust_heap: this many heap sizes 2 KB apart (24 KB) must all succeed
 FEATHER_FREE = 171 * 1024  # gc.mem_free() at the REPL, stock CircuitPython 10, Feather RP2040 (USB host on)
 # 32-bit heap / 64-bit heap for the same .py imports: the emulated Pico (rp2 MicroPython, 32-bit) against
-# the VM (64-bit), vm/heap_per_module.py on the deploy's 28 modules that import on both (2026-11-27): bytes
-# allocated while importing (the compile, which makes the peak) 0.80 in total (per module 0.68-1.05,
-# 0.75-0.80 for the five largest); bytes that stay 0.71 (0.54-1.01). The peak is a compile's: 0.80.
+# the VM (64-bit), pico_ratio() (`python -m hexapod_host.bench.feather ratio`), two runs of 2026-11-27 (24
+# and 22 modules over 1 KB): bytes allocated while importing (the compile) 0.80 of the VM's in total both
+# times (per module 0.68-1.05 and 0.73-1.05; the five largest 0.75-0.80); bytes that stay 0.71 and 0.73
+# (0.54-1.31). The larger total is the one used.
 PICO_RATIO = 0.80
 # The serial line during the run: stand, follow the left wall at 12 cm, a status, the self-test.
 COMMANDS = ((100, "stand\n"), (4000, "wall left 12\n"), (14000, "status\n"), (15000, "selftest\n"))
@@ -219,5 +220,53 @@ def bench_feather(args):
     return measure(libs_as=getattr(args, "libs", "mpy"))
 
 
+# Imported by code.py's CircuitPython-only lines, or needing the fake modules: not on a MicroPython board.
+NOT_ON_PICO = ("code", "drivers.cp_hcsr04_pulsein")
+PER_MODULE = os.path.join(VM_DIR, "heap_per_module.py")
+
+
+def _heap_lines(text):
+    """{module: (allocated, stays)} from heap_per_module.py's lines."""
+    out = {}
+    for line in text.splitlines():
+        parts = line.split()
+        if len(parts) == 4 and parts[0] == "heap":
+            out[parts[1]] = (int(parts[2]), int(parts[3]))
+    return out
+
+
+def pico_ratio(min_bytes=1024):
+    """PICO_RATIO's measurement (minutes: the emulated Pico boots and imports from source): the same
+    .py imports on the emulated Pico and in the VM. Returns {"allocated"|"stays": {"total", "min",
+    "max"}, "modules": {name: [pico allocated, pico stays, vm allocated, vm stays]}}; modules the VM
+    gives under min_bytes are left out of the ratios (fixed costs differ there)."""
+    from hexapod_host.pico import emulator
+
+    with tempfile.TemporaryDirectory() as tmp:
+        dest = os.path.join(tmp, "drive")
+        stage(dest, "py")
+        for name in ("boot.py", "code.py"):  # MicroPython would run boot.py; code.py is not imported here
+            os.remove(os.path.join(dest, name))
+        names = [m for m in import_order(dest) if m not in NOT_ON_PICO]
+        script = os.path.join(tmp, "heap_per_module.py")
+        with open(PER_MODULE) as f, open(script, "w") as g:
+            g.write(f.read().replace("MODULES = []", "MODULES = %r" % names))
+        vm_rows = _heap_lines(mpvm.run(script=script, heapsize="4m", search=(dest, os.path.join(dest, "lib"))))
+        status, out, err, _ = emulator.run([script], fs=emulator.image(dest, os.path.join(tmp, "fs.img")))
+        if status:
+            raise RuntimeError("the emulated Pico failed: %s" % (err or out)[-500:])
+        pico_rows = _heap_lines(out)
+    result = {"modules": {n: list(pico_rows[n] + vm_rows[n]) for n in names if n in pico_rows and n in vm_rows}}
+    for k, what in ((0, "allocated"), (1, "stays")):
+        rows = [r for r in result["modules"].values() if r[2 + k] >= min_bytes and r[k] > 0]
+        ratios = [r[k] / r[2 + k] for r in rows]
+        total = sum(r[k] for r in rows) / sum(r[2 + k] for r in rows)
+        result[what] = {"total": round(total, 3), "min": round(min(ratios), 3), "max": round(max(ratios), 3)}
+    return result
+
+
 if __name__ == "__main__":
-    json.dump(measure(*sys.argv[1:2]), sys.stdout, indent=1)
+    if sys.argv[1:2] == ["ratio"]:
+        json.dump(pico_ratio(), sys.stdout, indent=1)
+    else:
+        json.dump(measure(*sys.argv[1:2]), sys.stdout, indent=1)
