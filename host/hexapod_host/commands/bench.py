@@ -4,6 +4,7 @@ import json
 
 from hexapod.units import shown
 from hexapod_host import mpvm
+from hexapod_host.bench.feather import bench_feather
 from hexapod_host.bench.guard import bench_guard
 from hexapod_host.bench.i2c import bench_i2c
 from hexapod_host.bench.ik import bench_ik
@@ -11,7 +12,7 @@ from hexapod_host.bench.tick import bench_tick
 from hexapod_host.commands.cli import UsageError
 
 # name -> function(args) returning a dict; other modules add theirs here.
-BENCHES = {"ik": bench_ik, "i2c": bench_i2c, "tick": bench_tick, "guard": bench_guard}
+BENCHES = {"ik": bench_ik, "i2c": bench_i2c, "tick": bench_tick, "guard": bench_guard, "feather": bench_feather}
 
 
 def register(sub):
