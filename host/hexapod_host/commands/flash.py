@@ -7,6 +7,7 @@ command) is printed before it runs; --dry-run prints it and touches no board. do
 import os
 import shlex
 
+from hexapod_host.commands import checks
 from hexapod_host.commands.cli import UsageError
 from hexapod_host.serial import flash
 
@@ -45,6 +46,12 @@ def check_args(args):
             raise UsageError("board %r runs MicroPython: give its serial port with --port PORT" % args.board)
         if not args.dry_run and os.sep in args.port and not os.path.exists(args.port):
             raise UsageError("no such port %r (list ports with `mpremote connect list`)" % args.port)
+    if args.stage_dir:
+        # staging replaces the directory whole: only a new, empty or earlier stage's (its core package there)
+        d = args.stage_dir
+        if os.path.isdir(d) and os.listdir(d) and not os.path.isdir(os.path.join(d, "hexapod")):
+            raise UsageError("--stage-dir: %r holds other files and staging replaces it: give a new or empty one" % d)
+        checks.out_dir("--stage-dir", d)
     if args.manifest_from and not os.path.isfile(args.manifest_from):
         raise UsageError("--manifest-from %r: no such file" % args.manifest_from)
     return rt

@@ -10,6 +10,7 @@ import tempfile
 import time
 
 from hexapod_host import VM_DIR
+from hexapod_host.commands import checks
 from hexapod_host.commands.cli import UsageError
 from hexapod_host.pico import emulator as pico
 
@@ -236,8 +237,9 @@ def run_files(args):
     for f in args.files:
         if not os.path.isfile(f):
             raise UsageError("no such file: %s" % f)
-    if args.image and os.path.exists(args.image) and os.listdir(args.image):
-        raise UsageError("--image %s: not empty (give a new or empty directory)" % args.image)
+    if args.image:
+        checks.out_dir("--image", args.image, empty=True)
+        checks.out_file("--image", args.image.rstrip("/") + ".img")
     with tempfile.TemporaryDirectory() as tmp:
         tree = args.image or os.path.join(tmp, "stage")
         pico.stage(tree)
@@ -267,6 +269,8 @@ def run_serial(args):
     _check(args)
     if args.fs and not os.path.isfile(args.fs):
         raise UsageError("--fs %r: no such file" % args.fs)
+    if args.save_fs:
+        checks.out_file("--save-fs", args.save_fs)
 
     def stop(signum, frame):
         raise KeyboardInterrupt
