@@ -196,7 +196,7 @@ BENCHES = {"ik": bench_ik, "tick": bench_tick, "frame": bench_frame, "boot": ben
 
 def register(sub):
     p = sub.add_parser("pico", help="the firmware on an emulated Raspberry Pi Pico (rp2040js, Node.js >= 18)")
-    what = p.add_subparsers(dest="pico_command", metavar="run|bench", required=True)
+    what = p.add_subparsers(dest="pico_command", metavar="run|bench|serial", required=True)
     r = what.add_parser("run", help="flash the firmware into an emulated Pico and run FILE... on it")
     r.add_argument("files", nargs="+", metavar="FILE", help="Python files run one after another (raw REPL)")
     r.add_argument("--image", metavar="DIR", help="keep the staged files in DIR (and the littlefs image DIR.img)")
