@@ -42,6 +42,19 @@ def test_bad_input_is_a_usage_error(args, message):
     assert proc.stdout == ""
 
 
+def test_a_file_that_is_no_rp2040_image_is_refused_before_booting(tmp_path):
+    # main: an ELF loaded as a .bin ran garbage until the runner's 900 s timeout
+    elf = tmp_path / "firmware.elf"
+    elf.write_bytes(b"\x7fELF\x01\x01\x01" + bytes(2000))
+    text = tmp_path / "notes.uf2"
+    text.write_text("not an image\n")
+    for fw, why in ((elf, "an ELF file"), (text, "13 bytes, not a whole number of 512-byte UF2 blocks")):
+        for args in (("run", __file__), ("bench", "ik"), ("serial",)):
+            proc = hexapod(*args, "--firmware", str(fw))
+            assert proc.returncode == 2 and proc.stdout == "", (args, proc.stderr)
+            assert proc.stderr.startswith("hexapod: error: not an RP2040 UF2/bin: %s: %s" % (fw, why)), proc.stderr
+
+
 def test_bad_subcommand_and_missing_files_are_argparse_errors():
     for args in (("walk",), ("run",), ()):
         proc = hexapod(*args)
