@@ -357,3 +357,28 @@ def test_each_shipped_world_is_done_undisturbed(name):
     # no contact, the side sonars never 15 cm too far.
     r = sim_wall.run_trial(world.load(name), 12, name, disturb=False, bus="sink")
     assert (r["success"], r["why"], r["contact"]) == (True, "", False)
+
+
+@pytest.mark.parametrize("side", [1, -1], ids=["right wall", "left wall"])
+def test_plot_of_a_single_wall_has_room_for_its_labels(side):
+    # main, --follow right: matplotlib warned "constrained_layout not applied because axes sizes
+    # collapsed to zero" (the finish label 40 cm past the wall's far side) and cut the x label off.
+    import warnings
+
+    import matplotlib.pyplot as plt
+
+    w = world.load("wall")
+    traces = [(sp, [(0, 0, x, side * 10 * sp, 0) for x in range(200, 1701, 50)]) for sp in (8, 10, 12, 14, 16)]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fig = sim_wall.figure(w, traces, "a title")
+        fig.canvas.draw()
+    try:
+        ax = fig.axes[0]
+        inside = fig.bbox
+        for label in (ax.xaxis.label, ax.yaxis.label, ax.title):
+            box = label.get_window_extent()
+            assert inside.x0 <= box.x0 and box.x1 <= inside.x1 and inside.y0 <= box.y0 and box.y1 <= inside.y1
+        assert ax.get_position().height > 0.5  # the axes were not squeezed
+    finally:
+        plt.close(fig)
