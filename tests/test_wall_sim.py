@@ -382,3 +382,42 @@ def test_plot_of_a_single_wall_has_room_for_its_labels(side):
         assert ax.get_position().height > 0.5  # the axes were not squeezed
     finally:
         plt.close(fig)
+
+
+def _children(pid):
+    with open("/proc/%d/task/%d/children" % (pid, pid)) as f:
+        return [int(w) for w in f.read().split()]
+
+
+def test_one_ctrl_c_stops_a_run_of_trials_cleanly():
+    # main: every worker printed a KeyboardInterrupt traceback, the pool replaced them and the
+    # parent waited for all the trials left before it exited.
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    exe = os.path.join(os.path.dirname(sys.executable), "hexapod")
+    argv = [exe, "sim", "wall", "--setpoint", "12", "--trials", "20", "--jobs", "2", "--json"]
+    # A session of its own: the signal goes to the whole group, as a terminal's Ctrl-C does.
+    proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+    try:
+        end = time.monotonic() + 120  # a generous bound on the workers starting, not a measurement
+        workers = []
+        while len(workers) < 2 and proc.poll() is None and time.monotonic() < end:
+            workers = _children(proc.pid)
+            time.sleep(0.05)
+        assert len(workers) == 2, "the two workers never started"
+        time.sleep(0.5)  # into the trials, past the pool's start
+        os.killpg(proc.pid, signal.SIGINT)
+        out, err = proc.communicate(timeout=120)
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
+    assert proc.returncode == 130, err
+    assert "Traceback" not in err and "KeyboardInterrupt" not in err, err
+    assert out == ""  # no table for half a run
+    with pytest.raises(ProcessLookupError):  # nothing of the group is left: the workers are gone
+        os.killpg(proc.pid, 0)

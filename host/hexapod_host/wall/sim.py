@@ -349,17 +349,29 @@ def run_trials(
         pool = None
     else:
         import multiprocessing
+        import signal
 
-        pool = multiprocessing.get_context("fork").Pool(min(jobs, len(tasks)))
+        # Ctrl-C reaches the whole process group: the workers are forked ignoring it (no traceback from
+        # each), the parent alone takes the KeyboardInterrupt and ends them below.
+        old = signal.signal(signal.SIGINT, signal.SIG_IGN)
+        try:
+            pool = multiprocessing.get_context("fork").Pool(min(jobs, len(tasks)))
+        finally:
+            signal.signal(signal.SIGINT, old)
         it = pool.imap(_task, tasks)
+    done = False
     try:
         for r in it:
             results.append(r)
             if progress is not None:
                 progress.update(1)
+        done = True
     finally:
         if pool is not None:
-            pool.close()
+            if done:
+                pool.close()
+            else:  # interrupted or failed: the trials still queued are not run
+                pool.terminate()
             pool.join()
         if progress is not None:
             progress.close()
