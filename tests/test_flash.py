@@ -223,7 +223,7 @@ def test_a_full_drive_replaces_nothing(tmp_path):
         (["--board", "arduino_uno", "--port", "/dev/ttyACM0"], "no board 'arduino_uno'; allowed: esp32_devkit"),
         (["--board", "pico", "--port", "/dev/ttyACM0", "--robot", "spider"], "no robot 'spider'; allowed: default"),
         (["--board", "pico"], "board 'pico' runs MicroPython: give its serial port with --port PORT"),
-        (["--board", "esp32_devkit", "--dry-run"], "give its serial port with --port PORT"),
+        (["--board", "esp32_devkit"], "give its serial port with --port PORT"),  # a dry run needs none
         (["--board", "pico", "--port", "/dev/ttyNOPE9"], "no such port '/dev/ttyNOPE9'"),
         (["--board", "feather_rp2040"], "board 'feather_rp2040' runs CircuitPython: give its drive with --drive"),
         (
