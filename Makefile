@@ -46,7 +46,9 @@ clean:
 	rm -rf $(VENV) build .pytest_cache .ruff_cache .hypothesis
 
 # Put the firmware on a board: make flash BOARD=pico PORT=/dev/ttyACM0 (CircuitPython: DRIVE=/media/$USER/CIRCUITPY;
-# DRY_RUN=1 prints the plan only). docs/flashing.md.
+# DRY_RUN=1 prints the plan only and needs no PORT; VERBOSE=1 prints every command; STAGE_DIR=DIR stages there).
+# docs/flashing.md.
 .PHONY: flash
 flash: $(STAMP)
-	$(BIN)/hexapod flash --board $(BOARD) $(if $(PORT),--port $(PORT)) $(if $(DRIVE),--drive $(DRIVE)) $(if $(DRY_RUN),--dry-run)
+	$(BIN)/hexapod flash --board $(BOARD) $(if $(PORT),--port $(PORT)) $(if $(DRIVE),--drive $(DRIVE)) $(if $(DRY_RUN),--dry-run) \
+	  $(if $(VERBOSE),--verbose) $(if $(STAGE_DIR),--stage-dir $(STAGE_DIR))

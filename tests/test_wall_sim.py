@@ -357,3 +357,67 @@ def test_each_shipped_world_is_done_undisturbed(name):
     # no contact, the side sonars never 15 cm too far.
     r = sim_wall.run_trial(world.load(name), 12, name, disturb=False, bus="sink")
     assert (r["success"], r["why"], r["contact"]) == (True, "", False)
+
+
+@pytest.mark.parametrize("side", [1, -1], ids=["right wall", "left wall"])
+def test_plot_of_a_single_wall_has_room_for_its_labels(side):
+    # main, --follow right: matplotlib warned "constrained_layout not applied because axes sizes
+    # collapsed to zero" (the finish label 40 cm past the wall's far side) and cut the x label off.
+    import warnings
+
+    import matplotlib.pyplot as plt
+
+    w = world.load("wall")
+    traces = [(sp, [(0, 0, x, side * 10 * sp, 0) for x in range(200, 1701, 50)]) for sp in (8, 10, 12, 14, 16)]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fig = sim_wall.figure(w, traces, "a title")
+        fig.canvas.draw()
+    try:
+        ax = fig.axes[0]
+        inside = fig.bbox
+        for label in (ax.xaxis.label, ax.yaxis.label, ax.title):
+            box = label.get_window_extent()
+            assert inside.x0 <= box.x0 and box.x1 <= inside.x1 and inside.y0 <= box.y0 and box.y1 <= inside.y1
+        assert ax.get_position().height > 0.5  # the axes were not squeezed
+    finally:
+        plt.close(fig)
+
+
+def _children(pid):
+    with open("/proc/%d/task/%d/children" % (pid, pid)) as f:
+        return [int(w) for w in f.read().split()]
+
+
+def test_one_ctrl_c_stops_a_run_of_trials_cleanly():
+    # main: every worker printed a KeyboardInterrupt traceback, the pool replaced them and the
+    # parent waited for all the trials left before it exited.
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    exe = os.path.join(os.path.dirname(sys.executable), "hexapod")
+    argv = [exe, "sim", "wall", "--setpoint", "12", "--trials", "20", "--jobs", "2", "--json"]
+    # A session of its own: the signal goes to the whole group, as a terminal's Ctrl-C does.
+    proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+    try:
+        end = time.monotonic() + 120  # a generous bound on the workers starting, not a measurement
+        workers = []
+        while len(workers) < 2 and proc.poll() is None and time.monotonic() < end:
+            workers = _children(proc.pid)
+            time.sleep(0.05)
+        assert len(workers) == 2, "the two workers never started"
+        time.sleep(0.5)  # into the trials, past the pool's start
+        os.killpg(proc.pid, signal.SIGINT)
+        out, err = proc.communicate(timeout=120)
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
+    assert proc.returncode == 130, err
+    assert "Traceback" not in err and "KeyboardInterrupt" not in err, err
+    assert out == ""  # no table for half a run
+    with pytest.raises(ProcessLookupError):  # nothing of the group is left: the workers are gone
+        os.killpg(proc.pid, 0)

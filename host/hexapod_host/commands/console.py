@@ -10,7 +10,9 @@ import tempfile
 import tty
 
 from hexapod_host import BOARDS, VM_DIR, mpvm
+from hexapod_host.commands import checks
 from hexapod_host.commands.cli import UsageError
+from hexapod_host.serial.flash import robots
 from hexapod_host.serial.link import TIMEOUT_S, Link, LinkError, PortBusy, check_line, ports
 
 VM_SCRIPT = os.path.join(VM_DIR, "virtual_board.py")
@@ -59,6 +61,7 @@ def send(args):
         why = check_line(line)
         if why:  # refused before the port is opened: nothing is sent
             raise UsageError("LINE %d: %s" % (k + 1, why))
+    checks.port(args.port)
     status = 0
     try:
         with Link.open(args.port, timeout=args.timeout) as link:
@@ -128,8 +131,16 @@ def start_virtual_board(board="pico", robot="default", cal_dir="", frames=-1):
     return proc, path, master, slave
 
 
+def _robot_ok(name):
+    """A robot file in robots/, checked here: the VM would only exit 1 with an ImportError."""
+    have = robots()
+    if name not in have:
+        raise UsageError("no robot %r; allowed: %s" % (name, ", ".join(have)))
+
+
 def virtual_board(args):
     _board_ok(args.board)
+    _robot_ok(args.robot)
     if args.cal_dir is not None and not os.path.isdir(args.cal_dir):
         raise UsageError("--cal-dir %r: no such directory" % args.cal_dir)
 

@@ -349,17 +349,29 @@ def run_trials(
         pool = None
     else:
         import multiprocessing
+        import signal
 
-        pool = multiprocessing.get_context("fork").Pool(min(jobs, len(tasks)))
+        # Ctrl-C reaches the whole process group: the workers are forked ignoring it (no traceback from
+        # each), the parent alone takes the KeyboardInterrupt and ends them below.
+        old = signal.signal(signal.SIGINT, signal.SIG_IGN)
+        try:
+            pool = multiprocessing.get_context("fork").Pool(min(jobs, len(tasks)))
+        finally:
+            signal.signal(signal.SIGINT, old)
         it = pool.imap(_task, tasks)
+    done = False
     try:
         for r in it:
             results.append(r)
             if progress is not None:
                 progress.update(1)
+        done = True
     finally:
         if pool is not None:
-            pool.close()
+            if done:
+                pool.close()
+            else:  # interrupted or failed: the trials still queued are not run
+                pool.terminate()
             pool.join()
         if progress is not None:
             progress.close()
@@ -393,6 +405,17 @@ def table(rows):
 
 
 def plot(path, world, traces, title, dashed=None):
+    """Seed 000 Fig. 9's picture (figure()) written to path whole or not at all."""
+    import matplotlib.pyplot as plt
+
+    fig = figure(world, traces, title, dashed)
+    tmp = path + ".part"
+    fig.savefig(tmp, format="png")
+    plt.close(fig)
+    os.replace(tmp, path)
+
+
+def figure(world, traces, title, dashed=None):
     """Seed 000 Fig. 9's picture: the walls, the set-point bands, one trajectory per curve;
     `dashed`: (label, traces) drawn dashed in the same colours (the physics simulator's)."""
     import matplotlib
@@ -413,7 +436,6 @@ def plot(path, world, traces, title, dashed=None):
         ax.plot([x1 / 10, x2 / 10], [y1 / 10, y2 / 10], color="black", lw=3, solid_capstyle="butt")
     fx1, fy1, fx2, fy2 = world.finish
     ax.plot([fx1 / 10, fx2 / 10], [fy1 / 10, fy2 / 10], color="grey", ls=":", lw=1.5)
-    ax.text(fx1 / 10, fy1 / 10, " finish", color="grey", va="bottom", fontsize=8)
     for k, (sp, trace) in enumerate(traces):
         col = colours[k % len(colours)]
         for x1, y1, x2, y2 in world.walls:
@@ -459,10 +481,11 @@ def plot(path, world, traces, title, dashed=None):
         fontsize=7, loc="lower right", title="set point", title_fontsize=7, ncol=5 if len(world.walls) == 1 else 1
     )
     ax.grid(alpha=0.3)
-    tmp = path + ".part"
-    fig.savefig(tmp, format="png")
-    plt.close(fig)
-    os.replace(tmp, path)
+    # The label at the finish line's top end inside the axes: at its far end (40 cm past a single wall,
+    # outside the stretched view) constrained layout squeezed the axes to nothing for a right wall.
+    top = ax.get_ylim()[1]
+    ax.text(fx1 / 10, min(max(fy1, fy2) / 10, top), " finish", color="grey", va="top", fontsize=8, clip_on=True)
+    return fig
 
 
 def comparison_table(rows):
