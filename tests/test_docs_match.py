@@ -13,6 +13,7 @@ import time
 import pytest
 
 from hexapod_host import ROOT, mpvm
+from hexapod_host.serial.link import Link
 
 HEXAPOD = os.path.join(os.path.dirname(sys.executable), "hexapod")
 
@@ -39,6 +40,7 @@ def test_readme_console_session_replays_on_a_fresh_virtual_board(virtual_board, 
     assert lines[0] == "$ hexapod virtual-board &"
     shown_port = lines[1]
     port, link = virtual_board(str(tmp_path))
+    link.close()  # the port is opened exclusively: each `hexapod send` below opens it in turn
     got, want = [], []
     for line in lines[2:]:
         if not line.startswith("$ "):
@@ -48,15 +50,15 @@ def test_readme_console_session_replays_on_a_fresh_virtual_board(virtual_board, 
         if cmd.startswith("sleep "):  # the README waits for the stand to finish: wait for that itself
             cmd = cmd.split(";", 1)[1].strip()
             end = time.monotonic() + 60
-            while " mode standing " not in link.request("status") and time.monotonic() < end:
-                time.sleep(0.1)
+            with Link.open(port, timeout=10) as waiting:
+                while " mode standing " not in waiting.request("status") and time.monotonic() < end:
+                    time.sleep(0.1)
         echo = cmd.endswith("; echo $?")
         words = shlex.split(cmd.removesuffix("; echo $?").replace(shown_port, port))
         proc = subprocess.run([HEXAPOD, *words[1:]], capture_output=True, text=True, timeout=60)
         got += [VARYING.sub(r"\1 N", x) for x in proc.stdout.splitlines()]
         if echo:
             got.append(str(proc.returncode))
-    link.close()
     assert got == want
 
 

@@ -14,17 +14,20 @@ from hexapod_host.serial import flash
 from hexapod_host.testing.runtimes import TESTS
 
 CORE = sorted("hexapod/" + f for f in os.listdir(os.path.join(FIRMWARE, "hexapod")) if f.endswith(".py"))
-# What main.py and runner.py import (read by hand from them): the MicroPython drivers, and the
-# viper staging pca9685 imports (MicroPython only).
+# What main.py and runner.py import (read by hand from them): the MicroPython drivers, the
+# viper staging pca9685 imports and the fault log's keeper main.fault_keeper picks (MicroPython only).
 MP_DRIVERS = [
     "drivers/__init__.py",
     "drivers/_i2c_rp2.py",
     "drivers/_pca9685_viper.py",
+    "drivers/faultkeep.py",
     "drivers/hcsr04.py",
     "drivers/pca9685.py",
 ]
 # code.py's drivers, and what they import: cp_pca9685 -> pca9685, cp_hcsr04_pulsein -> hcsr04.
-CP_DRIVERS = [p for p in MP_DRIVERS if p not in ("drivers/_pca9685_viper.py", "drivers/_i2c_rp2.py")]
+CP_DRIVERS = [
+    p for p in MP_DRIVERS if p not in ("drivers/_pca9685_viper.py", "drivers/_i2c_rp2.py", "drivers/faultkeep.py")
+]
 CP_DRIVERS += ["drivers/cp_clock.py", "drivers/cp_hcsr04_pulsein.py", "drivers/cp_pca9685.py"]
 
 
