@@ -23,9 +23,9 @@ def beam_state(status):
 
 
 def geometry(described, snap):
-    """World-frame geometry of one snapshot: the body (centre, yaw, half sizes), 18 links as
-    [start, end] (coxa, femur, tibia of legs 1-6), 6 feet with their stance flags, 5 beams
-    (start, end, state). mm and rad."""
+    """World-frame geometry of one snapshot: the body (centre, yaw, half sizes), the sonar
+    brackets and 18 links as [start, end] (coxa, femur, tibia of legs 1-6), 6 feet with their
+    stance flags, 5 beams (start, end, state, reading). mm and rad."""
     body = snap["body"]
     links, feet = [], []
     for leg in snap["legs"]:
@@ -40,7 +40,11 @@ def geometry(described, snap):
         a = body["yaw"] + h
         end = [start[0] + r * math.cos(a), start[1] + r * math.sin(a), start[2]]
         beams.append({"start": start, "end": end, "state": state, "mm": d})
+    brackets = [
+        [to_world(body, (x1, y1, 0.0)), to_world(body, (x2, y2, 0.0))] for x1, y1, x2, y2 in described["brackets"]
+    ]
     return {
+        "brackets": brackets,
         "body": {"centre": [body["x"], body["y"], body["z"]], "yaw": body["yaw"], "half": described["body_half"]},
         "links": links,
         "feet": feet,

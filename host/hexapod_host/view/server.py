@@ -4,6 +4,10 @@ on the address asked for (never NiceGUI's own default of every interface)."""
 import ipaddress
 import socket
 
+# A tab that loses its connection (a busy machine, a laptop's sleep) gets its page back on
+# reconnecting within this long, instead of a reload (NiceGUI's default is 3 s).
+RECONNECT_S = 60.0
+
 
 def is_loopback(host):
     """True for an address that only this machine can reach (127.x, ::1, localhost)."""
@@ -44,4 +48,5 @@ def serve(player, host, port, show):
         title="hexapod view",
         show_welcome_message=False,
         uvicorn_logging_level="warning",
+        reconnect_timeout=RECONNECT_S,
     )

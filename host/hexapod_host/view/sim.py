@@ -53,6 +53,7 @@ class SimSource(Source):
             "finish": list(self.world.finish),
             "sensors": [[x, y, h] for x, y, h in b.sensors],
             "body_half": list(BODY_HALF),
+            "brackets": [list(seg) for seg in b.outline[4:]],  # body edge -> sonar, mm (room.Body's outline)
             "frame_s": self.frame_s,
         }
 

@@ -18,8 +18,9 @@ snapshot() keys, units as the view shows them (mm, degrees, rad for the body's y
     counters      frames, held, overruns, bus_failed, reinit, sonar_faults
     extra         what only this source knows (the simulator: the trial, the true wall distance)
 
-describe() holds what does not change while the page is open: the sonars' mounts, the body's
-outline, and for a simulated room its walls and finish.
+describe() holds what does not change while the page is open: the sonars' mounts [x, y mm,
+heading rad] ("sensors"), the body's half length and width ("body_half"), the sonars' brackets
+from the body's edge [x1, y1, x2, y2] ("brackets"), and for a simulated room its walls and finish.
 """
 
 from hexapod_host.wall.room import grounded
