@@ -164,9 +164,10 @@ class View:
         h = list(self.player.history)
         t = [row[0] for row in h]
         for chart, cols in ((self.dist_plot, (1, 2, 3)), (self.pid_plot, (4, 5))):
-            for series, c in zip(chart.options["series"], cols, strict=True):
-                series["data"] = [[ti, row[c]] for ti, row in zip(t, h, strict=True)]
-            chart.update()
+            # Straight to the chart (ECharts merges series by index): assigning into chart.options
+            # wraps every point in NiceGUI's observable lists, 5-90 ms a redraw here.
+            series = [{"data": [[ti, row[c]] for ti, row in zip(t, h, strict=True)]} for c in cols]
+            chart.run_chart_method("setOption", {"series": series})
 
 
 def build(player):

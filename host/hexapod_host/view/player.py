@@ -8,7 +8,7 @@ from collections import deque
 UPDATE_S = 0.04  # the background task publishes a snapshot this often: 25 updates a second
 SPEEDS = (0.25, 0.5, 1.0, 2.0, 4.0, 8.0)  # simulated seconds per real second
 MAX_FRAMES = 100  # frames one update may step: a slow machine falls behind instead of freezing the page
-PLOT_S = 20.0  # the plots keep this many seconds of the source's clock
+PLOT_S = 20.0  # the plots keep this many seconds of updates (20 s of the source at 1x, 160 s at 8x)
 TRAIL_MM = 5.0  # a new trail point once the body is this far from the last one
 
 
@@ -94,10 +94,12 @@ class Player:
 
     async def run(self):
         """The background task: advance by the real time elapsed, UPDATE_S apart, until stop()."""
-        last = time.monotonic()
+        last = due = time.monotonic()
         while not self._stopped:
-            await asyncio.sleep(UPDATE_S)
+            due += UPDATE_S  # on a fixed beat: the work of an update does not stretch the period
+            await asyncio.sleep(max(0.0, due - time.monotonic()))
             now = time.monotonic()
+            due = max(due, now - UPDATE_S)  # after a stall, no burst of catch-up updates
             self.advance(now - last)
             last = now
 
