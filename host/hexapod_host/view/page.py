@@ -60,6 +60,7 @@ class View:
         ui.timer(DRAW_S, self.draw)
         ui.timer(PLOT_DRAW_S, self.draw_plots)
         self.draw()
+        self.draw_plots()
 
     def _scene(self, d):
         xs = [v for w in d.get("walls", []) for v in (w[0], w[2])] or [0.0]
@@ -112,7 +113,7 @@ class View:
         with self.scene._batch_calls():
             self._draw_scene()
         self.drawn += 1
-        self._text(self.player.snap)
+        self._status(self.player.snap)
 
     def _draw_scene(self):
         snap, p = self.player.snap, self.player
@@ -134,7 +135,7 @@ class View:
             dx, dy, dz = CAMERA_BACK
             self.scene.move_camera(cx + dx, cy + dy, dz, cx, cy, 0.0, duration=0)
 
-    def _text(self, s):
+    def _status(self, s):
         f, x = s["follow"], s.get("extra", {})
         state = (
             "running"
@@ -145,6 +146,9 @@ class View:
             "trial %s  frame %d  t %.2f s  %s  robot %s  follower %s  updates %d"
             % (x.get("trial", "-"), s["frame"], s["time_s"], state, s["mode"], f["mode"], self.drawn)
         )
+
+    def _readings(self, s):
+        f, x = s["follow"], s.get("extra", {})
         lines = ["sonar         reading   status"]
         for name, d, st in zip(SENSOR_NAMES, s["distances"], s["sonar_status"], strict=True):
             lines.append("%-12s %7s   %s" % (name, "-" if d is None else "%.1f" % d, st))
@@ -161,6 +165,8 @@ class View:
         self.table.set_text("\n".join(lines))
 
     def draw_plots(self):
+        """The plots and the readings' table: 4 times a second is enough to read them."""
+        self._readings(self.player.snap)
         h = list(self.player.history)
         t = [row[0] for row in h]
         for chart, cols in ((self.dist_plot, (1, 2, 3)), (self.pid_plot, (4, 5))):
