@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: test sim bench lint clean pico-firmware mutants
+.PHONY: test sim bench lint clean pico-firmware mutants browser
 # The emulated Pico's MicroPython image, built from Debian's source packages (host/pico/firmware.py,
 # ~2 min on 2 cores) into a git-ignored cache. Without registry access the Pico tests skip and say so;
 # under CI (CI=true) a failed build fails the run.
@@ -23,7 +23,19 @@ $(PICO_FW): host/pico/firmware.py host/pico/frozen_manifest.py | $(STAMP)
 
 pico-firmware: $(STAMP) $(PICO_FW)
 
-test: $(STAMP) pico-firmware
+# The browser tests' Chromium and its WebDriver (Debian's chromium, chromium-driver; tests/test_view_browser.py).
+# Installed when missing and this is root (or sudo needs no password); otherwise those tests skip and say why;
+# under CI (CI=true) a failed install fails the run, and so would the tests.
+browser:
+	@if command -v chromium >/dev/null && command -v chromedriver >/dev/null; then exit 0; fi; \
+	if [ "$$(id -u)" = 0 ]; then SUDO=; elif sudo -n true 2>/dev/null; then SUDO="sudo -n"; \
+	else echo "NOTE: no chromium/chromedriver and no root to install them: the browser tests will skip (apt-get install chromium chromium-driver)"; exit 0; fi; \
+	if ! command -v apt-get >/dev/null; then echo "NOTE: no apt-get here: install Chromium and chromedriver yourself; the browser tests skip until then"; exit 0; fi; \
+	echo "Installing chromium and chromium-driver (apt-get, about a minute) for the browser tests"; \
+	$$SUDO apt-get update -qq && $$SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium chromium-driver >/dev/null \
+	  || { echo "WARNING: apt-get could not install chromium chromium-driver: the browser tests will skip"; [ -z "$$CI" ] || [ "$$CI" = false ] || exit 1; }
+
+test: $(STAMP) pico-firmware browser
 	$(BIN)/ruff check .
 	$(BIN)/ruff format --check .
 	$(BIN)/pytest -q -n auto
