@@ -23,10 +23,15 @@ $(PICO_FW): host/pico/firmware.py host/pico/frozen_manifest.py | $(STAMP)
 
 pico-firmware: $(STAMP) $(PICO_FW)
 
+# The tests run in a random order (pytest-randomly), so that a test relying on what another left
+# behind fails; the seed is printed first: `make test SEED=n` replays that order.
+SEED ?= $(shell od -An -N2 -tu2 /dev/urandom | tr -d ' ')
+
 test: $(STAMP) pico-firmware
 	$(BIN)/ruff check .
 	$(BIN)/ruff format --check .
-	$(BIN)/pytest -q -n auto
+	@echo "test order: --randomly-seed=$(SEED) (replay: make test SEED=$(SEED))"
+	$(BIN)/pytest -q -n auto --randomly-seed=$(SEED)
 
 sim: $(STAMP)
 	$(BIN)/hexapod sim
