@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: test sim bench lint clean pico-firmware
+.PHONY: test sim bench lint clean pico-firmware mutants
 # The emulated Pico's MicroPython image, built from Debian's source packages (host/pico/firmware.py,
 # ~2 min on 2 cores) into a git-ignored cache. Without registry access the Pico tests skip and say so;
 # under CI (CI=true) a failed build fails the run.
@@ -32,6 +32,10 @@ test: $(STAMP) pico-firmware
 	$(BIN)/ruff format --check .
 	@echo "test order: --randomly-seed=$(SEED) (replay: make test SEED=$(SEED))"
 	$(BIN)/pytest -q -n auto --randomly-seed=$(SEED)
+
+# Planted bugs against the tests that must catch them (tools/mutants.py: one line each, the score).
+mutants: $(STAMP)
+	$(BIN)/python tools/mutants.py
 
 sim: $(STAMP)
 	$(BIN)/hexapod sim
