@@ -35,10 +35,15 @@ browser:
 	$$SUDO apt-get update -qq && $$SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium chromium-driver >/dev/null \
 	  || { echo "WARNING: apt-get could not install chromium chromium-driver: the browser tests will skip"; [ -z "$$CI" ] || [ "$$CI" = false ] || exit 1; }
 
+# The tests run in a random order (pytest-randomly), so that a test relying on what another left
+# behind fails; the seed is printed first: `make test SEED=n` replays that order.
+SEED ?= $(shell od -An -N2 -tu2 /dev/urandom | tr -d ' ')
+
 test: $(STAMP) pico-firmware browser
 	$(BIN)/ruff check .
 	$(BIN)/ruff format --check .
-	$(BIN)/pytest -q -n auto
+	@echo "test order: --randomly-seed=$(SEED) (replay: make test SEED=$(SEED))"
+	$(BIN)/pytest -q -n auto --randomly-seed=$(SEED)
 
 sim: $(STAMP)
 	$(BIN)/hexapod sim

@@ -110,3 +110,10 @@ for files in ({}, {calstore.FILE: good[:40]}, {calstore.FILE: good.replace("25",
     assert out[2][0] == ["cal: hexapod_cal.txt checksum mismatch (corrupt); the board file's calibration is in use"]
     assert out[3] == ([], "file", 25, 1525)
     assert out[4] == ([], "file", 25, 1525)  # a complete temp file left by a cut save
+
+
+def test_a_short_write_that_reports_success_is_caught_by_the_read_back(rt):
+    # Every write() answers "all written" but half reaches the file: the temp file reads back
+    # different, save raises OSError 28 (ENOSPC, "filesystem full?") before the rename, and the
+    # old file stays the one the next boot loads.
+    assert rt.call("scenarios.calstore:short_write") == (28, True, True)
