@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: test sim bench lint clean pico-firmware
+.PHONY: test sim bench lint clean pico-firmware mutants browser
 # The emulated Pico's MicroPython image, built from Debian's source packages (host/pico/firmware.py,
 # ~2 min on 2 cores) into a git-ignored cache. Without registry access the Pico tests skip and say so;
 # under CI (CI=true) a failed build fails the run.
@@ -23,16 +23,37 @@ $(PICO_FW): host/pico/firmware.py host/pico/frozen_manifest.py | $(STAMP)
 
 pico-firmware: $(STAMP) $(PICO_FW)
 
-test: $(STAMP) pico-firmware
+# The browser tests' Chromium and its WebDriver (Debian's chromium, chromium-driver; tests/test_view_browser.py).
+# Installed when missing and this is root (or sudo needs no password); otherwise those tests skip and say why;
+# under CI (CI=true) a failed install fails the run, and so would the tests.
+browser:
+	@if command -v chromium >/dev/null && command -v chromedriver >/dev/null; then exit 0; fi; \
+	if [ "$$(id -u)" = 0 ]; then SUDO=; elif sudo -n true 2>/dev/null; then SUDO="sudo -n"; \
+	else echo "NOTE: no chromium/chromedriver and no root to install them: the browser tests will skip (apt-get install chromium chromium-driver)"; exit 0; fi; \
+	if ! command -v apt-get >/dev/null; then echo "NOTE: no apt-get here: install Chromium and chromedriver yourself; the browser tests skip until then"; exit 0; fi; \
+	echo "Installing chromium and chromium-driver (apt-get, about a minute) for the browser tests"; \
+	$$SUDO apt-get update -qq && $$SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium chromium-driver >/dev/null \
+	  || { echo "WARNING: apt-get could not install chromium chromium-driver: the browser tests will skip"; [ -z "$$CI" ] || [ "$$CI" = false ] || exit 1; }
+
+# The tests run in a random order (pytest-randomly), so that a test relying on what another left
+# behind fails; the seed is printed first: `make test SEED=n` replays that order.
+SEED ?= $(shell od -An -N2 -tu2 /dev/urandom | tr -d ' ')
+
+test: $(STAMP) pico-firmware browser
 	$(BIN)/ruff check .
 	$(BIN)/ruff format --check .
-	$(BIN)/pytest -q -n auto
+	@echo "test order: --randomly-seed=$(SEED) (replay: make test SEED=$(SEED))"
+	$(BIN)/pytest -q -n auto --randomly-seed=$(SEED)
 
 sim: $(STAMP)
 	$(BIN)/hexapod sim
 
 bench: $(STAMP)
 	$(BIN)/hexapod bench ik --json
+
+# Planted bugs, one at a time, in a scratch copy: caught or survived (tools/mutants.toml, docs/mutants.md).
+mutants: $(STAMP) pico-firmware
+	$(BIN)/python tools/mutants.py --json build/mutants.json
 
 lint: $(STAMP)
 	$(BIN)/ruff check .
@@ -42,7 +63,9 @@ clean:
 	rm -rf $(VENV) build .pytest_cache .ruff_cache .hypothesis
 
 # Put the firmware on a board: make flash BOARD=pico PORT=/dev/ttyACM0 (CircuitPython: DRIVE=/media/$USER/CIRCUITPY;
-# DRY_RUN=1 prints the plan only). docs/flashing.md.
+# DRY_RUN=1 prints the plan only and needs no PORT; VERBOSE=1 prints every command; STAGE_DIR=DIR stages there).
+# docs/flashing.md.
 .PHONY: flash
 flash: $(STAMP)
-	$(BIN)/hexapod flash --board $(BOARD) $(if $(PORT),--port $(PORT)) $(if $(DRIVE),--drive $(DRIVE)) $(if $(DRY_RUN),--dry-run)
+	$(BIN)/hexapod flash --board $(BOARD) $(if $(PORT),--port $(PORT)) $(if $(DRIVE),--drive $(DRIVE)) $(if $(DRY_RUN),--dry-run) \
+	  $(if $(VERBOSE),--verbose) $(if $(STAGE_DIR),--stage-dir $(STAGE_DIR))

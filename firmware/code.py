@@ -9,9 +9,24 @@ standing (hexapod.follow). Edit BOARD and ROBOT to match yours (files in boards/
 Needs adafruit_pca9685, adafruit_bus_device and adafruit_register in lib/ (docs/wiring.md).
 """
 
-from runner import BOOT_ONLY, FRAME_MS, Runner, release
+# Import order matters where the board compiles .py at import (CircuitPython cannot load
+# MicroPython's .mpy): compiling a module needs several times its source in free heap, and every
+# module loaded before it leaves less. The largest compile first, on the emptiest heap: console
+# (it loads the core as it runs), then the drivers (drivers.pca9685 is the biggest of them).
+# `hexapod bench feather` (docs/flashing.md): 77 KB less heap needed (64-bit VM) than runner first.
+# isort: off
+import gc
+import sys
 
-from hexapod import geometry, sensors
+import console
+
+gc.collect()  # the compiles' garbage out before the drivers compile: 17 KB less heap needed (VM)
+if sys.implementation.name != "cpython":  # CPython: the tests install fake modules first (and pdb imports a `code`)
+    from drivers import cp_clock, cp_hcsr04_pulsein, cp_pca9685  # noqa: F401
+from runner import BOOT_ONLY, FRAME_MS, Runner, release  # noqa: E402
+from hexapod import geometry, sensors  # noqa: E402
+
+# isort: on
 
 BOARD = "feather_rp2040"
 ROBOT = "default"
@@ -64,7 +79,7 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000, sampl
 
     import busio
 
-    from drivers import cp_clock, cp_hcsr04_pulsein, cp_pca9685, hcsr04
+    from drivers import cp_clock, cp_hcsr04_pulsein, cp_pca9685, hcsr04  # loaded at the top on a board
 
     if clock is None:
         clock = cp_clock.Clock()
@@ -115,6 +130,4 @@ def main(frames=-1, clock=None, board_name=BOARD, robot_name=ROBOT, reader=None,
 runner = None  # the Runner main() built: the REPL's handle after Ctrl-C
 
 if __name__ == "__main__":
-    import console
-
     main(reader=console.SerialReader())

@@ -17,7 +17,7 @@ from micropython import const
 from runner import BOOT_WORDS, counters
 
 from hexapod import battery as batteries
-from hexapod import follow, gait, limits, sensors, tick
+from hexapod import faultlog, follow, gait, limits, sensors, tick
 from hexapod.leg import describe as leg_describe
 from hexapod.units import format_fixed, parse_fixed
 
@@ -27,8 +27,33 @@ WALK_TIMEOUT_MS = const(1000)
 JOINTS = ("coxa", "femur", "tibia")
 COMMANDS = (
     "help status stand sit relax foot nudge joint pulse get walk stop gait sonar wall pid "
-    "cal trim dir range save load defaults echo selftest"
+    "cal trim dir range save load defaults echo selftest faults"
 )
+TAG_DIGITS = const(9)  # a request tag: '#' and 1..9 digits (docs/console.md, "Request tags")
+# Commands that may take longer than a frame (a gait's servo speed guard: 1.5-1.8 s on a Pico; a
+# posture move's trial of all its frames; a flash write): a tagged request of one of them gets
+# '#TAG working' before the command runs, so a client waits for its reply without a fixed timeout.
+SLOW = ("gait", "stand", "sit", "relax", "save", "load", "defaults")
+
+
+def fault_text(log, bank):
+    """'none', or 'N logged (oldest first) KIND WHAT frame F[ before_reset]; ...' (runner.faultlog)."""
+    n = log.count()
+    if not n:
+        return "none"
+    parts = []
+    chips = getattr(bank, "chips", ())
+    names = sensors.SENSOR_NAMES
+    for i in range(n):
+        kind, what, frame, before = log.entry(i)
+        if kind == faultlog.SONAR:
+            where = " " + names[what] if what < len(names) else ""
+        elif kind == faultlog.I2C or kind == faultlog.BROWNOUT:
+            where = " 0x%02x" % chips[what].address if what < len(chips) else ""
+        else:
+            where = ""
+        parts.append("%s%s frame %d%s" % (faultlog.KIND_NAMES[kind], where, frame, " before_reset" if before else ""))
+    return "%d logged (oldest first) %s" % (n, "; ".join(parts))
 
 
 class PollReader:
@@ -105,6 +130,7 @@ class Console:
         self.store = store
         self.walk_timeout_ms = walk_timeout_ms
         self._buf = bytearray(LINE_MAX)
+        self._view = memoryview(self._buf)
         self._n = 0
         self._over = 0  # characters typed past LINE_MAX (dropped, but a backspace takes them back)
         self._bad = -1  # the first non-text byte of the line being read
@@ -118,6 +144,7 @@ class Console:
         self._battery = batteries.OK  # the battery state last announced (a notice at each change)
         self.lines = 0  # lines answered
         self._job = None  # a multi-line reply under way (selftest): step() once a frame, abort(), done
+        self._job_tag = None  # its request's tag: each of its lines carries it
         # The robot file's calibration (robots/<robot>_cal.py): (centre_us, direction, min_us,
         # max_us) per servo; centre_us is the pulse at the servo's reference angle (ref_cdeg).
         self.base = tuple((s.centre_us, s.direction, s.min_us, s.max_us) for s in self.robot.servos)
@@ -149,6 +176,7 @@ class Console:
             "defaults": self._defaults,
             "echo": self._echo,
             "selftest": self._selftest,
+            "faults": self._faults,
         }
 
     # -- the frame's part ---------------------------------------------------------------
@@ -192,6 +220,8 @@ class Console:
             if b == 8 or b == 127:  # backspace (terminals send either): the line's last character goes
                 self._erase()
                 continue
+            if b == 35:  # '#' starts a tagged request: what came before it on the line is dropped
+                self._restart()
             if self._n >= LINE_MAX:
                 self._over += 1  # not echoed either: the terminal shows where the line stopped
             else:
@@ -214,11 +244,25 @@ class Console:
         if self._bad >= 0 and self._n + self._over <= self._bad_at:
             self._bad = -1  # the non-text byte itself was taken back
 
+    def _restart(self):
+        """Drop the line typed so far (half-typed text, a stray byte): a tagged request starts
+        from a clean line without any control byte (docs/console.md)."""
+        if self.echo and self._n:
+            self.write("\r\n")
+        self._n = 0
+        self._over = 0
+        self._bad = -1
+
     def _end_line(self):
         n = self._n
         self._n = 0
         if self.echo:
             self.write("\r\n")
+        tag = None
+        if self._over or self._bad >= 0:
+            k = tag_length(self._buf, n)
+            if k > 0:  # the refusal still reaches the client waiting on this tag
+                tag = bytes(self._buf[:k]).decode()
         if self._over:
             reply = "err line too long (at most %d characters)" % LINE_MAX
         elif self._bad >= 0:
@@ -228,34 +272,71 @@ class Console:
         else:
             if self._job is not None:  # a new line ends a multi-line reply under way, with its end line
                 self._job_end(self._job.abort())
-            reply = self.do(bytes(self._buf[:n]).decode())
+            # From the preallocated view: one copy fewer than bytes(buf[:n]).decode() (64-96 bytes
+            # less a line, bench tick's console rows).
+            words = str(self._view[:n], "ascii").replace("\t", " ").split()
+            if self._buf[0] == 35 and tag_length(self._buf, n) > 0:
+                tag = words[0]  # a word the split made anyway: echoing it copies no reply
+            reply = self._dispatch(words, tag)
             if reply is None:
                 return
         self._over = 0
         self._bad = -1
         self.lines += 1
-        self.out(reply)
+        self._say(tag, reply)
+
+    def _say(self, tag, line):
+        """One line out, after its request's tag when it had one (out(tag, line): print puts a
+        space between, so the reply is not copied to a new string)."""
+        if tag is None:
+            self.out(line)
+        else:
+            self.out(tag, line)
 
     # -- the dispatcher -------------------------------------------------------------------
 
     def do(self, line):
-        """Run one command line; the reply line ('ok ...' or 'err ...'), None for a blank line."""
+        """Run one command line; the reply line ('ok ...' or 'err ...'), None for a blank line.
+        A tagged line ('#7 get 2') gets its reply after the tag ('#7 ok leg 2 ...')."""
         words = line.replace("\t", " ").split()
+        raw = words[0].encode() if words else b""
+        tag = words[0] if tag_length(raw, len(raw)) > 0 else None
+        reply = self._dispatch(words, tag)
+        return reply if tag is None or reply is None else tag + " " + reply
+
+    def _dispatch(self, words, tag):
+        """The reply to a line's words (tag: words[0] is the request's tag, else None)."""
         if not words:
             return None
-        fn = self._table.get(words[0])
+        if words[0].startswith("#"):
+            if tag is None:
+                return "err bad tag %r: allowed '#' and 1..%d digits, then a space and the command" % (
+                    words[0][:20],
+                    TAG_DIGITS,
+                )
+            if len(words) == 1:
+                return "err nothing after the tag (a tagged request is '#N command ...')"
+            word = words[1]
+            args = words[2:]
+        else:
+            word = words[0]
+            args = words[1:]
+        fn = self._table.get(word)
         if fn is None:
-            return "err unknown command %r (help lists them)" % (words[0][:20],)
+            return "err unknown command %r (help lists them)" % (word[:20],)
+        if tag is not None and word in SLOW:
+            self.out(tag, "working")  # sent before the command runs: the client waits on
         try:
-            reply = fn(words[1:])
+            reply = fn(args)
         except ValueError as e:
-            return "err %s: %s" % (words[0], e)
+            return "err %s: %s" % (word, e)
         except Exception as e:  # the loop must go on whatever a command hits
-            return "err %s: internal error %s %s" % (words[0], type(e).__name__, e)
+            return "err %s: internal error %s %s" % (word, type(e).__name__, e)
         if reply is None:  # a multi-line reply started: poll() prints its lines, the end line last
+            self._job_tag = tag
             return None
-        if reply[:4] == "err " and not reply.startswith("err " + words[0] + ":"):
-            reply = "err %s: %s" % (words[0], reply[4:])  # every err names its command
+        if reply[:4] == "err " and not reply.startswith("err " + word + ":"):
+            reply = "err %s: %s" % (word, reply[4:])  # every err names its command
         return reply
 
     # -- parsing ----------------------------------------------------------------------------
@@ -727,6 +808,15 @@ class Console:
             self.echo = args[0] == "on"
         return "ok echo " + ("on" if self.echo else "off")
 
+    def _faults(self, args):
+        if len(args) > 1 or (args and args[0] != "clear"):
+            raise ValueError("need clear or nothing (list), got %r" % (" ".join(args)[:20],))
+        log = self.runner.faultlog
+        if args:
+            log.clear()
+            return "ok faults cleared"
+        return "ok faults " + fault_text(log, self.runner.bank)
+
     # -- multi-line replies (selftest) ------------------------------------------------------
 
     def _selftest(self, args):
@@ -755,14 +845,15 @@ class Console:
             self._job_end("err selftest: internal error %s %s" % (type(e).__name__, e))
             return
         for line in lines:
-            self.out(line)
+            self._say(self._job_tag, line)
         if job.done:
             self._job_end(None)
 
     def _job_end(self, line):
         if line is not None:
-            self.out(line)
+            self._say(self._job_tag, line)
         self._job = None
+        self._job_tag = None
         self.lines += 1
         sys.modules.pop("selftest", None)  # its heap goes back once the job is dropped
 
@@ -773,6 +864,20 @@ class Console:
             return self._refused(code)
         self.cal_source = "defaults"
         return "ok defaults"
+
+
+def tag_length(buf, n):
+    """The length of the request tag at the start of buf's first n bytes ('#' and 1..TAG_DIGITS
+    digits, then a space, a tab or the end): 0 when the line has none, -1 when it is malformed.
+    Integers only: nothing allocated."""
+    if n == 0 or buf[0] != 35:
+        return 0
+    k = 1
+    while k < n and 48 <= buf[k] <= 57:
+        k += 1
+    if k == 1 or k > TAG_DIGITS + 1 or (k < n and buf[k] != 32 and buf[k] != 9):
+        return -1
+    return k
 
 
 def start(runner, reader, os=None, opener=open, out=print, walk_timeout_ms=WALK_TIMEOUT_MS, write=None):

@@ -74,10 +74,33 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=time, max_range=10000, sampl
         robotcal.sensor_mounts(cal),
         battery=monitor,
         adc=adc,
+        keeper=fault_keeper(),
     )
     r.board = board
     r.sonar_pins = pins
+    r.note_reset(watchdog_reset())
     return r
+
+
+def fault_keeper():
+    """Where this port keeps the fault log through a soft reset (drivers.faultkeep), or None."""
+    import sys
+
+    if sys.platform not in ("rp2", "esp32"):
+        return None
+    import machine
+
+    from drivers import faultkeep
+
+    return faultkeep.for_port(machine, sys.platform)
+
+
+def watchdog_reset():
+    """True when the port says the last reset was the watchdog's."""
+    import machine
+
+    cause = getattr(machine, "reset_cause", None)
+    return cause is not None and cause() == getattr(machine, "WDT_RESET", -1)
 
 
 def main(frames=-1, clock=time, board_name=BOARD, robot_name=ROBOT, reader=None, boot=None, calibrated=None):

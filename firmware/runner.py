@@ -17,6 +17,7 @@ State for a reply or the status line: runner.follower.mode_name, .used, .distanc
 """
 
 from hexapod import battery as batteries
+from hexapod import faultlog as faultlogs
 from hexapod import follow, limits, sensors, tick
 
 FRAME_MS = 20
@@ -42,7 +43,9 @@ BOOT_NOTICES = (
 class Runner:
     """Robot + servo bank + sonars -> a loop of 20 ms frames; step() runs one."""
 
-    def __init__(self, geometry, servo_maps, bank, sonars, clock, mounts=None, battery=None, adc=None, others=()):
+    def __init__(
+        self, geometry, servo_maps, bank, sonars, clock, mounts=None, battery=None, adc=None, others=(), keeper=None
+    ):
         """geometry: hexapod.geometry.load(...); servo_maps: 18 ServoMaps (leg/joint order);
         bank: has write_frame(pulses), failed_frames, reinits; sonars: hexapod.sensors.Sonars
         (the round robin of hcsr04 rangers, hexapod.sensors order); clock: ticks_ms/ticks_us/
@@ -50,7 +53,8 @@ class Runner:
         and cdeg (hexapod.robotcal.sensor_mounts; default: the shipped robot's); battery: a
         hexapod.battery.Monitor (None: no monitor) and adc what it reads (machine.ADC:
         read_u16()), read once now and every SAMPLE_FRAMES frames; others: more frame sensors
-        (hexapod.sensors: frame(now_ms), faults), each asked once a frame after the sonars."""
+        (hexapod.sensors: frame(now_ms), faults), each asked once a frame after the sonars;
+        keeper: where the fault log outlives a soft reset (drivers.faultkeep.for_port), or None."""
         self.clock = clock
         self.bank = bank
         self.robot = tick.Robot(geometry, servo_maps, bank)
@@ -70,6 +74,15 @@ class Runner:
         self.battery = battery
         self.adc = adc
         self._battery_n = 0  # frames since the last battery reading
+        # The fault log takes a fault when it starts, not every frame it lasts (hexapod.faultlog).
+        self.faultlog = faultlogs.FaultLog(keeper)
+        self._sonar_bad = [False] * len(sonars.status)
+        self._bus_failed = bank.failed_frames
+        self._bus_bad = False
+        self._reinits = bank.reinits
+        chips = getattr(bank, "chips", ())
+        self._chip_errors = [c.errors for c in chips]
+        self._chip_resets = [c.resets_seen for c in chips]
         if battery is not None:
             if adc is None or not hasattr(adc, "read_u16"):
                 raise ValueError("adc: a battery monitor needs an ADC with read_u16(), got %r" % (adc,))
@@ -159,6 +172,13 @@ class Runner:
             if b.state == batteries.CUTOFF and self.robot.mode != tick.RELAXED:
                 self._shut_down()
         i = self.sonars.frame(now)
+        if i >= 0:  # the fault log takes a sonar's fault when it starts (after an OK reading)
+            st = self.sonar_status[i]
+            if st == sensors.OK:
+                self._sonar_bad[i] = False
+            elif st != sensors.WAIT and not self._sonar_bad[i]:
+                self._sonar_bad[i] = True
+                self.faultlog.record(faultlogs.SONAR, i, self.frames)
         others = self.others
         if others:  # none on the shipped boards: the frame pays one test for the hook
             for k in range(len(others)):
@@ -170,10 +190,50 @@ class Runner:
             self._start = None
             self.follow(s["side"], s["setpoint"], s.get("speed"), s.get("form", "yaw"))
         code = self.robot.tick(now)
+        self._watch_bank()
         self.frames += 1
         if code:
             self.held += 1
         return code
+
+    def _watch_bank(self):
+        """Log a frame some chip did not take after one that all took, and every chip reset found."""
+        bank = self.bank
+        if bank.failed_frames != self._bus_failed:
+            self._bus_failed = bank.failed_frames
+            if not self._bus_bad:
+                self._bus_bad = True
+                self.faultlog.record(faultlogs.I2C, self._grew(self._chip_errors, "errors"), self.frames)
+        else:
+            self._bus_bad = False
+        if bank.reinits != self._reinits:
+            self._reinits = bank.reinits
+            self.faultlog.record(faultlogs.BROWNOUT, self._grew(self._chip_resets, "resets_seen"), self.frames)
+
+    def _grew(self, seen, name):
+        """The index of the first chip whose counter `name` rose since seen (updated), else of the
+        first chip offline (a chip that never answered is skipped, its counters stand), else 0."""
+        chips = self.bank.chips
+        found = -1
+        for k in range(len(seen)):
+            v = getattr(chips[k], name)
+            if v != seen[k]:
+                seen[k] = v
+                if found < 0:
+                    found = k
+        for k in range(len(seen)):
+            if found < 0 and chips[k].offline:
+                found = k
+        return found if found >= 0 else 0
+
+    def note_reset(self, cause_is_watchdog):
+        """At boot: log a watchdog reset, unless the newest kept fault is already this one (a soft
+        reset after it reports the same hardware cause again)."""
+        log = self.faultlog
+        n = log.count()
+        if not cause_is_watchdog or (n and log.entry(n - 1)[:3] == (faultlogs.WATCHDOG, 0, 0)):
+            return
+        log.record(faultlogs.WATCHDOG, 0, 0)
 
     def _battery_changed(self, state):
         """A battery state change (hexapod.battery: NO_CHANGE, OK, LOW, CUTOFF) -> the speed cap,
@@ -185,6 +245,7 @@ class Runner:
             return
         self.robot.cap_speed(batteries.LOW_SPEED, batteries.LOW_YAW)
         if state == batteries.CUTOFF:
+            self.faultlog.record(faultlogs.BATTERY, 0, self.frames)
             self._start = None  # a board file's follow waiting for a stand waits no more
             if self.follower.mode:
                 self.follower.off()

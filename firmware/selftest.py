@@ -137,6 +137,7 @@ class Checks:
             self._chip(out, c)
         self._calibration(out)
         self._reset(out)
+        self._faults(out)
         self._heap(out)
         self._supply(out, getattr(r, "battery", None))
 
@@ -287,6 +288,21 @@ class Checks:
             )
             return
         self._line(out, True, "reset_cause " + word)
+
+    def _faults(self, out):
+        """The fault log (runner.faultlog): a sonar's lost echo is news, the rest is a fault to fix."""
+        import console
+
+        from hexapod import faultlog
+
+        log = self.runner.faultlog
+        text = "faults " + console.fault_text(log, self.runner.bank)
+        serious = False
+        for i in range(log.count()):
+            serious = serious or log.entry(i)[0] != faultlog.SONAR
+        if serious:
+            text += ": fix the cause (docs/console.md, faults), then `faults clear`"
+        self._line(out, not serious, text)
 
     def _heap(self, out):
         if not hasattr(gc, "mem_free"):

@@ -26,9 +26,14 @@ class ConsoleLink:
         self.reader = console.BufferReader()
         self.replies = []
         self.fs = StubFS()
-        self.console = console.start(self.runner, self.reader, self.fs, self.fs.open, out=self.replies.append)
+        self.console = console.start(self.runner, self.reader, self.fs, self.fs.open, out=self.say)
         self.replies.clear()  # the boot's 'cal: no hexapod_cal.txt ...' line
         self.lines = []  # every line requested, in order
+        self.raw = b""  # every byte that came in over serve_pty
+
+    def say(self, *parts):
+        """The console's out: a line, or a tagged reply's tag and line (print's two arguments)."""
+        self.replies.append(" ".join(parts))
 
     def frames(self, n):
         r = self.runner
@@ -39,7 +44,7 @@ class ConsoleLink:
 
     def request(self, line):
         """The console's reply to line, after the frames it took (one poll per frame, as Runner.run)."""
-        self.lines.append(line)
+        self.lines.append(line.split(" ", 1)[1] if line.startswith("#") else line)  # the command, untagged
         before = len(self.replies)
         self.reader.feed(line.encode() + b"\n")
         for _ in range(20):
@@ -69,7 +74,8 @@ class ConsoleLink:
 
 
 def serve_pty(link):
-    """Answer console lines on a new pseudo-terminal; returns (slave path, stop())."""
+    """Answer console lines on a new pseudo-terminal; returns (slave path, stop()). Every byte that
+    came in is kept in link.raw (a control byte sent by a client shows there)."""
     import tty
 
     master, slave = os.openpty()
@@ -85,6 +91,7 @@ def serve_pty(link):
             except OSError:
                 return
             buf += data
+            link.raw += data
             while b"\n" in buf:
                 raw, buf = buf.split(b"\n", 1)
                 line = raw.decode(errors="replace").strip()

@@ -28,7 +28,13 @@ SONAR = stub_board.sonar_models(BOARD, [3000 + 1000 * k for k in range(5)])
 r = main.build(clock=clock)
 reader = console.BufferReader()
 REPLIES = []
-con = console.start(r, reader, None, out=REPLIES.append)
+
+
+def out(line, more=None):  # as print: a tagged reply comes as (tag, line)
+    REPLIES.append(line if more is None else line + " " + more)
+
+
+con = console.start(r, reader, None, out=out)
 SERVOS = r.robot.servos
 
 

@@ -323,6 +323,7 @@ def test_the_battery_scenario(rt):
     # status: the window's maximum, within 5 mV (2.42 mV ADC steps, the divider's rounding)
     assert " boot stood battery cutoff battery_mv " in replies[640] and abs(_mv(replies[640]) - 7100) <= 5
     assert " battery ok battery_mv " in replies[1000] and abs(_mv(replies[1000]) - 7300) <= 5
+    assert replies[1001] == "ok faults 1 logged (oldest first) battery frame 459"  # the cutoff, in the fault log
     assert [line for f, line in said if line.startswith("err") and f not in (460, 700, 701, 703, 704, 825)] == [
         "err walk: battery %s V, %s" % (v, why) for v in ["6.39"] * 5 + ["7.09"] * 4
     ]

@@ -191,3 +191,10 @@ print(repr((c.do("save"), fs.files[calstore.FILE].split("\\n")[:7:6])))
         "hexapod-cal 2",
         "2 tibia 20 1 600 2400",
     ]
+
+
+def test_a_short_write_that_reports_success_is_caught_by_the_read_back(rt):
+    # Every write() answers "all written" but half reaches the file: the temp file reads back
+    # different, save raises OSError 28 (ENOSPC, "filesystem full?") before the rename, and the
+    # old file stays the one the next boot loads.
+    assert rt.call("scenarios.calstore:short_write") == (28, True, True)

@@ -301,3 +301,25 @@ def test_ten_thousand_line_batch_identical_in_both_runtimes(mp):
     assert len(rows) == 10000
     solved = [r for r in rows if not r.startswith("unreachable")]
     assert len(solved) > 5000 and all(len(r.split()) == 3 for r in solved)
+
+
+@pytest.mark.parametrize(
+    "argv, error",
+    [
+        (("ik", "abc", "0", "0"), "x: 'abc' is not a number"),
+        (("fk", "0", "0"), "need 3 numbers (theta1 theta2 theta3), got 2"),
+        (("ik", "1", "2", "3", "--coxa", "q"), "--coxa: 'q' is not a number"),
+    ],
+)
+def test_bad_input_under_json_is_a_json_error_object(capsys, argv, error):
+    # main: nothing on stdout, the message on stderr only
+    status, out, err = run(capsys, *argv, "--json")
+    assert status == 2 and json.loads(out) == {"error": error}
+    assert err == "hexapod: error: %s\n" % error
+
+
+def test_json_error_object_identical_in_both_runtimes(mp):
+    a = hexapod("ik", "abc", "0", "0", "--json")
+    b = hexapod("ik", "abc", "0", "0", "--json", "--runtime", "micropython")
+    assert (a.returncode, a.stdout, a.stderr) == (b.returncode, b.stdout, b.stderr)
+    assert a.stdout == '{"error": "x: \'abc\' is not a number"}\n'

@@ -14,17 +14,20 @@ from hexapod_host.serial import flash
 from hexapod_host.testing.runtimes import TESTS
 
 CORE = sorted("hexapod/" + f for f in os.listdir(os.path.join(FIRMWARE, "hexapod")) if f.endswith(".py"))
-# What main.py and runner.py import (read by hand from them): the MicroPython drivers, and the
-# viper staging pca9685 imports (MicroPython only).
+# What main.py and runner.py import (read by hand from them): the MicroPython drivers, the
+# viper staging pca9685 imports and the fault log's keeper main.fault_keeper picks (MicroPython only).
 MP_DRIVERS = [
     "drivers/__init__.py",
     "drivers/_i2c_rp2.py",
     "drivers/_pca9685_viper.py",
+    "drivers/faultkeep.py",
     "drivers/hcsr04.py",
     "drivers/pca9685.py",
 ]
 # code.py's drivers, and what they import: cp_pca9685 -> pca9685, cp_hcsr04_pulsein -> hcsr04.
-CP_DRIVERS = [p for p in MP_DRIVERS if p not in ("drivers/_pca9685_viper.py", "drivers/_i2c_rp2.py")]
+CP_DRIVERS = [
+    p for p in MP_DRIVERS if p not in ("drivers/_pca9685_viper.py", "drivers/_i2c_rp2.py", "drivers/faultkeep.py")
+]
 CP_DRIVERS += ["drivers/cp_clock.py", "drivers/cp_hcsr04_pulsein.py", "drivers/cp_pca9685.py"]
 
 
@@ -224,7 +227,7 @@ def test_a_full_drive_replaces_nothing(tmp_path):
         (["--board", "arduino_uno", "--port", "/dev/ttyACM0"], "no board 'arduino_uno'; allowed: esp32_devkit"),
         (["--board", "pico", "--port", "/dev/ttyACM0", "--robot", "spider"], "no robot 'spider'; allowed: default"),
         (["--board", "pico"], "board 'pico' runs MicroPython: give its serial port with --port PORT"),
-        (["--board", "esp32_devkit", "--dry-run"], "give its serial port with --port PORT"),
+        (["--board", "esp32_devkit"], "give its serial port with --port PORT"),  # a dry run needs none
         (["--board", "pico", "--port", "/dev/ttyNOPE9"], "no such port '/dev/ttyNOPE9'"),
         (["--board", "feather_rp2040"], "board 'feather_rp2040' runs CircuitPython: give its drive with --drive"),
         (
@@ -489,3 +492,47 @@ def test_the_board_file_names_its_arch_and_what_it_refuses_is_never_staged(tmp_p
     with pytest.raises(flash.FlashError, match="board 'pico': servos: moved: .*; nothing was staged"):
         flash.stage("pico", "default", str(out))
     assert not out.exists()
+
+
+def test_a_dry_run_needs_no_port(tmp_path, capsys):
+    # main: "board 'pico' runs MicroPython: give its serial port with --port PORT", exit 2
+    status, out, err = hexapod(["flash", "--board", "pico", "--dry-run", "--stage-dir", str(tmp_path / "s")], capsys)
+    assert status == 0, err
+    assert "# no --port given: PORT below stands for the board's serial port" in out
+    commands = plan_lines(out)
+    mpremote = [c for c in commands if os.path.basename(c[0]) == "mpremote"]
+    assert mpremote and all(c[1:3] == ["connect", "PORT"] for c in mpremote)
+    make = subprocess.run(
+        ["make", "flash", "DRY_RUN=1", "BOARD=pico", "STAGE_DIR=%s" % (tmp_path / "m")],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        timeout=300,
+    )
+    assert make.returncode == 0, make.stderr
+    assert "# dry run: the board was not touched" in make.stdout
+    status, _, err = hexapod(["flash", "--board", "pico", "--stage-dir", str(tmp_path / "s")], capsys)
+    assert status == 2 and "give its serial port with --port PORT" in err  # a real flash still needs one
+
+
+def test_a_real_flash_prints_its_steps_and_verbose_every_command(tmp_path, fake_board, capsys):
+    # main: 78 lines, every mpy-cross command and each mpremote exec with its Python
+    port, root = fake_board()
+    argv = ["flash", "--board", "pico", "--port", port, "--stage-dir", str(tmp_path / "stage")]
+    status, out, _ = hexapod(argv, capsys)
+    n = len(expected("pico", "main.py", MP_DRIVERS))
+    assert status == 0
+    assert out.splitlines()[:-1] == [
+        "# flash pico (MicroPython, armv6m), robot default, staged in %s" % (tmp_path / "stage"),
+        "# compiled %d files with mpy-cross (--verbose prints every command)" % (n - 1),  # main.py stays source
+        "board manifest: 0 files; copying %d, removing 0" % n,
+        "# make directories",
+        "# copy under temporary names",
+        "# rename into place",
+        "# reset",
+        "flashed pico on %s: %d of %d files copied" % (port, n, n),
+    ]
+    status, out, _ = hexapod(argv + ["--full", "--verbose"], capsys)
+    assert status == 0 and len(out.splitlines()) > 60
+    assert "\n# compile\n" in out and "exec 'import os" in out
+    assert any(c[0].endswith("mpremote") and c[3:5] == ["fs", "cp"] for c in plan_lines(out))

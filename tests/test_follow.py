@@ -414,3 +414,62 @@ def test_decisions_are_bit_identical_on_both_runtimes(both_runtimes):
     assert cp == mp
     modes = {r[0] for r in cp}
     assert {follow.FOLLOWING, follow.CORNER} <= modes and len(cp) == 60
+
+
+# --- issue 24: the rules a planted bug broke without a test failing --------------------------------
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_a_corner_that_never_clears_is_a_dead_end(side):
+    # Something ahead inside the corner distance for ever: the robot arcs away; once its own
+    # heading (the walker's psi, 0.0001 deg) has turned 270 deg (CORNER_TURN) without the corner
+    # clearing, it stops, 'dead end', instead of circling for ever.
+    rig = Rig(side)
+    rig.cycle(n=2)
+    psi = rig.robot.walker.psi
+    turned = 0  # the walker's heading change, summed a cycle at a time (0.0001 deg)
+    cycles = 0
+    while cycles < 700:  # at the guard-capped ~6 deg/s, 270 deg is ~450 cycles (45 s)
+        cycles += 1
+        f = rig.cycle(front=CORNER_AT - 1)
+        d = (rig.robot.walker.psi - psi + 1800000) % 3600000 - 1800000
+        psi = rig.robot.walker.psi
+        turned += d
+        if f.mode_name != "corner":
+            break
+    assert (f.mode_name, f.reason_name) == ("stopped", "dead end"), (cycles, f.mode_name)
+    # just past 270 deg (a cycle turns ~0.6 deg), away from the wall
+    assert 2700000 <= rig.away(turned) <= 2700000 + 10000, turned
+    assert 400 < cycles < 600, cycles
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_on_one_sonar_turning_away_opens_the_angle(side):
+    # On the rear sonar alone the angle to the wall is the walker's own heading change since the
+    # last pair (let fade 1/16 an update): turning away from the wall (the rear sonar 10 mm close)
+    # must make the angle positive (nose away) and never larger than the turn itself.
+    rig = Rig(side)
+    rig.cycle(n=2)
+    f = rig.cycle(near=NOECHO, n=3)
+    assert f.distance_only and f.angle == 0
+    psi0 = rig.robot.walker.psi
+    f = rig.cycle(near=NOECHO, far=SP - 100, n=8)
+    d = (rig.robot.walker.psi - psi0 + 1800000) % 3600000 - 1800000  # wrapped, 0.0001 deg
+    turned_away = rig.away(d // 100)  # cdeg, away from the wall positive
+    assert turned_away > 100, turned_away  # measured 321 cdeg (left)
+    assert 0 < f.angle <= turned_away, (f.angle, turned_away)
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_a_sensor_change_keeps_the_integral_and_takes_no_derivative(side):
+    # 4 mm close on the pair for 20 cycles: an integral builds (38 output units). The front sonar
+    # fails: another measurement, so the derivative starts afresh (the PID's sample count starts
+    # again) but the integral is kept (the wall did not move).
+    rig = Rig(side)
+    f = rig.cycle(near=SP - 40, far=SP - 40, n=20)
+    i_pair = f.pid.i
+    assert i_pair > 20 and f.pid.samples >= 20
+    f = rig.cycle(near=NOECHO, far=SP - 40, n=3)
+    assert f.distance_only
+    assert f.pid.samples <= 2, f.pid.samples  # reset at the change, then one update or two
+    assert f.pid.i >= i_pair, (f.pid.i, i_pair)

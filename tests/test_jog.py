@@ -340,3 +340,68 @@ def test_jog_in_a_terminal_on_the_virtual_board(tmp_path):
         proc.wait()
         os.close(master)
         os.close(slave)
+
+
+# -- issue 21 item 1: the ':' prompt never sends a control byte ----------------------------------
+
+
+def test_the_prompt_keeps_control_keys_out_of_the_line():
+    def keys(*names):
+        text, state = "", None
+        for k in names:
+            text, state = jog.prompt_key(text, k)
+            if state:  # the prompt is gone: later keys are the jog screen's
+                break
+        return text, state
+
+    assert keys("s", "i", "t", "ENTER") == ("sit", "done")
+    assert keys("s", "t", "CTRL-C") == ("", "cancel")  # Ctrl-C drops the line: nothing is sent
+    assert keys("s", "ESC", "ENTER") == ("", "cancel")  # Esc too (it used to go out as ^[)
+    assert keys("g", "e", "t", "\x03", "\x1b", "\x00", " ", "2", "BACKSPACE", "1", "ENTER") == ("get 1", "done")
+    assert keys(*["x"] * 100) == ("x" * 84, None)  # the link's longest request (95 less the tag)
+
+
+@pytest.mark.parametrize("typed", ["\x03", "stand\x03", "\x1b[A", "sit\x04", "stop\x1a", "status\x7f"])
+def test_a_typed_line_with_a_control_character_sends_nothing(typed):
+    fake = FakeLink()
+    tool = jog.Jog(fake)
+    tool.line(typed)
+    assert fake.sent == [] and tool.view.error
+    first = next(ch for ch in typed if not " " <= ch <= "~")
+    assert tool.view.message.startswith("not sent: the line holds the control character 0x%02x" % ord(first))
+
+
+class FakeLink:
+    def __init__(self):
+        self.sent = []
+
+    def request(self, line):
+        self.sent.append(line)
+        return "ok"
+
+
+@pytest.mark.skipif(
+    shutil.which("tmux") is None, reason="tmux is not installed (apt-get install tmux): it plays the person"
+)
+def test_ctrl_c_and_esc_at_the_prompt_in_a_terminal_reach_no_board():
+    fake = ConsoleLink()
+    path, stop = serve_pty(fake)
+    cmd = "%s -m hexapod_host jog --port %s; echo exit=$?; sleep 5" % (sys.executable, path)
+    tmux("kill-server")
+    try:
+        assert tmux("new-session", "-d", "-s", "jog", "-x", "100", "-y", "30", cmd).returncode == 0
+        screen_until("foot   x    130.0")
+        tmux("send-keys", "-t", "jog", ":", "sta", "C-c")  # a person changing their mind (raw mode: a key, no signal)
+        tmux("send-keys", "-t", "jog", ":", "x", "Escape")
+        tmux("send-keys", "-t", "jog", ":", "gait ripple", "Enter")
+        shown = screen_until("gait ripple: ok gait ripple")
+        assert "gait ripple: ok gait ripple" in shown, shown
+        tmux("send-keys", "-t", "jog", "q")
+        shown = screen_until("exit=")
+        assert "exit=0" in shown, shown
+    finally:
+        tmux("kill-server")
+        stop()
+    assert fake.lines == ["get 1", "get 1", "cal 1 coxa", "gait ripple"]
+    assert all(32 <= b <= 126 or b == 10 for b in fake.raw), fake.raw  # no control byte came in
+    assert fake.robot.mode == 3  # still standing (tick.STANDING): nothing interrupted the loop

@@ -13,6 +13,8 @@ from hexapod_host.serial.link import Link, LinkError
 
 
 class FakePort:
+    """Lines to read back; '#T' in one stands for the tag of the request written last."""
+
     def __init__(self, lines=(), fail_after=None):
         self.lines = list(lines)
         self.written = []
@@ -20,6 +22,9 @@ class FakePort:
 
     def write(self, data):
         self.written.append(data)
+
+    def tag(self):
+        return self.written[-1].split(b" ", 1)[0] if self.written else b"#?"
 
     def flush(self):
         pass
@@ -29,17 +34,17 @@ class FakePort:
             if self.fail_after == 0:
                 raise serial.SerialException("device reports readiness to read but returned no data")
             self.fail_after -= 1
-        return self.lines.pop(0) if self.lines else b""
+        return self.lines.pop(0).replace(b"#T", self.tag()) if self.lines else b""
 
     def close(self):
         pass
 
 
 def test_request_skips_other_lines_and_returns_the_reply():
-    port = FakePort([b"MicroPython v1.22\r\n", b"cal: no hexapod_cal.txt; ...\r\n", b"ok leg 2 angles 0.00\r\n"])
-    lk = Link(port, timeout=0.2, name="/dev/fake")
+    port = FakePort([b"MicroPython v1.22\r\n", b"cal: no hexapod_cal.txt; ...\r\n", b"#T ok leg 2 angles 0.00\r\n"])
+    lk = Link(port, timeout=0.2, name="/dev/fake", first_tag=41)
     assert lk.request("get 2") == "ok leg 2 angles 0.00"
-    assert port.written == [b"get 2\n"]
+    assert port.written == [b"#41 get 2\n"]
     assert lk.other == ["MicroPython v1.22", "cal: no hexapod_cal.txt; ..."]
     with pytest.raises(LinkError, match="one command per request"):
         lk.request("get 2\nget 3")
@@ -53,7 +58,7 @@ def test_a_repl_prompt_and_a_disconnect_are_named():
         "no answer to 'status' from /dev/fake within 0.2 s: is the hexapod firmware running?"
         " (the board is at the REPL: run main.py or reset it)"
     )
-    lk = Link(FakePort([b"ok\r\n"], fail_after=1), timeout=1, name="/dev/fake")
+    lk = Link(FakePort([b"#T ok\r\n"], fail_after=1), timeout=1, name="/dev/fake")
     assert lk.request("stop") == "ok"
     with pytest.raises(LinkError) as e:
         lk.request("status")
@@ -116,3 +121,93 @@ def test_unplugged_mid_request_is_one_link_error(stage, error):
     with pytest.raises(LinkError, match="lost the board on /dev/ttyACM7"):
         link.request("get 2")
     link.close()  # closing a vanished port raises nothing either
+
+
+# -- request tags (docs/console.md "Request tags"): issue 21 items 1, 2, 3, 5 -------------------
+
+
+class Clock:
+    """time.monotonic for the link: each read of the port takes `step` seconds (no wall clock)."""
+
+    def __init__(self, step=0.1):
+        self.now, self.step = 0.0, step
+
+    def monotonic(self):
+        return self.now
+
+
+class TickingPort(FakePort):
+    def __init__(self, lines, clock):
+        super().__init__(lines)
+        self.clock = clock
+
+    def readline(self):
+        self.clock.now += self.clock.step
+        return super().readline()
+
+
+def test_a_late_reply_under_another_tag_is_set_aside():
+    # A 'gait wave' that timed out earlier answers now: the status request must get its own reply.
+    junk = b"err unknown command 'sta' (help lists them)\r\n"
+    port = FakePort([b"#17 ok gait wave\r\n", junk, b"#T ok frames 9\r\n"])
+    lk = Link(port, timeout=0.5, name="/dev/fake", first_tag=18)
+    assert lk.request("status") == "ok frames 9"
+    assert port.written == [b"#18 status\n"]
+    assert lk.late == ["#17 ok gait wave"]
+    assert lk.other == ["err unknown command 'sta' (help lists them)"]  # a half-typed line's reply
+
+
+def test_working_extends_the_wait_past_the_timeout(monkeypatch):
+    clock = Clock(0.1)
+    monkeypatch.setattr(link.time, "monotonic", clock.monotonic)
+    # 'gait wave' on the emulated Pico: the working line within the timeout, the reply 25 s later.
+    lines = [b"#T working\r\n"] + [b""] * 250 + [b"#T ok gait wave\r\n"]
+    lk = Link(TickingPort(lines, clock), timeout=2.0, name="/dev/fake")
+    assert lk.request("gait wave") == "ok gait wave" and lk.working == 1
+    assert 25.0 <= clock.now <= 25.3
+    # Without a working line the same silence is a timeout, named.
+    clock.now = 0.0
+    lk = Link(TickingPort([b""] * 250 + [b"#T ok gait wave\r\n"], clock), timeout=2.0, name="/dev/fake")
+    with pytest.raises(LinkError, match="no answer to 'gait wave' from /dev/fake within 2.0 s"):
+        lk.request("gait wave")
+    # A working line does not wait for ever: WORKING_S (90 s) after it.
+    clock.now = 0.0
+    lk = Link(TickingPort([b"#T working\r\n"], clock), timeout=2.0, name="/dev/fake")
+    with pytest.raises(LinkError, match="no answer"):
+        lk.request("gait wave")
+    assert 90.0 <= clock.now <= 90.3
+
+
+@pytest.mark.parametrize(
+    ("line", "why"),
+    [
+        ("", "an empty request: give a command (help lists them)"),
+        ("   ", "an empty request: give a command (help lists them)"),
+        ("\x03", "'\\x03' holds the non-text character 0x03: only printable ASCII is sent"),
+        ("stand\x1b", "'stand\\x1b' holds the non-text character 0x1b: only printable ASCII is sent"),
+        ("get 1\x01", "'get 1\\x01' holds the non-text character 0x01: only printable ASCII is sent"),
+        ("get 1\nget 2", "one command per request: 'get 1\\nget 2' holds a line break"),
+        ("walk 1 0 0 " + "0" * 80, "'walk 1 0 0 000000000...' is 91 characters: at most 84 (the board's line is 95"),
+    ],
+)
+def test_lines_that_are_no_request_are_refused_and_nothing_is_written(line, why):
+    port = FakePort([b"#T ok\r\n"])
+    with pytest.raises(LinkError) as e:
+        Link(port, timeout=0.2, name="/dev/fake").request(line)
+    assert str(e.value).startswith(why) and port.written == []
+
+
+def test_firmware_without_tags_is_named():
+    port = FakePort([b"err unknown command '#T' (help lists them)\r\n"])
+    with pytest.raises(LinkError, match="does not take request tags .older than this host's.: flash it"):
+        Link(port, timeout=0.2, name="/dev/fake").request("status")
+
+
+def test_each_link_starts_its_tags_at_random():
+    # Two runs of `hexapod send` on one port: the second must not wait on the first's tag.
+    firsts = set()
+    for _ in range(5):
+        port = FakePort([b"#T ok\r\n"])
+        Link(port, timeout=0.2).request("stop")
+        firsts.add(port.written[0].split()[0])
+    assert len(firsts) == 5

@@ -34,12 +34,29 @@ def hexapod(*args, env=None):
         (("bench", "frame", "--frames", "-1"), "--frames -1: allowed 2..1000"),
         (("bench", "frame", "--frames", "1001"), "--frames 1001: allowed 2..1000"),
         (("bench", "ik", "--frames", "0"), "--frames 0: allowed 2..1000"),
+        (("serial", "--sonar-cm", "1.9"), "--sonar-cm: 1.9 is outside 2..400 cm (the HC-SR04's range)"),
+        (("serial", "--sonar-cm", "nan"), "--sonar-cm: nan is outside 2..400 cm"),
+        (("serial", "--sonar-cm", "10", "20"), "--sonar-cm: 2 values; allowed 1 (for every sonar) or 5 (one each)"),
+        (("run", __file__, "--sonar-cm", "far"), "--sonar-cm: 'far' is not a number (cm)"),
     ],
 )
 def test_bad_input_is_a_usage_error(args, message):
     proc = hexapod(*args)
     assert proc.returncode == 2 and message in proc.stderr, proc.stderr
     assert proc.stdout == ""
+
+
+def test_a_file_that_is_no_rp2040_image_is_refused_before_booting(tmp_path):
+    # main: an ELF loaded as a .bin ran garbage until the runner's 900 s timeout
+    elf = tmp_path / "firmware.elf"
+    elf.write_bytes(b"\x7fELF\x01\x01\x01" + bytes(2000))
+    text = tmp_path / "notes.uf2"
+    text.write_text("not an image\n")
+    for fw, why in ((elf, "an ELF file"), (text, "13 bytes, not a whole number of 512-byte UF2 blocks")):
+        for args in (("run", __file__), ("bench", "ik"), ("serial",)):
+            proc = hexapod(*args, "--firmware", str(fw))
+            assert proc.returncode == 2 and proc.stdout == "", (args, proc.stderr)
+            assert proc.stderr.startswith("hexapod: error: not an RP2040 UF2/bin: %s: %s" % (fw, why)), proc.stderr
 
 
 def test_bad_subcommand_and_missing_files_are_argparse_errors():
@@ -100,3 +117,44 @@ def test_run_streams_output_and_returns_the_boards_status(tmp_path):
         "selftest.mpy",
     ]
     assert os.path.getsize(str(image) + ".img") == pico.FS_BLOCKS * pico.FS_BLOCK_SIZE
+
+
+@pytest.mark.skipif(pico.missing() is not None, reason=pico.missing() or "")
+def test_serial_attaches_the_boards_chips_and_sonars_at_the_distances_given(tmp_path):
+    # main: no emulated chips on `pico serial`: after a flash, status said bus_failed 550 sonar_faults 549
+    import shutil
+    import signal
+    import time
+
+    from hexapod_host.serial.link import Link
+
+    with pico.flashed() as fs:  # what `hexapod flash --board pico` lands, as a filesystem image
+        img = tmp_path / "fs.img"
+        shutil.copy(fs, img)
+    cm = ("25", "35", "45", "55", "65")
+    proc = subprocess.Popen(
+        [HEXAPOD, "pico", "serial", "--fs", str(img), "--sonar-cm", *cm],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        port = proc.stdout.readline().strip()
+        assert port.startswith("/dev/"), proc.stderr.read() if proc.poll() is not None else port
+        with Link.open(port, timeout=120) as link:  # a generous bound on main.py's boot (~4 emulated s)
+            first = link.request("status")
+            end = time.monotonic() + 120  # bounded: the round robin gives each sonar its turn in turn
+            sonar = link.request("sonar").split()
+            while "wait" in sonar and time.monotonic() < end:
+                time.sleep(0.2)
+                sonar = link.request("sonar").split()
+            status = link.request("status").split()
+    finally:
+        proc.send_signal(signal.SIGTERM)
+        proc.wait(60)
+    assert first.startswith("ok frames "), first
+    words = dict(zip(status[1::2], status[2::2], strict=False))
+    assert int(words["frames"]) > 0 and words["bus_failed"] == "0" and words["sonar_faults"] == "0", status
+    # 'ok NAME MM ok' per sensor: each within 0.2 mm of what was set (docs/pico.md: the echo's timing)
+    assert sonar[0] == "ok" and sonar[3::3] == ["ok"] * 5, sonar
+    assert [float(v) for v in sonar[2::3]] == pytest.approx([10 * float(c) for c in cm], abs=0.2)

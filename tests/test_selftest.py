@@ -22,6 +22,7 @@ from hexapod_host.commands import cli, doctor
 from hexapod_host.serial.link import Link
 from tests.console_rig import clean_stubs  # noqa: F401 (autouse fixture)
 
+FIX = ": fix the cause (docs/console.md, faults), then `faults clear`"
 HINT_0x41 = "is its A0 jumper bridged (and no other)? is its VCC on 3V3? SDA and SCL wired through? common ground"
 
 
@@ -38,8 +39,8 @@ def cal_crc():
 
 def test_selftest_passes_on_the_stub_board_and_writes_no_register(rt):
     lines, frames, before, after, loaded, same = rt.with_heapsize("4m").call("scenarios.selftest:checks")
-    heap = lines[7]
-    assert lines[:7] == [
+    heap = lines[8]
+    assert lines[:8] == [
         "ok board pico robot default",
         "ok version 0.1.0",
         "ok i2c found 0x40 0x41",
@@ -47,13 +48,14 @@ def test_selftest_passes_on_the_stub_board_and_writes_no_register(rt):
         "ok pca9685 0x41 MODE1 0x20 PRE_SCALE 0x79 (50 Hz at osc 25000000 Hz)",
         "ok calibration hexapod_cal.txt crc %04x (in force: file)" % cal_crc(),
         "ok reset_cause power_on",
+        "ok faults none",  # the fault log: nothing went wrong since power-up
     ]
     if rt.name == "cpython":
         assert heap == "ok heap n/a (no gc.mem_free on this runtime)"
     else:
         free = int(heap.split()[3])
         assert heap == "ok heap free %d bytes" % free and 16384 <= free <= 4 * 1024 * 1024
-    assert lines[8:] == [
+    assert lines[9:] == [
         "ok supply n/a (no battery monitor configured)",
         # 58.3 us a cm at 20 degC, the model's rounding to whole us: within 0.1 mm of the distance
         "ok sonar front ok 300.0 mm",
@@ -61,7 +63,7 @@ def test_selftest_passes_on_the_stub_board_and_writes_no_register(rt):
         "ok sonar left_rear ok 500.0 mm",
         "ok sonar right_front ok 600.0 mm",
         "ok sonar right_rear ok 700.1 mm",
-        "ok selftest 14 checks, 0 failed",
+        "ok selftest 15 checks, 0 failed",
     ]
     # the round robin: 5 slots (neighbours 2 ticks apart), each sensor's echo collected a tick after
     # its ping, so 6 frames from the line to the end line
@@ -72,7 +74,7 @@ def test_selftest_passes_on_the_stub_board_and_writes_no_register(rt):
 
 def test_selftest_standing_moves_no_servo(rt):
     lines, frames, before, after, loaded, same = rt.with_heapsize("4m").call("scenarios.selftest:checks", standing=True)
-    assert lines[-1] == "ok selftest 14 checks, 0 failed"
+    assert lines[-1] == "ok selftest 15 checks, 0 failed"
     assert before == after and same  # a standing robot's pulses, register by register
 
 
@@ -84,7 +86,9 @@ def test_selftest_standing_moves_no_servo(rt):
             [
                 "err i2c found 0x40, missing 0x41: " + HINT_0x41 + " with the Pico?",
                 "err pca9685 0x41: no answer: " + HINT_0x41 + " with the Pico?",
-                "err selftest 14 checks, 2 failed",
+                # absent from build on: the loop's first frame (0) found it missing
+                "err faults 1 logged (oldest first) i2c 0x41 frame 0" + FIX,
+                "err selftest 15 checks, 3 failed",
             ],
         ),
         (
@@ -92,7 +96,9 @@ def test_selftest_standing_moves_no_servo(rt):
             [
                 "err i2c found 0x40, missing 0x41: " + HINT_0x41 + " with the Pico?",
                 "err pca9685 0x41: no answer: " + HINT_0x41 + " with the Pico?",
-                "err selftest 14 checks, 2 failed",
+                # unplugged after frames 0-4: frame 5, the one the selftest line arrives in, fails
+                "err faults 1 logged (oldest first) i2c 0x41 frame 5" + FIX,
+                "err selftest 15 checks, 3 failed",
             ],
         ),
         (
@@ -101,7 +107,7 @@ def test_selftest_standing_moves_no_servo(rt):
                 "err pca9685 0x41 MODE1 0x11 PRE_SCALE 0x1e, the driver wrote MODE1 0x20 PRE_SCALE 0x79: it reset "
                 "since start-up (a brownout: servo power sagging into its VCC? VCC on 3V3, not on the servo "
                 "supply) or another I2C master writes it; the loop sets it up again within 10 frames",
-                "err selftest 14 checks, 1 failed",
+                "err selftest 15 checks, 1 failed",
             ],
         ),
         (
@@ -110,7 +116,7 @@ def test_selftest_standing_moves_no_servo(rt):
                 # pico.py: left_rear trigger GP10, echo GP11
                 "err sonar left_rear no_echo: the echo never rose: module on 5 V? trigger on pin 10, echo on pin "
                 "11? the echo's 1k/2k divider in place? common ground with the Pico?",
-                "err selftest 14 checks, 1 failed",
+                "err selftest 15 checks, 1 failed",
             ],
         ),
         (
@@ -118,7 +124,7 @@ def test_selftest_standing_moves_no_servo(rt):
             [
                 "err calibration hexapod_cal.txt checksum mismatch (corrupt): the robot file's defaults are in use "
                 "at boot (in force now: defaults): calibrate and 'save' (docs/jog.md)",
-                "err selftest 14 checks, 1 failed",
+                "err selftest 15 checks, 1 failed",
             ],
         ),
         (
@@ -126,7 +132,7 @@ def test_selftest_standing_moves_no_servo(rt):
             [
                 "err calibration no hexapod_cal.txt: the robot file's defaults are in use at boot (in force now: "
                 "defaults): calibrate and 'save' (docs/jog.md)",
-                "err selftest 14 checks, 1 failed",
+                "err selftest 15 checks, 1 failed",
             ],
         ),
     ],
@@ -134,7 +140,7 @@ def test_selftest_standing_moves_no_servo(rt):
 def test_selftest_names_each_fault_and_its_likely_cause(rt, fault, errs):
     lines, frames, before, after, loaded, same = rt.with_heapsize("4m").call("scenarios.selftest:checks", fault)
     assert [x for x in lines if x.startswith("err")] == errs
-    assert len(lines) == 15 and frames == 6 and same and not loaded
+    assert len(lines) == 16 and frames == 6 and same and not loaded
     assert before[0] == after[0]  # chip 0x40 untouched whatever happened to 0x41
     if fault in ("no_echo_left_rear", "cal_corrupt", "cal_missing"):
         assert before == after
@@ -233,6 +239,9 @@ RECORDED = [
 
 
 class FakePort:
+    """A board's lines; its replies (ok/err) come tagged with the request written last, as the
+    firmware tags them (docs/console.md)."""
+
     def __init__(self, lines):
         self.lines = [(x + "\r\n").encode() for x in lines]
         self.written = b""
@@ -244,7 +253,12 @@ class FakePort:
         pass
 
     def readline(self):
-        return self.lines.pop(0) if self.lines else b""
+        if not self.lines:
+            return b""
+        line = self.lines.pop(0)
+        if line.startswith((b"ok", b"err")):
+            line = self.written.splitlines()[-1].split(b" ", 1)[0] + b" " + line
+        return line
 
     def close(self):
         pass
@@ -285,8 +299,15 @@ def test_doctor_report_from_a_recorded_reply():
 
 @pytest.fixture
 def vboard(virtual_board):
-    """start() -> pty path of a virtual board with no calibration filesystem (conftest's)."""
-    return lambda: virtual_board("")[0]
+    """start() -> pty path of a virtual board with no calibration filesystem (conftest's), its
+    link closed: the port is free for the command under test."""
+
+    def start():
+        path, link = virtual_board("")
+        link.close()
+        return path
+
+    return start
 
 
 def test_doctor_against_the_virtual_board(vboard, capsys):
@@ -297,17 +318,21 @@ def test_doctor_against_the_virtual_board(vboard, capsys):
         "board:    pico (robot default)",
         "firmware: 0.1.0",
         "i2c:      0x40 0x41",
-        "result:   14 checks, 0 failed (ok selftest 14 checks, 0 failed)",
+        "result:   15 checks, 0 failed (ok selftest 15 checks, 0 failed)",
     ]
-    assert "failed checks:" not in out and out[-1] == "  ok selftest 14 checks, 0 failed"
+    assert "failed checks:" not in out and out[-1] == "  ok selftest 15 checks, 0 failed"
     with Link.open(path, timeout=10) as link:
         assert link.request("fault unplug 0x41") == "ok fault unplug 0x41"
         assert link.request("fault no_echo 2") == "ok fault no_echo 2"
     assert cli.main(["doctor", "--port", path, "--timeout", "10", "--json"]) == 1
     data = json.loads(capsys.readouterr().out)
-    assert data["i2c"] == ["0x40"] and data["failed"] == 3 and data["board"] == "pico"
+    assert data["i2c"] == ["0x40"] and data["failed"] == 4 and data["board"] == "pico"
     failed = {c["check"]: c["hint"] for c in data["checks"] if not c["ok"]}
-    assert sorted(failed) == ["i2c", "pca9685 0x41", "sonar left_rear"]
+    assert sorted(failed) == ["faults", "i2c", "pca9685 0x41", "sonar left_rear"]
+    assert failed["faults"] == FIX[2:]
+    logged = next(c["detail"] for c in data["checks"] if c["check"] == "faults")
+    # the unplugged chip's first failed frame, then the sonar's first lost echo (a later frame)
+    assert logged.startswith("2 logged (oldest first) i2c 0x41 frame ") and "; sonar left_rear frame " in logged
     assert failed["pca9685 0x41"] == HINT_0x41 + " with the Pico?"
     assert failed["sonar left_rear"].startswith("the echo never rose: module on 5 V? trigger on pin 10, echo on pin 11")
 

@@ -30,3 +30,18 @@ def test_jog_api_moves_one_leg_refuses_with_reasons_and_leaves_smoothly(rt):
     assert out[11] == 3  # standing
     assert out[12] == (0, True)
     assert out[13] == 0  # no frame held on the way (leg 1's stretched limp joints included)
+
+
+def test_a_calibration_reaches_the_servo_at_once_even_while_frames_are_held(rt):
+    # Issue 24: the console fuzz once found a PCA9685 driving 2118 us on leg 3 femur after
+    # `range 3 femur 590 1858`: the robot's pulse had moved, the chip's would only at the next
+    # frame sent. Hand-worked: the jog's angle is (2118 - 1500) / 10 us per degree = 61.8 deg;
+    # centre 1200 maps it to 1200 + 618 = 1818 us, inside 590..1858 (2118 is not).
+    out = rt.with_heapsize("512k").call("scenarios.tick_jog:calibrate_reaches_the_chip_at_once")
+    assert out[0] == 0 and out[1] == 2118
+    assert out[2] == (0, 1818)  # the sink has the new pulse before any tick
+    assert out[3] == (0, 1818)  # so the narrowed range never sees 2118 us
+    assert out[4] == (25, True)  # FRAME_SERVO: held, the sink keeps the last frame
+    # leg 4 femur (dir -1) at centre 1460: its pulse moves 40 us down at once, held frames or not
+    reason, moved, top = out[5]
+    assert reason == 0 and moved == -40 and top < 2400

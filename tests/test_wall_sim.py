@@ -251,7 +251,8 @@ def test_success_needs_the_finish_no_contact_and_staying_near():
     # Undisturbed, the 1.5 m wall is done, held within a few mm after the first 30 cm.
     r = sim_wall.run_trial(w, 12, "ok", disturb=False, bus="sink")
     assert r["success"] and r["why"] == "" and r["path_mm"] > 1500 - 20
-    assert r["rms_mm"] < 3 and not r["contact"] and r["faults"] == 0
+    # undisturbed there is no noise to hold against: measured 0.094 mm (the bound was 3 mm)
+    assert r["rms_mm"] < 0.2 and not r["contact"] and r["faults"] == 0
     # The wall ends after 40 cm: the robot loses it and is soon 15 cm too far.
     short = world.check(bad(walls=[[0, 0, 40, 0]]), "short.json")
     r = sim_wall.run_trial(short, 12, "short", disturb=False, bus="sink")
@@ -278,7 +279,9 @@ def test_cli_json(capsys):
     out = json.loads(captured.out)
     for key in ("success_rate", "rms_mm", "steady_state_mm", "overshoot_mm", "time_s", "contacts", "faults", "rows"):
         assert key in out
-    assert 0 <= out["success_rate"] <= 1 and out["trials"] == 1 and out["world"] == "gap"
+    # the one trial (seed 0) passes the gap: measured 1 of 1, RMS 5.05 mm, no contact
+    assert (out["success_rate"], out["contacts"], out["trials"], out["world"]) == (1.0, 0, 1, "gap")
+    assert 2.5 < out["rms_mm"] < 7.5
     assert [r["setpoint_cm"] for r in out["rows"]] == [12] and out["gains"] == [25, 0.5, 1]
 
 
@@ -319,7 +322,7 @@ def test_the_right_wall():
     # on its right, and its right-hand sonars hold the set point.
     w = world.load("wall")
     r = sim_wall.run_trial(w, 10, "right", side="right", disturb=False, record=True, bus="sink")
-    assert r["success"] and r["rms_mm"] < 3
+    assert r["success"] and r["rms_mm"] < 0.2  # measured 0.143 mm
     assert all(t[3] > 0 for t in r["trace"]) and r["trace"][-1][4] == pytest.approx(100, abs=3)
 
 
@@ -357,3 +360,67 @@ def test_each_shipped_world_is_done_undisturbed(name):
     # no contact, the side sonars never 15 cm too far.
     r = sim_wall.run_trial(world.load(name), 12, name, disturb=False, bus="sink")
     assert (r["success"], r["why"], r["contact"]) == (True, "", False)
+
+
+@pytest.mark.parametrize("side", [1, -1], ids=["right wall", "left wall"])
+def test_plot_of_a_single_wall_has_room_for_its_labels(side):
+    # main, --follow right: matplotlib warned "constrained_layout not applied because axes sizes
+    # collapsed to zero" (the finish label 40 cm past the wall's far side) and cut the x label off.
+    import warnings
+
+    import matplotlib.pyplot as plt
+
+    w = world.load("wall")
+    traces = [(sp, [(0, 0, x, side * 10 * sp, 0) for x in range(200, 1701, 50)]) for sp in (8, 10, 12, 14, 16)]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fig = sim_wall.figure(w, traces, "a title")
+        fig.canvas.draw()
+    try:
+        ax = fig.axes[0]
+        inside = fig.bbox
+        for label in (ax.xaxis.label, ax.yaxis.label, ax.title):
+            box = label.get_window_extent()
+            assert inside.x0 <= box.x0 and box.x1 <= inside.x1 and inside.y0 <= box.y0 and box.y1 <= inside.y1
+        assert ax.get_position().height > 0.5  # the axes were not squeezed
+    finally:
+        plt.close(fig)
+
+
+def _children(pid):
+    with open("/proc/%d/task/%d/children" % (pid, pid)) as f:
+        return [int(w) for w in f.read().split()]
+
+
+def test_one_ctrl_c_stops_a_run_of_trials_cleanly():
+    # main: every worker printed a KeyboardInterrupt traceback, the pool replaced them and the
+    # parent waited for all the trials left before it exited.
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    exe = os.path.join(os.path.dirname(sys.executable), "hexapod")
+    argv = [exe, "sim", "wall", "--setpoint", "12", "--trials", "20", "--jobs", "2", "--json"]
+    # A session of its own: the signal goes to the whole group, as a terminal's Ctrl-C does.
+    proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+    try:
+        end = time.monotonic() + 120  # a generous bound on the workers starting, not a measurement
+        workers = []
+        while len(workers) < 2 and proc.poll() is None and time.monotonic() < end:
+            workers = _children(proc.pid)
+            time.sleep(0.05)
+        assert len(workers) == 2, "the two workers never started"
+        time.sleep(0.5)  # into the trials, past the pool's start
+        os.killpg(proc.pid, signal.SIGINT)
+        out, err = proc.communicate(timeout=120)
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
+    assert proc.returncode == 130, err
+    assert "Traceback" not in err and "KeyboardInterrupt" not in err, err
+    assert out == ""  # no table for half a run
+    with pytest.raises(ProcessLookupError):  # nothing of the group is left: the workers are gone
+        os.killpg(proc.pid, 0)

@@ -713,7 +713,9 @@ class Robot:
         500..2500), direction 1/-1 (mirrored about the reference) and min_us < max_us within
         500..2500 (ValueError naming the bad one). Refused (WALKING_NOW, BUSY, or JOG_SERVO with
         jog_excess) when the servo is driven and its present angle would map outside the new
-        range; otherwise the driven servo moves to its new pulse at once."""
+        range; otherwise the driven servo moves to its new pulse at once: the frame in force goes
+        out again now with that one pulse changed, so no chip is left driving the old pulse
+        (outside the new range) until a later frame, which may be held."""
         if not isinstance(k, int) or isinstance(k, bool) or k < 0 or k > 17:
             raise ValueError("servo: %r, allowed 0..17" % (k,))
         for name, v in (("centre_us", centre_us), ("min_us", min_us), ("max_us", max_us)):
@@ -740,6 +742,7 @@ class Robot:
         s.max_us = max_us
         if p:
             self.pulses[k] = p
+            self.frame.write_frame(self.pulses)
         return OK
 
     def go_limp(self):

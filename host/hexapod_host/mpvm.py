@@ -25,11 +25,12 @@ def search_path():
     return os.pathsep.join((STUBS, FIRMWARE, ROOT, ".frozen"))
 
 
-def run(source=None, *, script=None, stdin=None, heapsize="256k", args=(), timeout=300, path=()):
+def run(source=None, *, script=None, stdin=None, heapsize="256k", args=(), timeout=300, path=(), search=None):
     """Run source text (or a script file) in the VM; return its stdout as text.
 
     stdin is text or bytes fed to the VM; heapsize is MicroPython's -X heapsize value; path
-    names more folders to import from, after search_path()'s.
+    names more folders to import from, after search_path()'s (or after search, a list of folders
+    that replaces search_path(): a run that must see only a staged image, not firmware/).
     """
     exe = executable()
     if exe is None:
@@ -37,7 +38,8 @@ def run(source=None, *, script=None, stdin=None, heapsize="256k", args=(), timeo
     cmd = [exe, "-X", "heapsize=" + heapsize]
     cmd += ["-c", source] if script is None else [script]
     cmd += list(args)
-    env = dict(os.environ, MICROPYPATH=os.pathsep.join((search_path(), *path)))
+    first = search_path() if search is None else os.pathsep.join(search)
+    env = dict(os.environ, MICROPYPATH=os.pathsep.join((first, *path)))
     if isinstance(stdin, str):
         stdin = stdin.encode()
     proc = subprocess.run(cmd, input=stdin, capture_output=True, env=env, timeout=timeout)

@@ -171,6 +171,7 @@ def scenario(frames=1050):
     typed[825] = "stand"  # the pack is at 7300 mV since 16000 ms, but not yet for a whole window
     typed[900] = "stand"
     typed[1000] = "status"
+    typed[1001] = "faults"
     return whole(frames, typed)
 
 

@@ -145,3 +145,34 @@ def format_checks():
 def all_cuts():
     """cuts() of a first save on littlefs and FAT, with an old file and without."""
     return [cuts(fat, start, False) for fat in (False, True) for start in (True, False)]
+
+
+class ShortWriter(Writer):
+    """Drops the second half of each write yet reports every character written (a full flash that
+    says nothing)."""
+
+    def write(self, s):
+        self.fs._op()
+        self.fs.files[self.name] += s[: len(s) // 2]
+        return len(s)
+
+
+class ShortFS(StubFS):
+    def open(self, name, mode="r"):
+        if mode == "r":
+            return StubFS.open(self, name, mode)
+        self._op()
+        self.files[name] = ""
+        return ShortWriter(self, name)
+
+
+def short_write():
+    """A save onto a filesystem that writes short and reports success: (the error's errno, FILE kept,
+    what the next boot loads)."""
+    fs = ShortFS({calstore.FILE: calstore.encode(OLD)})
+    try:
+        calstore.Store(fs, fs.open).save(NEW)
+        err = None
+    except OSError as e:
+        err = e.args[0]
+    return err, fs.files[calstore.FILE] == calstore.encode(OLD), boot(fs) == OLD

@@ -1,7 +1,7 @@
 """hexapod.tick.Robot's jog mode on a FrameBuffer, the default robot's calibration rows (robots/default_cal.py)."""
 
 from scenarios.refusal import message
-from scenarios.rig import TICK_MS
+from scenarios.rig import TICK_MS, stand
 
 import robots.default as robot_file
 from hexapod import geometry, robotcal, tick
@@ -47,4 +47,34 @@ def jog_session():
     robot.go_limp()
     out.append((robot.mode, fb.pulses == [0] * 18))
     out.append(robot.faults)
+    return out
+
+
+def calibrate_reaches_the_chip_at_once():
+    """Issue 24: a range or trim change must never leave the frame sink (the PCA9685s) driving a
+    pulse outside the new range. Leg 3 femur (servo 7, pico rows: centre 1500, dir 1, 600..2400)
+    jogged to 2118 us, then, with no tick between, a trim to centre 1200 and a range of 590..1858;
+    then the same on a standing robot whose frames are held. Rows: each step's (code, sink's pulse)."""
+    g = geometry.load(robot_file)
+    fb = tick.FrameBuffer()
+    robot = tick.Robot(g, [row[2] for row in servo_table(load("pico"))], fb)
+    out = [robot.jog_pulse(2, 1, 2118)]
+    robot.tick(0)
+    out.append(fb.pulses[7])
+    out.append((robot.calibrate(7, 1200, 1, 600, 2400), fb.pulses[7]))
+    out.append((robot.calibrate(7, 1200, 1, 590, 1858), fb.pulses[7]))
+    # Standing, frames held (leg 2 femur's map swapped for one its standing angle misses): the
+    # sink keeps the last frame sent, so a calibration that waits for a frame never arrives.
+    fb = tick.FrameBuffer()
+    robot = tick.Robot(g, [row[2] for row in servo_table(load("pico"))], fb)
+    if robot.stand_up() != 0:
+        return out
+    t = stand(robot, 0)
+    before = fb.pulses[10]  # leg 4 femur
+    robot.servos[4].min_us = robot.servos[4].max_us - 1  # as clamped_frame: the next frame is held
+    robot.tick(t)
+    out.append((robot.reason, fb.pulses[10] == before))
+    # pico leg 4 femur: centre 1500, dir -1; 40 us down keeps its standing angle inside 600..2400
+    s = robot.servos[10]
+    out.append((robot.calibrate(10, 1460, -1, 600, before - 1), fb.pulses[10] - before, s.max_us))
     return out

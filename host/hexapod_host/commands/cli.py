@@ -22,6 +22,7 @@ COMMAND_MODULES = (
     "hexapod_host.commands.console",
     "hexapod_host.commands.doctor",
     "hexapod_host.commands.pico",
+    "hexapod_host.commands.view",
 )
 
 

@@ -10,8 +10,10 @@ import tempfile
 import tty
 
 from hexapod_host import BOARDS, VM_DIR, mpvm
+from hexapod_host.commands import checks
 from hexapod_host.commands.cli import UsageError
-from hexapod_host.serial.link import TIMEOUT_S, Link, LinkError, ports
+from hexapod_host.serial.flash import robots
+from hexapod_host.serial.link import TIMEOUT_S, Link, LinkError, PortBusy, check_line, ports
 
 VM_SCRIPT = os.path.join(VM_DIR, "virtual_board.py")
 
@@ -32,7 +34,12 @@ def register(sub):
 
     p = sub.add_parser("send", help="send console lines to a board, print the replies (exit 1 on any err)")
     p.add_argument("--port", required=True, help="serial port (hexapod ports lists them), or a virtual board's pty")
-    p.add_argument("--timeout", type=float, default=TIMEOUT_S, help="seconds to wait for each reply (default 2)")
+    p.add_argument(
+        "--timeout",
+        type=float,
+        default=TIMEOUT_S,
+        help="seconds to wait for each reply (default 2; a command the board says is `working` on gets 90)",
+    )
     p.add_argument("lines", nargs="+", metavar="LINE", help="command lines, e.g. 'get 2' 'nudge 2 0 0 5'")
     p.set_defaults(func=send)
 
@@ -50,6 +57,11 @@ def list_serial_ports(args):
 def send(args):
     if args.timeout <= 0:
         raise UsageError("--timeout %s: allowed a positive number of seconds" % args.timeout)
+    for k, line in enumerate(args.lines):
+        why = check_line(line)
+        if why:  # refused before the port is opened: nothing is sent
+            raise UsageError("LINE %d: %s" % (k + 1, why))
+    checks.port(args.port)
     status = 0
     try:
         with Link.open(args.port, timeout=args.timeout) as link:
@@ -59,6 +71,8 @@ def send(args):
                     print(reply)
                 if not lines[-1].startswith("ok"):
                     status = 1
+    except PortBusy as e:
+        raise UsageError(str(e)) from None
     except LinkError as e:
         print("hexapod: error: %s" % e, file=sys.stderr)
         return 1
@@ -73,6 +87,25 @@ def _board_ok(name):
     with open(path) as f:
         if '"runtime": "micropython"' not in f.read():
             raise UsageError("--board %r is a CircuitPython board; the virtual board runs MicroPython boards" % name)
+
+
+PR_SET_PDEATHSIG = 1  # linux/prctl.h
+
+
+def _die_with_parent(parent):
+    """A preexec_fn: the child gets SIGKILL when its parent dies, even by `kill -9` (Linux's
+    PR_SET_PDEATHSIG), so no VM is left serving the pty; and if the parent is already gone, at once."""
+    import ctypes
+    import ctypes.util
+
+    libc = ctypes.CDLL(ctypes.util.find_library("c") or None, use_errno=True)
+
+    def arm():
+        libc.prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+        if os.getppid() != parent:  # it died before the prctl took effect
+            os._exit(1)
+
+    return arm if sys.platform.startswith("linux") else None
 
 
 def start_virtual_board(board="pico", robot="default", cal_dir="", frames=-1):
@@ -91,50 +124,64 @@ def start_virtual_board(board="pico", robot="default", cal_dir="", frames=-1):
         stdout=master,
         env=env,
         start_new_session=True,  # Ctrl-C in the terminal reaches us; we stop the VM
+        preexec_fn=_die_with_parent(os.getpid()),
     )
     # Keep our slave fd open: with no client the master would read EOF/EIO; with it the VM's
     # output waits in the pty until a client opens the path.
     return proc, path, master, slave
 
 
+def _robot_ok(name):
+    """A robot file in robots/, checked here: the VM would only exit 1 with an ImportError."""
+    have = robots()
+    if name not in have:
+        raise UsageError("no robot %r; allowed: %s" % (name, ", ".join(have)))
+
+
 def virtual_board(args):
     _board_ok(args.board)
-    tmp = None
-    cal_dir = args.cal_dir
-    if cal_dir is None:
-        tmp = tempfile.TemporaryDirectory(prefix="hexapod-cal-")
-        cal_dir = tmp.name
-    elif not os.path.isdir(cal_dir):
-        raise UsageError("--cal-dir %r: no such directory" % cal_dir)
-    proc, path, master, slave = start_virtual_board(args.board, args.robot, os.path.abspath(cal_dir))
-    print(path, flush=True)
-    print(
-        "virtual board %s on %s (calibration file in %s); try: hexapod send --port %s status; Ctrl-C stops"
-        % (args.board, path, cal_dir, path),
-        file=sys.stderr,
-        flush=True,
-    )
+    _robot_ok(args.robot)
+    if args.cal_dir is not None and not os.path.isdir(args.cal_dir):
+        raise UsageError("--cal-dir %r: no such directory" % args.cal_dir)
 
     def stop(signum, frame):
         raise KeyboardInterrupt
 
-    old = signal.signal(signal.SIGTERM, stop)
+    # SIGTERM, and SIGHUP (the terminal closed): stop the VM and remove the temporary calibration
+    # directory, as Ctrl-C does; armed before the directory exists. (kill -9 cannot be caught: the
+    # VM dies with us, _die_with_parent.)
+    old = {sig: signal.signal(sig, stop) for sig in (signal.SIGTERM, signal.SIGHUP)}
+    tmp = proc = None
     try:
+        cal_dir = args.cal_dir
+        if cal_dir is None:
+            tmp = tempfile.TemporaryDirectory(prefix="hexapod-cal-")
+            cal_dir = tmp.name
+        proc, path, master, slave = start_virtual_board(args.board, args.robot, os.path.abspath(cal_dir))
+        print(path, flush=True)
+        print(
+            "virtual board %s on %s (calibration file in %s); try: hexapod send --port %s status; Ctrl-C stops"
+            % (args.board, path, cal_dir, path),
+            file=sys.stderr,
+            flush=True,
+        )
         code = proc.wait()
         print("hexapod: error: the virtual board's VM exited with status %d" % code, file=sys.stderr)
         return 1
     except KeyboardInterrupt:
         return 0
     finally:
-        signal.signal(signal.SIGTERM, old)
-        if proc.poll() is None:
-            proc.terminate()
-            try:
-                proc.wait(5)
-            except subprocess.TimeoutExpired:
-                proc.kill()
-                proc.wait()
-        os.close(master)
-        os.close(slave)
+        for sig, handler in old.items():
+            signal.signal(sig, handler)
+        if proc is not None:
+            if proc.poll() is None:
+                proc.terminate()
+                try:
+                    proc.wait(5)
+                except subprocess.TimeoutExpired:
+                    proc.kill()
+                    proc.wait()
+            os.close(master)
+            os.close(slave)
         if tmp is not None:
             tmp.cleanup()

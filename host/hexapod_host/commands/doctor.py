@@ -6,7 +6,7 @@ import json
 import sys
 
 from hexapod_host.commands.cli import UsageError, version
-from hexapod_host.serial.link import TIMEOUT_S, Link, LinkError
+from hexapod_host.serial.link import TIMEOUT_S, Link, LinkError, PortBusy
 
 # Checks whose name has a second word (the chip's address, the sonar's or servo's name).
 _TWO_WORDS = ("pca9685", "sonar", "servo")
@@ -88,6 +88,8 @@ def doctor(args):
     try:
         with Link.open(args.port, timeout=args.timeout) as link:
             lines = link.request_lines("selftest")
+    except PortBusy as e:
+        raise UsageError(str(e)) from None
     except LinkError as e:
         print("hexapod: error: %s" % e, file=sys.stderr)
         return 1

@@ -1,12 +1,15 @@
-"""`hexapod flash --board B --port PORT | --drive PATH [--robot R] [--dry-run]`: put the firmware on a board.
+"""`hexapod flash --board B --port PORT | --drive PATH [--robot R] [--dry-run] [--verbose]`: put the firmware on
+a board.
 
-The plan (every mpy-cross and mpremote command, or every copy onto the CIRCUITPY drive and the circup
-command) is printed before it runs; --dry-run prints it and touches no board. docs/flashing.md.
+--dry-run prints the whole plan (every mpy-cross and mpremote command, or every copy onto the CIRCUITPY
+drive and the circup command; PORT when no --port is given) and touches no board; a real flash prints
+its steps as they run, and with --verbose every command too. docs/flashing.md.
 """
 
 import os
 import shlex
 
+from hexapod_host.commands import checks
 from hexapod_host.commands.cli import UsageError
 from hexapod_host.serial import flash
 
@@ -19,6 +22,9 @@ def register(sub):
     p.add_argument("--robot", default="default", help="robot file (default: default): " + ", ".join(flash.robots()))
     p.add_argument("--dry-run", action="store_true", help="print the plan; compile into build/ but touch no board")
     p.add_argument("--full", action="store_true", help="copy every file, whatever the board's manifest says")
+    p.add_argument(
+        "--verbose", "-v", action="store_true", help="print every command of a real flash (a dry run always does)"
+    )
     p.add_argument("--stage-dir", metavar="DIR", help="where the image is built (default: build/flash/BOARD)")
     p.add_argument(
         "--manifest-from",
@@ -41,10 +47,16 @@ def check_args(args):
         if not os.path.isdir(args.drive):
             raise UsageError("drive %r: no such directory (is the CIRCUITPY drive mounted?)" % args.drive)
     else:
-        if not args.port:
+        if not args.port and not args.dry_run:  # a dry run's plan says PORT
             raise UsageError("board %r runs MicroPython: give its serial port with --port PORT" % args.board)
         if not args.dry_run and os.sep in args.port and not os.path.exists(args.port):
             raise UsageError("no such port %r (list ports with `mpremote connect list`)" % args.port)
+    if args.stage_dir:
+        # staging replaces the directory whole: only a new, empty or earlier stage's (its core package there)
+        d = args.stage_dir
+        if os.path.isdir(d) and os.listdir(d) and not os.path.isdir(os.path.join(d, "hexapod")):
+            raise UsageError("--stage-dir: %r holds other files and staging replaces it: give a new or empty one" % d)
+        checks.out_dir("--stage-dir", d)
     if args.manifest_from and not os.path.isfile(args.manifest_from):
         raise UsageError("--manifest-from %r: no such file" % args.manifest_from)
     return rt
@@ -61,21 +73,27 @@ def run(args):
 
 def flash_micropython(args):
     staged = args.stage_dir or os.path.join(flash.ROOT, "build", "flash", args.board)
+    port = args.port or "PORT"
     print(
         "# flash %s (MicroPython, %s), robot %s, staged in %s"
         % (args.board, flash.board_arch(args.board), args.robot, staged)
     )
-    print("# compile")
     commands, image, _ = flash.stage(args.board, args.robot, staged)
-    for cmd in commands:
-        print(shlex.join(cmd))
+    if args.dry_run or args.verbose:
+        print("# compile")
+        for cmd in commands:
+            print(shlex.join(cmd))
+    else:  # a real flash: the steps, not their ~80 lines of commands and embedded Python
+        print("# compiled %d files with mpy-cross (--verbose prints every command)" % len(commands))
     if not args.dry_run:
-        copied = flash.flash_micropython(args.port, staged, image, full=args.full)
+        copied = flash.flash_micropython(args.port, staged, image, full=args.full, verbose=args.verbose)
         print("flashed %s on %s: %d of %d files copied" % (args.board, args.port, len(copied), len(image)))
         print(flash.after_reset(args.board))
         return 0
+    if not args.port:
+        print("# no --port given: PORT below stands for the board's serial port (hexapod ports lists them)")
     print("# probe the board: runtime, free space, its manifest")
-    print(shlex.join(flash.probe_command(args.port)))
+    print(shlex.join(flash.probe_command(port)))
     on_board = {}
     if args.manifest_from and not args.full:
         with open(args.manifest_from) as f:
@@ -85,7 +103,7 @@ def flash_micropython(args):
         print("# planned for a board without a manifest (everything is copied)")
     copy, stale = flash.changes(image, on_board)
     print("# %d of %d files changed: %s" % (len(copy), len(image), " ".join(copy) or "none"))
-    for what, cmd in flash.micropython_plan(args.port, staged, copy, stale):
+    for what, cmd in flash.micropython_plan(port, staged, copy, stale):
         print("# " + what)
         print(shlex.join(cmd))
     print("# dry run: the board was not touched; " + flash.after_reset(args.board))
@@ -98,12 +116,15 @@ def flash_circuitpython(args):
     _, image, libs = flash.stage(args.board, args.robot, staged)
     copy = list(image) if args.full else flash.drive_changes(args.drive, staged, image)
     print("# %d of %d files changed on %s: %s" % (len(copy), len(image), args.drive, " ".join(copy) or "none"))
-    for p in copy:
-        dest = os.path.join(args.drive, p.replace("/", os.sep))
-        print(shlex.join(["cp", os.path.join(staged, p.replace("/", os.sep)), dest + flash.NEW]))
-    for p in copy:
-        dest = os.path.join(args.drive, p.replace("/", os.sep))
-        print(shlex.join(["mv", dest + flash.NEW, dest]))
+    if args.dry_run or args.verbose:
+        for p in copy:
+            dest = os.path.join(args.drive, p.replace("/", os.sep))
+            print(shlex.join(["cp", os.path.join(staged, p.replace("/", os.sep)), dest + flash.NEW]))
+        for p in copy:
+            dest = os.path.join(args.drive, p.replace("/", os.sep))
+            print(shlex.join(["mv", dest + flash.NEW, dest]))
+    elif copy:
+        print("# copy them under temporary names, then rename each into place (--verbose prints every command)")
     circup = flash.circup_command(args.drive, libs)
     print("# Adafruit libraries (needs the network)")
     print(shlex.join(circup))

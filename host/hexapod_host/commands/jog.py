@@ -3,9 +3,9 @@
 docs/jog.md; the protocol is docs/console.md.
 """
 
-import os
 import sys
 
+from hexapod_host.commands import checks
 from hexapod_host.commands.cli import UsageError
 
 
@@ -18,13 +18,14 @@ def register(sub):
 
 def run(args):
     from hexapod_host.serial import jog, jog_tui
-    from hexapod_host.serial.link import Link, LinkError
+    from hexapod_host.serial.link import Link, LinkError, PortBusy
 
-    if os.sep in args.port and not os.path.exists(args.port):
-        raise UsageError("no such port %r (hexapod ports lists them)" % args.port)
+    checks.port(args.port)
     try:
         link = Link.open(args.port, args.timeout)
         link.request("get 1")  # a board that does not answer is found before the screen opens
+    except PortBusy as err:
+        raise UsageError(str(err)) from None
     except LinkError as err:
         print("hexapod jog: error: %s" % err)
         return 1

@@ -121,6 +121,15 @@ def _word_bytes(word):
 
 
 def _run(kind, args):
+    try:
+        return _solve(kind, args)
+    except UsageError as err:
+        if args.json:  # the engine's own errors do the same: a JSON reader always gets an object
+            sys.stdout.write('{"error": %s}\n' % kin.json_text(str(err)))
+        raise
+
+
+def _solve(kind, args):
     if args.batch and args.values:
         raise UsageError("--batch reads stdin; drop the values %s" % " ".join(shown(w) for w in args.values[:3]))
     mode = kind + "-batch" if args.batch else kind

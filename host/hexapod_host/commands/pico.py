@@ -10,6 +10,7 @@ import tempfile
 import time
 
 from hexapod_host import VM_DIR
+from hexapod_host.commands import checks
 from hexapod_host.commands.cli import UsageError
 from hexapod_host.pico import emulator as pico
 
@@ -195,7 +196,7 @@ BENCHES = {"ik": bench_ik, "tick": bench_tick, "frame": bench_frame, "boot": ben
 
 def register(sub):
     p = sub.add_parser("pico", help="the firmware on an emulated Raspberry Pi Pico (rp2040js, Node.js >= 18)")
-    what = p.add_subparsers(dest="pico_command", metavar="run|bench", required=True)
+    what = p.add_subparsers(dest="pico_command", metavar="run|bench|serial", required=True)
     r = what.add_parser("run", help="flash the firmware into an emulated Pico and run FILE... on it")
     r.add_argument("files", nargs="+", metavar="FILE", help="Python files run one after another (raw REPL)")
     r.add_argument("--image", metavar="DIR", help="keep the staged files in DIR (and the littlefs image DIR.img)")
@@ -204,6 +205,7 @@ def register(sub):
         metavar="FILE",
         help="MicroPython RPI_PICO .uf2/.bin (default: $PICO_FIRMWARE, else make pico-firmware's build)",
     )
+    _sonar_option(r)
     r.set_defaults(func=run_files)
     b = what.add_parser("bench", help="benchmarks on the emulated Pico (JSON out): " + ", ".join(sorted(BENCHES)))
     b.add_argument("name", help="which benchmark: " + ", ".join(sorted(BENCHES)))
@@ -217,7 +219,45 @@ def register(sub):
     s.add_argument("--fs", metavar="IMG", help="littlefs image to boot with (default: erased flash)")
     s.add_argument("--save-fs", metavar="OUT", help="write the board's filesystem here when stopped")
     s.add_argument("--firmware", metavar="FILE", help="MicroPython RPI_PICO .uf2/.bin")
+    _sonar_option(s)
     s.set_defaults(func=run_serial)
+
+
+# The HC-SR04's range (datasheet: 2 cm - 4 m); the default: walls 30-70 cm away, one per sensor, as on
+# the virtual board.
+SONAR_CM = (2, 400)
+SONAR_DEFAULT_CM = (30, 40, 50, 60, 70)
+
+
+def _sonar_option(p):
+    p.add_argument(
+        "--sonar-cm",
+        nargs="+",
+        metavar="CM",
+        help="what the emulated HC-SR04s see, cm, %d..%d: one value for all five or five in drivers.hcsr04 "
+        "order (default %s)" % (SONAR_CM + (" ".join(map(str, SONAR_DEFAULT_CM)),)),
+    )
+
+
+def _devices(args):
+    """The board's emulated chips (its PCA9685s, its five HC-SR04s at --sonar-cm), as main.build expects
+    them; UsageError names a bad distance."""
+    from hexapod import board as boards
+
+    n = len(boards.sensor_pins(boards.load("pico")))
+    words = args.sonar_cm or [str(v) for v in SONAR_DEFAULT_CM]
+    if len(words) not in (1, n):
+        raise UsageError("--sonar-cm: %d values; allowed 1 (for every sonar) or %d (one each)" % (len(words), n))
+    cm = []
+    for w in words:
+        try:
+            v = float(w)
+        except ValueError:
+            raise UsageError("--sonar-cm: %r is not a number (cm)" % w) from None
+        if not SONAR_CM[0] <= v <= SONAR_CM[1]:  # also refuses nan
+            raise UsageError("--sonar-cm: %s is outside %d..%d cm (the HC-SR04's range)" % (w, *SONAR_CM))
+        cm.append(v)
+    return pico.devices("pico", distances=[round(v * 100) for v in (cm * n if len(cm) == 1 else cm)])
 
 
 def _check(args):
@@ -236,13 +276,15 @@ def run_files(args):
     for f in args.files:
         if not os.path.isfile(f):
             raise UsageError("no such file: %s" % f)
-    if args.image and os.path.exists(args.image) and os.listdir(args.image):
-        raise UsageError("--image %s: not empty (give a new or empty directory)" % args.image)
+    if args.image:
+        checks.out_dir("--image", args.image, empty=True)
+        checks.out_file("--image", args.image.rstrip("/") + ".img")
+    devices = _devices(args)
     with tempfile.TemporaryDirectory() as tmp:
         tree = args.image or os.path.join(tmp, "stage")
         pico.stage(tree)
         fs = pico.image(tree, (args.image.rstrip("/") + ".img") if args.image else os.path.join(tmp, "fs.img"))
-        status, _, _, _ = pico.run(args.files, fs=fs, stream=True)
+        status, _, _, _ = pico.run(args.files, fs=fs, stream=True, devices=devices)
     return status
 
 
@@ -267,16 +309,21 @@ def run_serial(args):
     _check(args)
     if args.fs and not os.path.isfile(args.fs):
         raise UsageError("--fs %r: no such file" % args.fs)
+    if args.save_fs:
+        checks.out_file("--save-fs", args.save_fs)
+    devices = _devices(args)
 
     def stop(signum, frame):
         raise KeyboardInterrupt
 
     old = signal.signal(signal.SIGTERM, stop)
     try:
-        with pico.serial(args.fs, save_fs=args.save_fs) as path:
+        with pico.serial(args.fs, save_fs=args.save_fs, devices=devices) as path:
             print(path, flush=True)
             print(
-                "emulated Pico on %s; try: hexapod flash --board pico --port %s; Ctrl-C stops" % (path, path),
+                "emulated Pico on %s (its two PCA9685s and five HC-SR04s at %s cm attached); try: hexapod flash "
+                "--board pico --port %s; Ctrl-C stops"
+                % (path, " ".join("%g" % (s["distance"] / 100) for s in devices["sonars"]), path),
                 file=sys.stderr,
                 flush=True,
             )

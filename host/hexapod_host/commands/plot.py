@@ -8,10 +8,10 @@ Writes into --out (default plots/):
 """
 
 import os
-import tempfile
 
 from hexapod.gait import NAMES, TRIPOD
 from hexapod.units import shown
+from hexapod_host.commands import checks
 from hexapod_host.commands.cli import UsageError
 
 LEGS = ("1 RF", "2 RM", "3 RR", "4 LR", "5 LM", "6 LF")
@@ -36,7 +36,7 @@ def _options(args):
             raise UsageError("--gait: %s is not one of %s or all" % (shown(args.gait), ", ".join(NAMES)))
     speed = _number("speed", args.speed, 1, SPEED_MAX, "mm/s")  # 0.1 mm/s
     turn = _number("turn", args.turn, 2, YAW_RATE_MAX, "deg/s")  # cdeg/s
-    _check_out(args.out)
+    checks.out_dir("--out", args.out)
     return gaits, speed, turn
 
 
@@ -47,20 +47,6 @@ def _number(name, text, places, limit, unit):
         return parse_fixed(text, places, limit, unit)
     except ValueError as err:
         raise UsageError("--%s: %s" % (name, err)) from None
-
-
-def _check_out(out):
-    """--out must be a directory we can create and write into; UsageError says why not."""
-    if not out:
-        raise UsageError("--out: empty; give a directory for the PNGs (default plots/)")
-    if os.path.exists(out) and not os.path.isdir(out):
-        raise UsageError("--out: %s exists and is not a directory" % shown(out, 200))
-    try:
-        os.makedirs(out, exist_ok=True)
-        probe = tempfile.NamedTemporaryFile(dir=out, prefix=".hexapod-probe-")  # noqa: SIM115
-        probe.close()
-    except OSError as err:
-        raise UsageError("--out: cannot write into %s: %s" % (shown(out, 200), err.strerror or err)) from None
 
 
 def record(gait_name, speed, turn, cycles=2):
@@ -113,6 +99,7 @@ def margin_mm(rows):
 
 def run(args):
     gaits, speed, turn = _options(args)
+    os.makedirs(args.out, exist_ok=True)
     import matplotlib
 
     matplotlib.use("Agg")

@@ -7,6 +7,7 @@ import sys
 
 from hexapod import robotfile
 from hexapod.gait import NAMES, TRIPOD, gait_number
+from hexapod_host.commands import checks
 from hexapod_host.commands.cli import UsageError
 from hexapod_host.physics.sim import TABLE_GAITS, format_table, report, simulate, table
 
@@ -64,6 +65,8 @@ def check_args(args):
     ):
         if not math.isfinite(v) or v < lo or v > hi:
             raise UsageError("%s: %r is outside %g..%g" % (name, v, lo, hi))
+    if args.render is not None:
+        checks.out_dir("--render", args.render)
     return servo
 
 

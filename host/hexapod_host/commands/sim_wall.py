@@ -7,6 +7,7 @@ import sys
 
 from hexapod import limits as fw_limits
 from hexapod_host import mpvm
+from hexapod_host.commands import checks
 from hexapod_host.commands.cli import UsageError
 from hexapod_host.wall import physics as wall_physics
 from hexapod_host.wall.sim import (
@@ -91,8 +92,9 @@ def parse(args):
     jobs = _whole(args.jobs, "--jobs", 1, 256) if args.jobs else None
     if args.form not in fw_limits.FORMS:
         raise UsageError("--form: %r, allowed yaw or sweeps" % args.form)
-    if args.plot is not None and not args.plot.endswith(".png"):
-        raise UsageError("--plot: %r, allowed a file name ending in .png" % args.plot)
+    plot_path = args.plot if args.plot is not None else (None if args.json else PLOT)
+    if plot_path is not None:  # before minutes of trials, not after them
+        checks.out_file("--plot", plot_path, suffix=".png")
     for sp in setpoints:
         try:
             run_trial(world, sp, "check", side=args.follow, disturb=False, max_frames=0)

@@ -17,6 +17,7 @@ import sys
 import tempfile
 
 from hexapod_host import ROOT
+from hexapod_host.pico import image as rp2040_image
 
 HERE = os.path.join(ROOT, "host", "pico")
 RUNNER = os.path.join(HERE, "run.mjs")
@@ -60,6 +61,10 @@ def firmware(path=None):
             "no Pico firmware image (%s): run `make pico-firmware`, which builds MicroPython from Debian's "
             "source packages (needs apt access to the Debian archive), or pass --firmware FILE" % os.path.relpath(path)
         )
+    try:
+        rp2040_image.check(path)
+    except (rp2040_image.ImageError, OSError) as err:
+        raise PicoError("not an RP2040 UF2/bin: %s: %s" % (path, err)) from None
     return os.path.abspath(path)
 
 

@@ -419,10 +419,11 @@ def space_needed(staged, copy, block):
     return total
 
 
-def flash_micropython(port, staged, image, say=print, full=False, probe_s=15):
+def flash_micropython(port, staged, image, say=print, full=False, probe_s=15, verbose=True):
     """Probe the board, copy what changed, rename into place, reset. Returns the paths copied.
 
-    probe_s: seconds the board has to answer the probe (mpremote itself waits for ever on a silent port)."""
+    probe_s: seconds the board has to answer the probe (mpremote itself waits for ever on a silent port).
+    verbose: say each mpremote command (with its Python) under its step, not the step alone."""
     status, out = run(probe_command(port), timeout=probe_s)
     if status == 124:
         raise FlashError(
@@ -447,7 +448,8 @@ def flash_micropython(port, staged, image, say=print, full=False, probe_s=15):
         )
     for what, cmd in micropython_plan(port, staged, copy, stale):
         say("# " + what)
-        say(shlex.join(cmd))
+        if verbose:
+            say(shlex.join(cmd))
         status, out = run(cmd)
         if what == "copy under temporary names" and status:
             st2, _ = run([tool("mpremote"), "connect", port, "exec", cleanup_script(copy)])

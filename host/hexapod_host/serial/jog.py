@@ -156,8 +156,32 @@ def _refuse(view, why):
     return []
 
 
+PROMPT_MAX = 84  # characters the link sends in one request (link.check_line: 95 less the tag)
+
+
+def prompt_key(text, key):
+    """One key at the ':' prompt: (the text so far, state), state None (typing), "done" (Enter) or
+    "cancel" (Esc, Ctrl-C). key: a printable character, or ENTER, BACKSPACE, ESC, CTRL-C. A control
+    key is never part of the line: Ctrl-C (0x03) reaching the board stops its loop and drops the
+    robot (MicroPython's KeyboardInterrupt)."""
+    if key == "ENTER":
+        return text, "done"
+    if key in ("ESC", "CTRL-C"):
+        return "", "cancel"
+    if key == "BACKSPACE":
+        return text[:-1], None
+    if len(key) == 1 and " " <= key <= "~" and len(text) < PROMPT_MAX:
+        return text + key, None
+    return text, None
+
+
 def typed(line):
-    """A console line typed after ':' (blank: nothing)."""
+    """A console line typed after ':' (blank: nothing). ValueError for a control or non-ASCII
+    character anywhere in it: nothing of it is sent."""
+    for ch in line:
+        if not " " <= ch <= "~" and ch != "\t":
+            why = "not sent: the line holds the control character 0x%02x (only printable text is sent)"
+            raise ValueError(why % ord(ch))
     line = line.strip()
     return [line] if line else []
 
@@ -224,4 +248,9 @@ class Jog:
         self.send(commands_for(self.view, key))
 
     def line(self, text):
-        self.send(typed(text))
+        try:
+            lines = typed(text)
+        except ValueError as err:
+            _refuse(self.view, str(err))
+            return
+        self.send(lines)

@@ -23,29 +23,50 @@ def draw(screen, lines):
     screen.refresh()
 
 
+# Keys at the prompt -> jog.prompt_key's names; any other code below 32 is dropped there.
+PROMPT_KEYS = {10: "ENTER", 13: "ENTER", curses.KEY_ENTER: "ENTER", 27: "ESC", 3: "CTRL-C"}
+PROMPT_KEYS.update({8: "BACKSPACE", 127: "BACKSPACE", curses.KEY_BACKSPACE: "BACKSPACE"})
+
+
+def prompt_name(code):
+    """A curses key code as jog.prompt_key takes it ('' for a key with no character)."""
+    if code in PROMPT_KEYS:
+        return PROMPT_KEYS[code]
+    return chr(code) if 0 <= code < 256 else ""
+
+
 def ask(screen, prompt):
-    """A line typed at the bottom of the screen (Enter ends it)."""
+    """A line typed at the bottom of the screen: Enter sends it, Esc or Ctrl-C drops it (raw mode,
+    loop(): Ctrl-C comes here as a key, not a signal) and no control key reaches the board
+    (jog.prompt_key)."""
     height, width = screen.getmaxyx()
-    screen.move(height - 1, 0)
-    screen.clrtoeol()
-    screen.addnstr(height - 1, 0, prompt, width - 1)
-    curses.echo()
     curses.curs_set(1)
+    text, state = "", None
     try:
-        return screen.getstr(height - 1, len(prompt), 95).decode(errors="replace")
+        while state is None:
+            screen.move(height - 1, 0)
+            screen.clrtoeol()
+            screen.addnstr(height - 1, 0, prompt + text, width - 1)
+            screen.refresh()
+            text, state = jog.prompt_key(text, prompt_name(screen.getch()))
+        return text if state == "done" else ""
     finally:
-        curses.noecho()
         curses.curs_set(0)
 
 
 def loop(screen, tool, port):
+    # Raw mode throughout: Ctrl-C (and Ctrl-Z, Ctrl-\\) arrive as keys, never as signals, so no
+    # key press races the prompt's own handling; on the jog screen Ctrl-C quits as q does.
+    curses.raw()
     curses.curs_set(0)
     screen.keypad(True)
     tool.start()
     while not tool.view.quit:
         draw(screen, jog.render(tool.view, port))
         code = screen.getch()
-        if code == ord(":"):
+        if code == 3:
+            tool.key("q")
+        elif code == ord(":"):
             tool.line(ask(screen, ": "))
         elif code in SPECIAL:
             tool.key(SPECIAL[code])

@@ -34,7 +34,7 @@ for c in boards.load("pico")["pca9685"]["chips"]:
 r = main.build(clock=clock)
 r.robot.frame = tick.FrameBuffer()
 reader = console.BufferReader()
-con = console.start(r, reader, None, out=lambda s: None)
+con = console.start(r, reader, None, out=lambda line, more=None: None)  # tagged: out(tag, line)
 
 # (setup lines, timed line): the timed line runs REPEATS times from the same state.
 CASES = (
@@ -49,6 +49,10 @@ CASES = (
     ((), "foot 2 400 0 0"),
     ((), "sonar"),
     ((), "x" * 120),
+    # Tagged requests (docs/console.md): the tag is a word the line's split makes anyway.
+    ((), "#7 get 2"),
+    ((), "#123456789 status"),
+    (("foot 2 130 0 -80",), "#7 nudge 2 0.5 0 0"),
 )
 
 

@@ -166,22 +166,23 @@ def solve(leg, kind, words, as_json, out, head=""):
 
 
 def run_words(leg, kind, stdin, as_json, out, stdout, stderr):
-    """One solve of the user's words (NUL-ended records on stdin)."""
+    """One solve of the user's words (NUL-ended records on stdin); bad input under --json is also a
+    {"error": ...} object on stdout, so a script reading JSON always gets one."""
     words = []
-    for data, size in records(stdin, b"\0"):
-        k = len(words)
-        name = NAMES[kind][k] if k < 3 else "value %d" % (k + 1)
-        if size > LINE_MAX:
-            stderr.write("hexapod: error: %s: %s is longer than %d bytes\n" % (name, raw(data), LINE_MAX))
-            return BAD_INPUT
-        if not utf8_ok(data):
-            stderr.write("hexapod: error: %s: %s is not UTF-8 text\n" % (name, raw(data)))
-            return BAD_INPUT
-        words.append(data)
     try:
+        for data, size in records(stdin, b"\0"):
+            k = len(words)
+            name = NAMES[kind][k] if k < 3 else "value %d" % (k + 1)
+            if size > LINE_MAX:
+                raise ValueError("%s: %s is longer than %d bytes" % (name, raw(data), LINE_MAX))
+            if not utf8_ok(data):
+                raise ValueError("%s: %s is not UTF-8 text" % (name, raw(data)))
+            words.append(data)
         status, text = solve(leg, kind, words, as_json, out)
     except ValueError as err:
         stderr.write("hexapod: error: %s\n" % err)
+        if as_json:
+            stdout.write('{"error": %s}\n' % json_text(str(err)))
         return BAD_INPUT
     stdout.write(text + "\n")
     return status

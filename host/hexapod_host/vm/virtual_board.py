@@ -8,6 +8,12 @@
 # 50 Hz board. One command beyond the firmware's: `model` answers the PCA9685 models' pulse
 # widths (us, chip 0x40 channels 0-15 then 0x41), for tests and the curious; and `fault unplug
 # 0x41` / `fault no_echo K`, which break a model for `selftest` and `hexapod doctor` to find.
+#
+# Ctrl-C (0x03) does what it does on a MicroPython board: the board's USB/UART takes it as
+# KeyboardInterrupt in the running code (it never reaches sys.stdin), main.py's loop leaves with
+# the servos relaxed (or held: the board file's on_exit), prints its `stopped:` line, and the
+# board sits at the REPL. Here a small REPL follows: `runner.run()` resumes the loop, Ctrl-D is a
+# soft reboot (the loop again, relaxed), any other line is run as Python with `runner` at hand.
 import os
 import sys
 import time
@@ -31,9 +37,25 @@ sonars = stub_board.sonar_models(board, [3000 + 1000 * k for k in range(5)])
 r = main.build(BOARD, ROBOT, clock=clock)
 if CAL_DIR:
     os.chdir(CAL_DIR)
+
+
+class InterruptReader:
+    """The board's stdin as MicroPython's USB CDC serves it: 0x03 raises KeyboardInterrupt."""
+
+    def __init__(self, reader):
+        self.reader = reader
+
+    def read_byte(self):
+        b = self.reader.read_byte()
+        if b == 3:
+            raise KeyboardInterrupt
+        return b
+
+
+stdin = console.PollReader()
 con = console.start(
     r,
-    console.PollReader(),
+    InterruptReader(stdin),
     os if CAL_DIR else None,
     walk_timeout_ms=board.get("walk_timeout_ms") or 1000,
     write=sys.stdout.write,
@@ -66,14 +88,69 @@ con._table["model"] = model
 con._table["fault"] = fault
 print("virtual board %s (robot %s) ready: 50 Hz, console on this line; 'help' lists commands" % (BOARD, ROBOT))
 
-t0 = time.ticks_ms()
-v0 = clock.ticks_ms()
-n = 0
-while FRAMES < 0 or n < FRAMES:
-    r.step()
-    con.poll()
-    r.wait()
-    n += 1
-    ahead = clock.ticks_diff(clock.ticks_ms(), v0) - time.ticks_diff(time.ticks_ms(), t0)
-    if ahead > 0:
-        time.sleep_ms(ahead)
+
+def serve(frames):
+    """Frames paced to real time until frames ran (-1: for ever) or Ctrl-C; returns the frames run."""
+    t0 = time.ticks_ms()
+    v0 = clock.ticks_ms()
+    n = 0
+    try:
+        while frames < 0 or n < frames:
+            r.step()
+            con.poll()
+            r.wait()
+            n += 1
+            ahead = clock.ticks_diff(clock.ticks_ms(), v0) - time.ticks_diff(time.ticks_ms(), t0)
+            if ahead > 0:
+                time.sleep_ms(ahead)
+    except KeyboardInterrupt:
+        hold = board.get("on_exit") == "hold"
+        r.leave(hold)  # as runner.serve on a board
+        print("stopped: servos %s; runner.run() resumes" % ("held" if hold else "relaxed"))
+        return -1
+    return n
+
+
+def repl():
+    """The board at its REPL, until `runner.run()` or Ctrl-D."""
+    print("MicroPython (virtual board); runner.run() resumes the loop, Ctrl-D soft reboots")
+    scope = {"runner": r, "console": con}
+    line = bytearray()
+    while True:
+        sys.stdout.write(">>> ")
+        line[:] = b""
+        while True:
+            b = stdin.read_byte()
+            if b < 0:
+                time.sleep_ms(5)
+                continue
+            if b == 4:  # soft reboot: main.py again, the robot relaxed
+                print("\r\nMPY: soft reboot")
+                r.robot.go_limp()
+                return
+            if b == 3:
+                line[:] = b""
+                sys.stdout.write("\r\nKeyboardInterrupt\r\n>>> ")
+            elif b in (10, 13):
+                break
+            elif 32 <= b < 127:
+                line.append(b)
+        sys.stdout.write("\r\n")
+        text = bytes(line).decode().strip()
+        if text == "runner.run()":
+            return
+        if not text:
+            continue
+        try:
+            try:
+                value = eval(text, scope)
+                if value is not None:
+                    print(repr(value))
+            except SyntaxError:
+                exec(text, scope)
+        except Exception as e:  # as the REPL: the error printed, the prompt back
+            print("%s: %s" % (type(e).__name__, e))
+
+
+while serve(FRAMES) < 0:
+    repl()

@@ -111,6 +111,12 @@ def segment_distance(a, b):
     )
 
 
+def grounded(feet):
+    """Which feet (x, y, z mm) are on the ground: within GROUND_MM of the lowest one."""
+    z0 = min(f[2] for f in feet)
+    return [f[2] <= z0 + GROUND_MM for f in feet]
+
+
 def rigid_2d(q, p):
     """Least-squares rigid motion (phi rad, tx, ty mm) carrying points q onto p (2-D Kabsch)."""
     n = len(q)
@@ -159,13 +165,16 @@ class Body:
         c, s = math.cos(self.theta), math.sin(self.theta)
         return self.x + c * bx - s * by, self.y + s * bx + c * by
 
-    def legs_from_pulses(self, pulses):
-        """Feet and links (body frame, mm) from the 18 pulses sent (us); legs without a pulse keep theirs."""
+    def joint_angles(self, pulses):
+        """The 18 joint angles (cdeg) that 18 pulses (us) stand for, through the board's servo maps."""
+        return [self.maps[k].angle(pulses[k]) for k in range(18)]
+
+    def leg_points(self, angles):
+        """Each leg's coxa axis, femur joint, knee and foot (x, y, z mm, body frame) for 18 joint
+        angles (cdeg): float FK of the robot file's legs."""
         legs = []
         for i in range(6):
-            if not pulses[3 * i]:
-                return False
-            t1, t2, t3 = (self.maps[3 * i + k].angle(pulses[3 * i + k]) / 100 for k in range(3))
+            t1, t2, t3 = (angles[3 * i + k] / 100 for k in range(3))
             coxa, femur, tibia, off = self.lengths[i]
             fx, fy, fz = fk(t1, t2, t3, coxa, femur, tibia, off)
             a2 = math.radians(t2)
@@ -173,8 +182,16 @@ class Body:
             a = m + math.radians(t1)
             ca, sa = math.cos(a), math.sin(a)
             reach = (0.0, coxa, coxa + femur * math.cos(a2), math.hypot(fx, fy))
-            legs.append([(mx + r * ca, my + r * sa, fz) for r in reach])
-        self.set_legs(legs)
+            height = (0.0, off, off + femur * math.sin(a2), fz)
+            legs.append([(mx + r * ca, my + r * sa, z) for r, z in zip(reach, height, strict=True)])
+        return legs
+
+    def legs_from_pulses(self, pulses):
+        """Feet and links (body frame, mm) from the 18 pulses sent (us); False (legs kept) while a leg has no pulse."""
+        for i in range(6):
+            if not pulses[3 * i]:
+                return False
+        self.set_legs(self.leg_points(self.joint_angles(pulses)))
         return True
 
     def set_legs(self, legs):
@@ -204,11 +221,9 @@ class Body:
         distance moved (mm)."""
         if not old_feet:
             return 0.0
-        z0 = min(f[2] for f in self.feet)
-        z1 = min(f[2] for f in old_feet)
         q, p = [], []
-        for a, b in zip(self.feet, old_feet, strict=True):
-            if a[2] <= z0 + GROUND_MM and b[2] <= z1 + GROUND_MM:
+        for a, b, on_a, on_b in zip(self.feet, old_feet, grounded(self.feet), grounded(old_feet), strict=True):
+            if on_a and on_b:
                 q.append((a[0], a[1]))
                 p.append((b[0], b[1]))
         self.stance = q

@@ -146,127 +146,170 @@ def _clear_of(walls, body):
     return near
 
 
-def run_trial(
-    world,
-    setpoint_cm,
-    seed,
-    *,
-    gains=None,
-    side=None,
-    runtime="cpython",
-    disturb=True,
-    record=False,
-    max_frames=None,
-    bus="pca",
-    form="yaw",
-    mover="kinematic",
-):
-    """One trial; returns a dict of its figures (and the path when record). mover: "kinematic"
-    (the body moves by its stance feet) or "physics" (MuJoCo moves it: hexapod_host.wall.physics)."""
-    rng = random.Random(seed)
-    side = side or world.follow
-    walls = world.walls
-    sp = setpoint_cm * 10.0
-    gains = gains or PAPER_GAINS
-    milli = [int(round(g * 1000)) for g in gains]
-    body = Body()
-    pair = (1, 2) if side == "left" else (3, 4)
-    mx = sum(body.sensors[k][0] for k in pair) / 2
-    my = sum(body.sensors[k][1] for k in pair) / 2
-    (px, py), (ux, uy), (nx, ny) = world.start_frame(side)
-    off = (rng.choice((-1, 1)) * rng.uniform(*OFFSET_CM) * 10.0) if disturb else 0.0
-    head = math.radians(rng.uniform(-HEADING_DEG, HEADING_DEG)) if disturb else 0.0
-    speed = 1.0 + (rng.gauss(0.0, SPEED_SD) if disturb else 0.0)
-    slip_sd = math.radians(SLIP_DEG_PER_STRIDE) / math.sqrt(STRIDE_FRAMES) if disturb else 0.0
-    theta = math.atan2(uy, ux) + head
-    wx, wy = px + nx * (sp + off), py + ny * (sp + off)  # the side sonars' midpoint
-    c, s = math.cos(theta), math.sin(theta)
-    body.place(wx - (c * mx - s * my), wy - (s * mx + c * my), theta)
-    standing = body.neutral_legs()
-    touched = body.touches(walls)
-    if touched >= 0:
-        raise WorldError(
-            "world %s: start: at a %g cm set point the robot stands on wall %d (start.along or the set point)"
-            % (world.source, setpoint_cm, touched)
-        )
+class Trial:
+    """One trial, frame by frame: the room, the firmware loop and the mover. run_trial steps it to
+    its end; `hexapod view` steps it in real time and draws what each frame left in its attributes
+    (distances answered, pulses sent, follower mode, the side sonars' midpoint's distance to the wall).
+    mover: "kinematic" (the body moves by its stance feet) or "physics" (MuJoCo moves it:
+    hexapod_host.wall.physics). Call close() when done with it (the VM's process, if any)."""
 
-    def pings():
-        d = []
+    def __init__(
+        self,
+        world,
+        setpoint_cm,
+        seed,
+        *,
+        gains=None,
+        side=None,
+        runtime="cpython",
+        disturb=True,
+        record=False,
+        max_frames=None,
+        bus="pca",
+        form="yaw",
+        mover="kinematic",
+    ):
+        self.rng = rng = random.Random(seed)
+        self.world = world
+        self.side = side = side or world.follow
+        self.walls = walls = world.walls
+        self.setpoint_mm = sp = setpoint_cm * 10.0
+        self.gains = gains = gains or PAPER_GAINS
+        milli = [int(round(g * 1000)) for g in gains]
+        self.body = body = Body()
+        pair = (1, 2) if side == "left" else (3, 4)
+        self.mx = sum(body.sensors[k][0] for k in pair) / 2
+        self.my = sum(body.sensors[k][1] for k in pair) / 2
+        (px, py), (ux, uy), (nx, ny) = world.start_frame(side)
+        self.disturb, self.record = disturb, record
+        self.off = off = (rng.choice((-1, 1)) * rng.uniform(*OFFSET_CM) * 10.0) if disturb else 0.0
+        self.head = head = math.radians(rng.uniform(-HEADING_DEG, HEADING_DEG)) if disturb else 0.0
+        self.speed = 1.0 + (rng.gauss(0.0, SPEED_SD) if disturb else 0.0)
+        self.slip_sd = math.radians(SLIP_DEG_PER_STRIDE) / math.sqrt(STRIDE_FRAMES) if disturb else 0.0
+        theta = math.atan2(uy, ux) + head
+        wx, wy = px + nx * (sp + off), py + ny * (sp + off)  # the side sonars' midpoint
+        c, s = math.cos(theta), math.sin(theta)
+        body.place(wx - (c * self.mx - s * self.my), wy - (s * self.mx + c * self.my), theta)
+        standing = body.neutral_legs()
+        touched = body.touches(walls)
+        if touched >= 0:
+            raise WorldError(
+                "world %s: start: at a %g cm set point the robot stands on wall %d (start.along or the set point)"
+                % (world.source, setpoint_cm, touched)
+            )
+        self.fw = fw = FirmwareMicroPython(bus) if runtime == "micropython" else FirmwareCPython(bus)
+        try:
+            _, self.code = fw.begin(side, int(round(sp * 10)), fw_follow.SPEED, form, milli, self.pings())
+        except BaseException:
+            fw.close()
+            raise
+        self.limit = int(world.time_limit_s / FRAME_S) if max_frames is None else max_frames
+        self.errors, self.path, self.trace = [], 0.0, []
+        self.legs = wall_physics.MOVERS[mover](body, standing)
+        self.why, self.faults, self.n = "time limit", 0, 0
+        self.finished = False
+        self.near = list(range(len(walls)))
+        self.distances = [0] * 5  # the last pings' answers, 0.1 mm (0: nothing heard)
+        self.pulses = standing
+        self.mode = self.reason = 0
+        self.wall_mm = None  # the side sonars' midpoint to the nearest wall, mm
+        self.done = self.limit <= 0
+
+    def pings(self):
+        """The five sonars' answers (0.1 mm) for the body where it is, noise and dropouts drawn."""
+        rng, body, d = self.rng, self.body, []
         for k in range(5):
             sx, sy, h = body.sensor_pose(k)
-            r = beam_distance(walls, sx, sy, h)
-            noise = rng.gauss(0.0, NOISE_MM) if disturb else 0.0
-            drop = rng.random() < DROPOUT if disturb else False
+            r = beam_distance(self.walls, sx, sy, h)
+            noise = rng.gauss(0.0, NOISE_MM) if self.disturb else 0.0
+            drop = rng.random() < DROPOUT if self.disturb else False
             d.append(echo(r, noise, drop))
         return d
 
-    fw = FirmwareMicroPython(bus) if runtime == "micropython" else FirmwareCPython(bus)
+    def step(self):
+        """One 20 ms frame: pings, the firmware's frame, the body moved, the rules checked. Sets
+        done (and why: "" for success) when the trial is over; a step after that does nothing."""
+        if self.done:
+            return
+        self._frame()
+        if not self.done and self.n >= self.limit:
+            self.done = True
+
+    def _frame(self):
+        body, walls = self.body, self.walls
+        self.distances = d = self.pings()
+        self.code, self.pulses, self.mode, self.faults, self.reason = self.fw.frame(d)
+        self.n += 1
+        slip = self.rng.gauss(0.0, self.slip_sd) if self.disturb else 0.0
+        x0, y0 = body.x, body.y
+        moved = self.legs.step(self.pulses, self.speed, slip)
+        if moved is None:
+            return
+        self.path += moved
+        sx, sy = body.to_world(self.mx, self.my)
+        self.wall_mm = dist = wall_distance(walls, sx, sy)
+        err = dist - self.setpoint_mm
+        if self.record and self.n % 5 == 0:
+            self.trace.append((body.x, body.y, sx, sy, dist))
+        if self.path > SETTLE_MM:
+            self.errors.append((self.path, err))
+            if err > TOO_FAR_MM:
+                return self._end("too far")
+        if self.n % 10 == 1:
+            self.near = _clear_of(walls, body)
+        if self.near and body.touches([walls[k] for k in self.near]) >= 0:
+            return self._end("contact")
+        if segments_cross((x0, y0, body.x, body.y), self.world.finish):
+            self.finished = True
+            return self._end("")
+        if self.mode == fw_follow.STOPPED:
+            return self._end("stopped: " + fw_follow.REASON_NAMES[self.reason])
+
+    def _end(self, why):
+        self.why, self.done = why, True
+
+    def close(self):
+        self.fw.close()
+
+    def result(self):
+        """The trial's figures (and its path when record)."""
+        errors = self.errors
+        e = [v for _, v in errors]
+        end = errors[-1][0] if errors else 0.0
+        last = [v for p, v in errors if p >= end - STEADY_MM]
+        sign = 1.0 if self.off >= 0 else -1.0
+        out = {
+            "success": self.finished,
+            "why": self.why,
+            "time_s": round(self.n * FRAME_S, 2),
+            "frames": self.n,
+            "path_mm": round(self.path, 1),
+            "rms_mm": math.sqrt(sum(v * v for v in e) / len(e)) if e else None,
+            "sum_sq": sum(v * v for v in e),
+            "samples": len(e),
+            "steady_mm": sum(last) / len(last) if last else None,
+            "overshoot_mm": max([0.0] + [-sign * v for v in e]),
+            "contact": self.why == "contact",
+            "faults": self.faults,
+            "offset_mm": self.off,
+            "heading_deg": math.degrees(self.head),
+            "follow_code": self.code,
+        }
+        if self.record:
+            out["trace"] = self.trace
+        return out
+
+
+def run_trial(world, setpoint_cm, seed, **options):
+    """One trial to its end; returns a dict of its figures (and the path when record). The
+    options are Trial's."""
+    trial = Trial(world, setpoint_cm, seed, **options)
     try:
-        _, code = fw.begin(side, int(round(sp * 10)), fw_follow.SPEED, form, milli, pings())
-        limit = int(world.time_limit_s / FRAME_S) if max_frames is None else max_frames
-        errors, path, trace = [], 0.0, []
-        legs = wall_physics.MOVERS[mover](body, standing)
-        why, faults, n = "time limit", 0, 0
-        finished = False
-        near = list(range(len(walls)))
-        while n < limit:
-            d = pings()
-            code, pulses, mode, faults, reason = fw.frame(d)
-            n += 1
-            slip = rng.gauss(0.0, slip_sd) if disturb else 0.0
-            x0, y0 = body.x, body.y
-            moved = legs.step(pulses, speed, slip)
-            if moved is None:
-                continue
-            path += moved
-            sx, sy = body.to_world(mx, my)
-            dist = wall_distance(walls, sx, sy)
-            err = dist - sp
-            if record and n % 5 == 0:
-                trace.append((body.x, body.y, sx, sy, dist))
-            if path > SETTLE_MM:
-                errors.append((path, err))
-                if err > TOO_FAR_MM:
-                    why = "too far"
-                    break
-            if n % 10 == 1:
-                near = _clear_of(walls, body)
-            if near and body.touches([walls[k] for k in near]) >= 0:
-                why = "contact"
-                break
-            if segments_cross((x0, y0, body.x, body.y), world.finish):
-                finished = True
-                why = ""
-                break
-            if mode == fw_follow.STOPPED:
-                why = "stopped: " + fw_follow.REASON_NAMES[reason]
-                break
+        while not trial.done:
+            trial.step()
     finally:
-        fw.close()
-    e = [v for _, v in errors]
-    end = errors[-1][0] if errors else 0.0
-    last = [v for p, v in errors if p >= end - STEADY_MM]
-    sign = 1.0 if off >= 0 else -1.0
-    out = {
-        "success": finished,
-        "why": why,
-        "time_s": round(n * FRAME_S, 2),
-        "frames": n,
-        "path_mm": round(path, 1),
-        "rms_mm": math.sqrt(sum(v * v for v in e) / len(e)) if e else None,
-        "sum_sq": sum(v * v for v in e),
-        "samples": len(e),
-        "steady_mm": sum(last) / len(last) if last else None,
-        "overshoot_mm": max([0.0] + [-sign * v for v in e]),
-        "contact": why == "contact",
-        "faults": faults,
-        "offset_mm": off,
-        "heading_deg": math.degrees(head),
-        "follow_code": code,
-    }
-    if record:
-        out["trace"] = trace
-    return out
+        trial.close()
+    return trial.result()
 
 
 def _task(args):
@@ -349,17 +392,29 @@ def run_trials(
         pool = None
     else:
         import multiprocessing
+        import signal
 
-        pool = multiprocessing.get_context("fork").Pool(min(jobs, len(tasks)))
+        # Ctrl-C reaches the whole process group: the workers are forked ignoring it (no traceback from
+        # each), the parent alone takes the KeyboardInterrupt and ends them below.
+        old = signal.signal(signal.SIGINT, signal.SIG_IGN)
+        try:
+            pool = multiprocessing.get_context("fork").Pool(min(jobs, len(tasks)))
+        finally:
+            signal.signal(signal.SIGINT, old)
         it = pool.imap(_task, tasks)
+    done = False
     try:
         for r in it:
             results.append(r)
             if progress is not None:
                 progress.update(1)
+        done = True
     finally:
         if pool is not None:
-            pool.close()
+            if done:
+                pool.close()
+            else:  # interrupted or failed: the trials still queued are not run
+                pool.terminate()
             pool.join()
         if progress is not None:
             progress.close()
@@ -393,6 +448,17 @@ def table(rows):
 
 
 def plot(path, world, traces, title, dashed=None):
+    """Seed 000 Fig. 9's picture (figure()) written to path whole or not at all."""
+    import matplotlib.pyplot as plt
+
+    fig = figure(world, traces, title, dashed)
+    tmp = path + ".part"
+    fig.savefig(tmp, format="png")
+    plt.close(fig)
+    os.replace(tmp, path)
+
+
+def figure(world, traces, title, dashed=None):
     """Seed 000 Fig. 9's picture: the walls, the set-point bands, one trajectory per curve;
     `dashed`: (label, traces) drawn dashed in the same colours (the physics simulator's)."""
     import matplotlib
@@ -413,7 +479,6 @@ def plot(path, world, traces, title, dashed=None):
         ax.plot([x1 / 10, x2 / 10], [y1 / 10, y2 / 10], color="black", lw=3, solid_capstyle="butt")
     fx1, fy1, fx2, fy2 = world.finish
     ax.plot([fx1 / 10, fx2 / 10], [fy1 / 10, fy2 / 10], color="grey", ls=":", lw=1.5)
-    ax.text(fx1 / 10, fy1 / 10, " finish", color="grey", va="bottom", fontsize=8)
     for k, (sp, trace) in enumerate(traces):
         col = colours[k % len(colours)]
         for x1, y1, x2, y2 in world.walls:
@@ -459,10 +524,11 @@ def plot(path, world, traces, title, dashed=None):
         fontsize=7, loc="lower right", title="set point", title_fontsize=7, ncol=5 if len(world.walls) == 1 else 1
     )
     ax.grid(alpha=0.3)
-    tmp = path + ".part"
-    fig.savefig(tmp, format="png")
-    plt.close(fig)
-    os.replace(tmp, path)
+    # The label at the finish line's top end inside the axes: at its far end (40 cm past a single wall,
+    # outside the stretched view) constrained layout squeezed the axes to nothing for a right wall.
+    top = ax.get_ylim()[1]
+    ax.text(fx1 / 10, min(max(fy1, fy2) / 10, top), " finish", color="grey", va="top", fontsize=8, clip_on=True)
+    return fig
 
 
 def comparison_table(rows):

@@ -1,0 +1,115 @@
+"""`hexapod view --sim [--world W] [--listen HOST:PORT] [--no-browser]`: the live 3-D page
+(hexapod_host.view, docs/view.md)."""
+
+import sys
+
+from hexapod_host.commands.cli import UsageError
+from hexapod_host.commands.sim_wall import _number, _whole
+from hexapod_host.view import player as player_mod
+from hexapod_host.wall.world import DEFAULT, WorldError, load, shipped
+
+LISTEN = "127.0.0.1:8080"
+LATER = {"virtual": "--virtual", "pico": "--pico", "port": "--port"}
+
+
+def register(sub):
+    p = sub.add_parser("view", help="the live 3-D view of the robot in a web page (docs/view.md)")
+    src = p.add_mutually_exclusive_group(required=True)
+    src.add_argument("--sim", action="store_true", help="the wall simulator's room, trial after trial")
+    src.add_argument("--virtual", action="store_true", help="the virtual board (not yet)")
+    src.add_argument("--pico", action="store_true", help="the emulated Pico (not yet)")
+    src.add_argument("--port", metavar="PORT", help="a real board on a serial port (not yet)")
+    p.add_argument(
+        "--world", default=DEFAULT, help="with --sim: a world file or a shipped world: %s" % ", ".join(shipped())
+    )
+    p.add_argument(
+        "--setpoint", default="12", metavar="CM", help="with --sim: the side sonar reading to hold (default 12)"
+    )
+    p.add_argument(
+        "--seed", default="0", metavar="S", help="with --sim: the run's seed, as hexapod sim wall's (default 0)"
+    )
+    p.add_argument("--speed", default="1", metavar="X", help="simulated seconds per second: %s (default 1)" % _speeds())
+    p.add_argument(
+        "--listen",
+        default=LISTEN,
+        metavar="HOST:PORT",
+        help="where the page is served (default %s, this machine only; another interface only when named here)"
+        % LISTEN,
+    )
+    p.add_argument("--no-browser", action="store_true", help="serve only; open no browser")
+    p.set_defaults(func=run)
+
+
+def _speeds():
+    return ", ".join("%g" % s for s in player_mod.SPEEDS)
+
+
+def parse_listen(text):
+    """(host, port) of --listen HOST:PORT (a bare PORT: this machine). An empty host is refused:
+    every interface must be asked for by name (0.0.0.0 or ::)."""
+    host, sep, port = text.rpartition(":")
+    if not sep:
+        host, port = "127.0.0.1", text
+    elif not host:
+        raise UsageError(
+            "--listen %r: no host; say 127.0.0.1:%s (this machine) or 0.0.0.0:%s (every interface)" % (text, port, port)
+        )
+    host = host.strip("[]")
+    try:
+        port = int(port)
+    except ValueError:
+        raise UsageError(
+            "--listen %r: the port %r is not a whole number (HOST:PORT, port 1..65535)" % (text, port)
+        ) from None
+    if not 1 <= port <= 65535:
+        raise UsageError("--listen %r: port %d is outside 1..65535" % (text, port))
+    return host, port
+
+
+def parse(args):
+    """Checked options: (source, speed, host, port)."""
+    for key, flag in LATER.items():
+        if getattr(args, key):
+            raise UsageError("%s: not built yet; today's source is --sim (docs/view.md says what comes next)" % flag)
+    try:
+        world = load(args.world)
+    except WorldError as err:
+        raise UsageError(str(err)) from None
+    setpoint = _number(args.setpoint, "--setpoint", 4, 50, "cm (the side sonar's reading)")
+    seed = _whole(args.seed, "--seed", 0, 2**62)
+    speed = _number(args.speed, "--speed", 0, 100, "simulated seconds per second")
+    if speed not in player_mod.SPEEDS:
+        raise UsageError("--speed: %s, allowed %s" % (args.speed, _speeds()))
+    host, port = parse_listen(args.listen)
+    from hexapod_host.view.server import check_free
+
+    why = check_free(host, port)
+    if why:
+        raise UsageError("--listen %s: cannot listen there (%s)" % (args.listen, why))
+    from hexapod_host.view.sim import SimSource
+
+    try:
+        source = SimSource(world, setpoint, seed)
+    except WorldError as err:
+        raise UsageError(str(err)) from None
+    return source, speed, host, port
+
+
+def run(args):
+    source, speed, host, port = parse(args)
+    from hexapod_host.view.player import Player
+    from hexapod_host.view.server import is_loopback, serve
+
+    shown = "[%s]" % host if ":" in host else host
+    print(
+        "hexapod view: http://%s:%d  (source %s, world %s); Ctrl-C stops"
+        % (shown, port, source.name, source.world.name)
+    )
+    if not is_loopback(host):
+        sys.stderr.write(
+            "hexapod view: listening on %s: anyone who can reach this machine can open the page and press its buttons\n"
+            % host
+        )
+    sys.stdout.flush()
+    serve(Player(source, speed), host, port, show=not args.no_browser)
+    return 0

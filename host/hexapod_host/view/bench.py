@@ -1,0 +1,109 @@
+"""`hexapod bench view`: how fast the view goes with the simulator, measured three ways.
+
+- cost: CPU ms of one simulator frame, and of one snapshot turned into scene geometry;
+- player: the background task alone for PLAYER_S seconds at 1x: snapshots published per
+  second and simulated seconds per real second;
+- page: the server in its own process and a headless Chromium on the page for PAGE_S seconds:
+  redraws that reached the browser per second (the page's own counter, read from its text) and
+  simulated seconds per real second. Skipped, saying why, without Chromium.
+
+The machine's load average is reported beside them: on a shared 2-core machine the figures
+follow it.
+"""
+
+import asyncio
+import os
+import re
+import time
+
+from hexapod_host.view import browser as vb
+from hexapod_host.view.player import Player
+from hexapod_host.view.scene import geometry
+from hexapod_host.view.sim import SimSource
+from hexapod_host.wall.world import load
+
+FRAMES = 500
+PLAYER_S = 5.0
+PAGE_S = 10.0
+
+
+def _cost():
+    src = SimSource(load("wall"), 12, seed=0)
+    try:
+        t = time.perf_counter()
+        for _ in range(FRAMES):
+            src.step()
+        frame_ms = (time.perf_counter() - t) * 1000 / FRAMES
+        described = src.describe()
+        t = time.perf_counter()
+        for _ in range(FRAMES):
+            geometry(described, src.snapshot())
+        snap_ms = (time.perf_counter() - t) * 1000 / FRAMES
+    finally:
+        src.close()
+    return {"sim_frame_ms": round(frame_ms, 3), "snapshot_and_geometry_ms": round(snap_ms, 3)}
+
+
+def _player():
+    p = Player(SimSource(load("wall"), 12, seed=0))
+
+    async def run_for(seconds):
+        task = asyncio.ensure_future(p.run())
+        await asyncio.sleep(seconds)
+        p._stopped = True
+        await task
+
+    u0, f0, t = p.updates, p.frames, time.monotonic()
+    asyncio.run(run_for(PLAYER_S))
+    dt = time.monotonic() - t
+    p.stop()
+    return {
+        "seconds": round(dt, 2),
+        "updates_per_s": round((p.updates - u0) / dt, 1),
+        "sim_speed": round((p.frames - f0) * p.source.frame_s / dt, 3),
+    }
+
+
+def _status(driver):
+    from selenium.webdriver.common.by import By
+
+    try:
+        text = driver.find_element(By.ID, "status").text
+    except Exception:  # a page between reloads has no status yet
+        return None
+    m = re.search(r"frame (\d+).*updates (\d+)", text)
+    return (int(m.group(1)), int(m.group(2))) if m else None
+
+
+def _page():
+    why = vb.missing()
+    if why:
+        return {"skipped": why}
+    server = vb.Server(("--sim", "--world", "corridor"))  # a long trial: it runs on for the whole window
+    driver = vb.open_browser()
+    try:
+        driver.get(server.url)
+        vb.wait_for(lambda: _status(driver), timeout=60)
+        time.sleep(2)  # past the first load
+        a, t0 = _status(driver), time.monotonic()
+        time.sleep(PAGE_S)
+        b, t1 = _status(driver), time.monotonic()
+        errors = len(vb.page_errors(driver))
+    finally:
+        driver.quit()
+        server.stop()
+    if a is None or b is None or b[1] < a[1]:
+        return {"failed": "the page reloaded or lost its status during the window"}
+    dt = t1 - t0
+    return {
+        "seconds": round(dt, 2),
+        "redraws_per_s": round((b[1] - a[1]) / dt, 1),
+        "sim_speed": round((b[0] - a[0]) * 0.02 / dt, 3),
+        "console_errors": errors,
+    }
+
+
+def bench_view(args=None):
+    out = {"load_average_1min": round(os.getloadavg()[0], 2), "cost": _cost(), "player": _player(), "page": _page()}
+    out["load_average_1min_after"] = round(os.getloadavg()[0], 2)
+    return out

@@ -1,0 +1,118 @@
+"""A headless Chromium on the view, for the browser tests and `hexapod bench view`: the server
+started in its own process on a free port, the page driven by Selenium through Debian's
+chromium and chromium-driver (`make test` installs them when it can), WebGL by SwiftShader."""
+
+import os
+import shutil
+import socket
+import subprocess
+import sys
+import time
+
+CHROMIUM = ("chromium", "chromium-browser", "google-chrome")
+DRIVER = "chromedriver"
+FLAGS = ("--headless=new", "--no-sandbox", "--use-gl=swiftshader", "--enable-unsafe-swiftshader")
+WINDOW = (1500, 1100)
+
+
+def chromium():
+    """Paths of (browser, driver), either None when missing."""
+    browser = next((p for p in map(shutil.which, CHROMIUM) if p), None)
+    return browser, shutil.which(DRIVER)
+
+
+def missing():
+    """Why no browser test can run here, or None."""
+    browser, driver = chromium()
+    if browser is None or driver is None:
+        return "no %s (apt-get install chromium chromium-driver; `make test` does it as root)" % (
+            "chromium" if browser is None else "chromedriver"
+        )
+    try:
+        import selenium  # noqa: F401
+    except ImportError:
+        return "no selenium (pip install -r requirements.txt)"
+    return None
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+class Server:
+    """`hexapod view ARGS --no-browser` in a subprocess on 127.0.0.1:port; stop() ends it."""
+
+    def __init__(self, args=("--sim",), port=None, timeout=60):
+        self.port = port or free_port()
+        self.url = "http://127.0.0.1:%d/" % self.port
+        cmd = [
+            sys.executable,
+            "-m",
+            "hexapod_host",
+            "view",
+            *args,
+            "--no-browser",
+            "--listen",
+            "127.0.0.1:%d" % self.port,
+        ]
+        # NiceGUI takes PYTEST_CURRENT_TEST as its own test mode (another port): the server is a plain run.
+        env = {k: v for k, v in os.environ.items() if k != "PYTEST_CURRENT_TEST"}
+        self.proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
+        end = time.monotonic() + timeout
+        while True:
+            if self.proc.poll() is not None:
+                raise RuntimeError(
+                    "hexapod view stopped (exit %s): %s" % (self.proc.returncode, self.proc.stdout.read())
+                )
+            try:
+                socket.create_connection(("127.0.0.1", self.port), timeout=1).close()
+                return
+            except OSError:
+                if time.monotonic() > end:
+                    self.stop()
+                    raise RuntimeError(
+                        "hexapod view did not listen on port %d within %d s" % (self.port, timeout)
+                    ) from None
+                time.sleep(0.2)
+
+    def stop(self):
+        if self.proc.poll() is None:
+            self.proc.terminate()
+            try:
+                self.proc.wait(10)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait(10)
+        return self.proc.stdout.read()
+
+
+def open_browser():
+    """A headless Chromium under WebDriver that keeps the page's console log (goog:loggingPrefs)."""
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+
+    browser, driver = chromium()
+    options = webdriver.ChromeOptions()
+    options.binary_location = browser
+    for flag in FLAGS + ("--window-size=%d,%d" % WINDOW,):
+        options.add_argument(flag)
+    options.set_capability("goog:loggingPrefs", {"browser": "ALL"})
+    return webdriver.Chrome(options=options, service=Service(driver, log_output=os.devnull))
+
+
+def page_errors(driver):
+    """The page's console entries at level SEVERE (errors); the GPU driver's performance
+    warnings under SwiftShader are WARNING and are not the page's."""
+    return [e for e in driver.get_log("browser") if e["level"] == "SEVERE"]
+
+
+def wait_for(predicate, timeout=30, every=0.1):
+    """predicate()'s first true value within timeout seconds, else None."""
+    end = time.monotonic() + timeout
+    while True:
+        v = predicate()
+        if v or time.monotonic() > end:
+            return v
+        time.sleep(every)

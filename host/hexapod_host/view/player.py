@@ -1,0 +1,108 @@
+"""Steps a source in real time (or faster) in the background and keeps its latest snapshot for
+the pages to draw; the page's buttons call start, pause, step and set_speed."""
+
+import asyncio
+import time
+from collections import deque
+
+UPDATE_S = 0.04  # the background task publishes a snapshot this often: 25 updates a second
+SPEEDS = (0.25, 0.5, 1.0, 2.0, 4.0, 8.0)  # simulated seconds per real second
+MAX_FRAMES = 100  # frames one update may step: a slow machine falls behind instead of freezing the page
+PLOT_S = 20.0  # the plots keep this many seconds of updates (20 s of the source at 1x, 160 s at 8x)
+TRAIL_MM = 5.0  # a new trail point once the body is this far from the last one
+
+
+class Player:
+    """One source, stepped by run() (an asyncio task) at `speed` while running."""
+
+    def __init__(self, source, speed=1.0, running=True):
+        self.source = source
+        self.described = source.describe()
+        self.speed = self._checked(speed)
+        self.running = running
+        self.updates = 0  # snapshots published
+        self.frames = 0  # frames stepped
+        self.history = deque(maxlen=int(PLOT_S / UPDATE_S))
+        self.trail = []
+        self._due = 0.0  # frames owed to real time, fractional
+        self._stopped = False
+        self.publish()
+
+    @staticmethod
+    def _checked(speed):
+        if speed not in SPEEDS:
+            raise ValueError("speed: %r, allowed %s" % (speed, ", ".join("%g" % s for s in SPEEDS)))
+        return float(speed)
+
+    def set_speed(self, speed):
+        self.speed = self._checked(speed)
+
+    def start(self):
+        """Run on; a finished trial gives way to the next one."""
+        if self.done():
+            self.source.restart()
+            self.trail, self._due = [], 0.0
+            self.history.clear()
+            self.publish()
+        self.running = True
+
+    def pause(self):
+        self.running = False
+
+    def step(self):
+        """One frame, while paused (a finished trial stays finished)."""
+        if not self.running and self.source.steppable and not self.done():
+            self._frame()
+            self.publish()
+
+    def done(self):
+        return self.source.done()
+
+    def _frame(self):
+        self.source.step()
+        self.frames += 1
+
+    def advance(self, dt):
+        """Step the frames dt seconds of real time owe at the current speed, then publish."""
+        if self.running and not self.done():
+            self._due = min(self._due + dt * self.speed / self.source.frame_s, MAX_FRAMES)
+            while self._due >= 1.0 and not self.done():
+                self._frame()
+                self._due -= 1.0
+            if self.done():
+                self.running = False
+        self.publish()
+
+    def publish(self):
+        self.snap = s = self.source.snapshot()
+        self.updates += 1
+        b = s["body"]
+        if not self.trail or abs(b["x"] - self.trail[-1][0]) + abs(b["y"] - self.trail[-1][1]) > TRAIL_MM:
+            self.trail.append((b["x"], b["y"]))
+        f = s["follow"]
+        front, rear = (1, 2) if f["side"] != "right" else (3, 4)
+        self.history.append(
+            (
+                s["time_s"],
+                s["distances"][front],
+                s["distances"][rear],
+                f["setpoint_mm"] if f["mode"] != "off" else None,
+                f["error_mm"],
+                f["output_dps"],
+            )
+        )
+
+    async def run(self):
+        """The background task: advance by the real time elapsed, UPDATE_S apart, until stop()."""
+        last = due = time.monotonic()
+        while not self._stopped:
+            due += UPDATE_S  # on a fixed beat: the work of an update does not stretch the period
+            await asyncio.sleep(max(0.0, due - time.monotonic()))
+            now = time.monotonic()
+            due = max(due, now - UPDATE_S)  # after a stall, no burst of catch-up updates
+            self.advance(now - last)
+            last = now
+
+    def stop(self):
+        self._stopped = True
+        self.source.close()

@@ -1,0 +1,194 @@
+"""Issue 24, part 2: a refused command changes nothing, and "nothing" is all the console's state:
+pulses and angles, the PCA9685 models' outputs, calibration rows and trims, the calibration source,
+PID gains, the wall follower's mode, side and set point, the walk command and its deadline, mode,
+gait and echo. Every command with bad arguments (and the ones the robot's state refuses) in five
+states: relaxed, jogged, standing, walking and following a wall; on both runtimes.
+
+The console here has a calibration file on a stub filesystem (tests/scenarios/calstore.py): a
+file whose last row the present pose refuses (`load` must roll the other 17 back), a read-only
+filesystem and one that writes short while reporting success (`save` must keep the source)."""
+
+import ast
+
+import pytest
+
+from tests.console_rig import RIG, clean_stubs  # noqa: F401 (autouse fixture)
+
+SETUP = """
+import calstore
+from scenarios.calstore import StubFS, Writer
+
+class ShortWriter(Writer):
+    # A filesystem that drops the second half of each write yet reports every byte written
+    # (a full flash that says nothing): only save's read-back can notice.
+    def write(self, s):
+        self.fs.files[self.name] += s[: len(s) // 2]
+        return len(s)
+
+
+class FlakyFS(StubFS):
+    short = False  # writes come out short, reported whole
+
+    def open(self, name, mode="r"):
+        if mode == "r" or not self.short:
+            return StubFS.open(self, name, mode)
+        self.files[name] = ""
+        return ShortWriter(self, name)
+
+
+FS = FlakyFS()
+con = console.start(r, reader, FS, opener=FS.open, out=REPLIES.append)
+
+
+def full_state():
+    f = r.follower
+    p = f.pid
+    rb = r.robot
+    return (
+        list(rb.pulses), list(rb.angles), rb.mode, rb.gait,
+        [(s.centre_us, s.direction, s.min_us, s.max_us) for s in SERVOS], list(con.trims), con.cal_source,
+        (p.kp, p.ki, p.kd), (f.mode, f.side, f.setpoint, f.speed),
+        (rb.asked_vx, rb.asked_vy, rb.asked_yaw, con._walking, con._deadline), con.echo,
+        channels(), FS.files.get(calstore.FILE),  # (a cut save may leave a broken temp file: load skips it)
+    )
+
+
+def to(state):
+    # the five states; a walk renewed so it does not expire while the lines run (no frame runs
+    # between the snapshot before a line and the one after: con.do is the dispatcher itself)
+    if state == "relaxed":
+        return
+    if state == "jogged":
+        for leg in range(1, 7):
+            say("foot %d 130 0 -80" % leg)
+        say("pulse 2 femur 2350")  # near its top: a trim of +100 is refused by the pose
+        return
+    say("stand")
+    frames(120)
+    if state == "walking":
+        say("walk 50 0 0")
+        frames(5)
+    elif state == "following":
+        say("wall left 40")
+        frames(5)
+
+
+to(STATE)
+frames(2)  # the last reply's change reaches the chips (a line runs after its frame's tick)
+# A calibration file the pose refuses on its last row (leg 6 tibia's range excludes any tibia
+# angle but one far from the present one), the other 17 rows different from what is in force.
+rows = [(7, 1, 610, 2390)] * 17 + [(0, 1, 2480, 2500)]
+FS.files[calstore.FILE] = calstore.encode(rows)
+out = []
+for line in LINES:
+    typed = line
+    if line == "<short>":
+        FS.short = True
+        line = "save"
+    elif line == "<readonly>":
+        FS.short = False
+        FS.readonly = True
+        line = "save"
+    before = full_state()
+    reply = con.do(line)
+    after = full_state()
+    diff = [k for k in range(len(before)) if before[k] != after[k]]
+    out.append((typed, reply, diff))
+print(repr((r.robot.mode, r.follower.mode, out)))
+"""
+
+# Bad arguments for every command; then the lines a state refuses (checked per state below).
+BAD = [
+    "status now",
+    "stand 1",
+    "sit 1",
+    "relax 1",
+    "foot 7 100 0 -80",
+    "foot 2 600 0 -80",
+    "foot 2 300 0 -80",
+    "foot 2 1e2 0 -80",
+    "nudge 2 0 0 2000",
+    "nudge 2 0 0",
+    "joint 2 knee 10",
+    "joint 2 femur 95",
+    "joint 2 coxa x",
+    "pulse 2 femur 2401",
+    "pulse 2 femur 1500.5",
+    "pulse 0 femur 1500",
+    "get 9",
+    "walk 1 2",
+    "walk 400 0 0",
+    "walk 0 0 91",
+    "stop 1",
+    "gait trot",
+    "gait wave ripple",
+    "sonar 1",
+    "wall up 8",
+    "wall left 3",
+    "wall right 51",
+    "wall left",
+    "pid 1 2",
+    "pid 30 -1 0",  # a good kp before a bad ki: kp must not change either
+    "pid 30 0 -1",
+    "pid 101 0 0",
+    "cal 2",
+    "cal 2 foot",
+    "trim 2 femur 301",
+    "trim 2 femur x",
+    "dir 2 femur 0",
+    "range 2 femur 1500 1500",
+    "range 2 femur 400 2400",
+    "range 2 femur 2000 1000",
+    "save 1",
+    "load now",
+    "defaults x",
+    "echo sideways",
+    "echo on",  # this console has no raw output
+    "selftest 1 2 3",
+    "jump",
+]
+# Refused by the state rather than by the words (each state answers some of them with ok).
+STATEFUL = [
+    "trim 2 femur 100",  # jogged: 2350 + 100 is above 2400; standing/walking: refused or ok
+    "range 2 femur 600 2300",  # jogged: 2350 is outside; standing: ok
+    "load",  # leg 6 tibia's row refuses the pose when driven: all 18 rows roll back
+    "<short>",  # save on a filesystem that writes short and says it did not
+    "<readonly>",  # save on a read-only filesystem
+]
+
+STATES = ("relaxed", "jogged", "standing", "walking", "following")
+
+
+@pytest.mark.parametrize("state", STATES)
+def test_a_refused_command_changes_nothing_in_any_state(rt, state):
+    src = RIG + "STATE = %r\nLINES = %r\n" % (state, BAD + STATEFUL) + SETUP
+    mode, follow_mode, out = ast.literal_eval(rt.run(src, heapsize="4m").strip().splitlines()[-1])
+    assert mode == {"relaxed": 0, "jogged": 5, "standing": 3, "walking": 4, "following": 4}[state]
+    assert (follow_mode != 0) == (state == "following")
+    by = {}
+    for line, reply, diff in out:
+        by[line] = (reply, diff)
+        if line in BAD:
+            assert reply.startswith("err "), (state, line, reply)
+        if reply.startswith("err "):
+            assert diff == [], (state, line, reply, diff)
+            assert "internal" not in reply, (state, line, reply)
+    # hand-checked replies and refusals that must hold in every state
+    assert by["pid 30 -1 0"][0] == "err pid: ki -1 is outside 0.000..100.000 "
+    # a short write that reports success: only the read-back notices; the file and source are kept
+    # (the OSError's text differs: CPython "[Errno 28] ...", MicroPython "(28, '...')")
+    short = by["<short>"][0]
+    assert short.startswith("err save: the filesystem refused ("), short
+    assert "written file reads back different" in short and short.endswith("; the previous file is kept"), short
+    assert by["<readonly>"][0].startswith("err save: the filesystem is read-only ("), by["<readonly>"]
+    if state == "jogged":
+        # leg 2 femur at 2350 us: trim +100 maps it to 2450, above 2400; 2350 is above 2300
+        assert by["trim 2 femur 100"][0].startswith("err trim: leg 2 femur: at "), by["trim 2 femur 100"]
+        assert by["range 2 femur 600 2300"][0].startswith("err range: leg 2 femur: at "), by
+    if state in ("relaxed",):
+        # nothing driven: the file's rows all apply; the saves that follow then fail and keep it
+        assert by["load"][0] == "ok loaded hexapod_cal.txt", by["load"]
+    else:
+        # leg 6 tibia is driven: its row 2480..2500 cannot hold its angle, all 18 roll back
+        assert by["load"][0].startswith("err load: hexapod_cal.txt kept the calibration in force: "), by["load"]
+        assert by["load"][1] == []

@@ -1,0 +1,100 @@
+"""The CircuitPython deploy's heap (issue 20, point 7), measured in the MicroPython VM.
+
+What runs is what `hexapod flash --board feather_rp2040` stages (serial.flash.stage: .py sources,
+which CircuitPython compiles at import) with circup's Adafruit libraries (.mpy) in lib/, on the
+VM's fake CircuitPython modules (stubs/circuitpython_vm) and the chip models: code.py's start,
+`stand`, `wall left 12`, `status` and `selftest` typed on the serial line, 1,000 frames.
+
+The caps (docs/flashing.md, "CircuitPython's heap"):
+- a Feather RP2040 on stock CircuitPython 10 has 171 KB free at its REPL (FEATHER_FREE); the VM
+  is 64-bit, and the same .py imports allocate 0.80 as many bytes on the 32-bit emulated Pico as in
+  the VM (bench.feather.PICO_RATIO, measured per module: 0.68-1.05, the largest five 0.75-0.80). So
+  the VM stands for a Feather when it gives the deploy 171 KB / 0.80 = 218,880 B free (FIT_FREE).
+  Today's deploy needs 260,896 B there: it does not fit yet (test_deploy_fits_a_feather, a strict
+  xfail: it turns into a failure, to be made a plain test, the day it fits).
+- GROWTH_HEAP: today's need (the robust -X heapsize, bench.feather.robust_heap) plus 8 KB, so that
+  the deploy cannot grow unnoticed while the gap is being closed.
+"""
+
+import json
+
+import pytest
+
+from hexapod_host.bench import feather
+from hexapod_host.serial import flash
+from hexapod_host.testing.runtimes import skip_without_micropython
+
+FIT_FREE = feather.FEATHER_FREE * 100 // int(feather.PICO_RATIO * 100)  # 218,880 B
+# The -X heapsize at which the VM leaves the deploy FIT_FREE or just under (the rig's modules and
+# models and the collector's tables take about 66 KB: test_fit_heap_gives_...).
+FIT_HEAP = 278 * 1024
+TODAY_HEAP = 328704  # robust_heap's figure, 2026-11-27 (`hexapod bench feather`): 260,896 B free
+GROWTH_HEAP = TODAY_HEAP + 8 * 1024
+
+
+@pytest.fixture(scope="module")
+def drive(tmp_path_factory):
+    skip_without_micropython()
+    dest = str(tmp_path_factory.mktemp("feather") / "drive")
+    feather.stage(dest, "mpy")
+    return dest
+
+
+@pytest.fixture(scope="module")
+def run(drive):
+    """The run at GROWTH_HEAP (MemoryError fails every test that uses it)."""
+    return feather.vm(drive, feather.run_cfg(), GROWTH_HEAP)
+
+
+def test_the_feather_cap_is_171_kb_over_the_measured_ratio():
+    # 171 * 1024 / 0.80, worked by hand
+    assert FIT_FREE == 218880
+    assert feather.PICO_RATIO == 0.80
+
+
+def test_deploy_runs_1000_frames_within_todays_heap_plus_8_kb(run):
+    assert run["frames"] == 1000
+    assert run["follow"] == "following"  # `stand` then `wall left 12` took: the whole loop ran
+    assert run["bus_failed"] == 0 and run["sonar_faults"] == 0
+
+
+def test_fit_heap_gives_the_deploy_what_a_feather_has(drive):
+    cfg = dict(feather.rig(), mode="modules", modules=[])
+    free = feather.vm(drive, cfg, FIT_HEAP)["free"]
+    assert FIT_FREE - 2048 <= free <= FIT_FREE, (free, FIT_FREE)
+
+
+@pytest.mark.xfail(strict=True, raises=MemoryError, reason="the deploy needs 260,896 B free in the VM, 218,880 fit")
+def test_deploy_fits_a_feather(drive):
+    feather.vm(drive, feather.run_cfg(), FIT_HEAP)
+
+
+def test_deploy_ships_no_micropython_only_module():
+    entry, files, _ = flash.select_files(feather.BOARD, feather.ROBOT)
+    shipped = [flash.board_path(f) for f in files]
+    assert entry == "code.py" and "main.py" not in shipped
+    assert not [p for p in shipped if p.endswith("_viper.py") or p == "drivers/_i2c_rp2.py"]
+
+
+def test_every_module_the_run_loads_is_shipped_and_boot_only_ones_are_let_go(run):
+    _, files, libs = flash.select_files(feather.BOARD, feather.ROBOT)
+    shipped = {flash.board_path(f)[:-3].replace("/__init__", "").replace("/", ".") for f in files}
+    fakes = {"_cp_vm", "_stub_clock", "_stub_cp", "_stub_i2c", "_stub_pins", "i2c_bus", "hcsr04_model"}
+    fakes |= {"pca9685_model", "board", "busio", "digitalio", "microcontroller", "pulseio", "supervisor"}
+    fakes |= {"machine", "time"}  # the rig's stand-ins in sys.modules
+    loaded = set(run["loaded"]) - fakes
+    assert not {m for m in loaded if not m.startswith("adafruit_")} - shipped
+    assert {m.split(".")[0] for m in loaded if m.startswith("adafruit_")} >= set(libs)
+    # code.py releases the board file's validator and the robot file after boot (runner.release),
+    # the console drops selftest when the command is done
+    for gone in ("hexapod.board", "hexapod.robotfile", "robots.default", "selftest"):
+        assert gone in shipped and gone not in loaded, gone
+
+
+def test_bench_feather_is_a_bench_with_json_out(monkeypatch, capsys):
+    from hexapod_host.commands import cli
+
+    figures = {"bench": "feather", "free_needed_32": 211098, "margin_32": -35994}
+    monkeypatch.setattr(feather, "measure", lambda libs_as="mpy": figures)
+    assert cli.main(["bench", "feather", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out) == figures
