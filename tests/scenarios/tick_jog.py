@@ -52,12 +52,12 @@ def jog_session():
 
 def calibrate_reaches_the_chip_at_once():
     """Issue 24: a range or trim change must never leave the frame sink (the PCA9685s) driving a
-    pulse outside the new range. Leg 3 femur (servo 7, pico rows: centre 1500, dir 1, 600..2400)
-    jogged to 2118 us, then, with no tick between, a trim to centre 1200 and a range of 590..1858;
-    then the same on a standing robot whose frames are held. Rows: each step's (code, sink's pulse)."""
+    pulse outside the new range. Leg 3 femur (servo 7; robots/default_cal.py: centre 1500, dir 1,
+    600..2400) jogged to 2118 us, then, with no tick between, a trim to centre 1200 and a range of
+    590..1858; then the same on a standing robot whose frames are held. Rows: each step's (code, sink's pulse)."""
     g = geometry.load(robot_file)
     fb = tick.FrameBuffer()
-    robot = tick.Robot(g, [row[2] for row in servo_table(load("pico"))], fb)
+    robot = tick.Robot(g, robotcal.servo_maps(robotcal.load("default")), fb)
     out = [robot.jog_pulse(2, 1, 2118)]
     robot.tick(0)
     out.append(fb.pulses[7])
@@ -66,7 +66,7 @@ def calibrate_reaches_the_chip_at_once():
     # Standing, frames held (leg 2 femur's map swapped for one its standing angle misses): the
     # sink keeps the last frame sent, so a calibration that waits for a frame never arrives.
     fb = tick.FrameBuffer()
-    robot = tick.Robot(g, [row[2] for row in servo_table(load("pico"))], fb)
+    robot = tick.Robot(g, robotcal.servo_maps(robotcal.load("default")), fb)
     if robot.stand_up() != 0:
         return out
     t = stand(robot, 0)
