@@ -64,8 +64,9 @@ def boards():
 
 
 def robots():
-    """Robot names: the files in robots/."""
-    return sorted(f[:-3] for f in os.listdir(os.path.join(ROOT, "robots")) if f.endswith(".py") and f != "__init__.py")
+    """Robot names: the files in robots/ (not their guard tables, NAME_guard.py: hexapod.guardtable)."""
+    names = os.listdir(os.path.join(ROOT, "robots"))
+    return sorted(f[:-3] for f in names if f.endswith(".py") and f != "__init__.py" and not f.endswith("_guard.py"))
 
 
 def runtime(board):
@@ -134,6 +135,9 @@ def select_files(board, robot):
     core = [f for f in core if f.endswith(".py")]
     chosen = [os.path.join(ROOT, "boards", n) for n in ("__init__.py", board + ".py")]
     chosen += [os.path.join(ROOT, "robots", n) for n in ("__init__.py", robot + ".py")]
+    table = os.path.join(ROOT, "robots", robot + "_guard.py")  # the robot's guard table, when it has one
+    if os.path.isfile(table):
+        chosen.append(table)
     if cp and os.path.isfile(os.path.join(FIRMWARE, "boot.py")):
         chosen.append(os.path.join(FIRMWARE, "boot.py"))  # makes the flash writable for `save`
     files, outside = closure(entry, core + chosen)
