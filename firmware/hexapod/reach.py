@@ -95,12 +95,12 @@ def servo_radii(walker, body, swing, stance, lift, limit, caps, out):
 
 def servo_steps(walker, body, swing, stance, lift, limit, caps, out, peak):
     """servo_radii one IK solve at a time: a generator that yields after each solve; out holds
-    the radii and peak[0] the no-step peak once it is exhausted. Allocates its buffers when
-    started and nothing after (the swing written out here, not called: a call of this many
-    arguments takes its frame from the heap on MicroPython)."""
+    the radii and peak[0] the no-step peak once it is exhausted. Allocates nothing once made:
+    its buffers are the walker's (guard_buf, guard_tmp), and the swing is written out here, not
+    called (a call of this many arguments takes its frame from the heap on MicroPython)."""
     legs = walker.geometry.legs
-    buf = [0, 0, 0, 0, 0, 0, 0, 0, 0]
-    tmp = [0, 0]
+    buf = walker.guard_buf
+    tmp = walker.guard_tmp
     first = 0  # the direction to try first: the one that failed last
     worst0 = 0
     guess = RHO_CAP  # the last leg's answer: legs alike (mirror images) get it in two tries

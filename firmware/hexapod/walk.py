@@ -103,6 +103,8 @@ class Walker:
         self._caps = [0] * 6  # the servo guard's scratch: how far it looks, its radii and peak
         self._srho = [0] * 6
         self._peak = [0]
+        self.guard_buf = [0] * 9  # reach.disc_steps' and servo_steps' scratch (a foot, two ticks' angles)
+        self.guard_tmp = [0, 0]
         self.table = None  # the robot file's guard table (hexapod.guardtable), set by the Robot
         self.pose_body = None  # the Body whose pose the servo-speed check uses (else level)
         self.fx = _words(6)  # current feet, body frame, fine

@@ -8,7 +8,12 @@
 # sender (drivers/_i2c_rp2.py) its counts and how many frames began a whole period after the last
 # with its bursts still on the bus. The script's walk commands run after their frame's step, in the
 # slack where Runner.run polls the console; their own time is `commands_us`.
-# Arguments: [frames (default 500)].
+# The "drive" scenario drives as a person with a joystick would: a walk command five times a
+# second (ramps, reversals, crabbing, turning), gait changes while walking, stops, and height and
+# pose changes while standing, all asked as the console asks them (wait=False: checked over the
+# frames' slack); its frame time counts the commands made in that frame, and it also reports each
+# configure's frames (asked to done) and codes.
+# Arguments: [frames (default 500)] [scenario: default or drive].
 import gc
 import json
 import sys
@@ -23,17 +28,61 @@ import main
 import runner
 
 FRAMES = int(sys.argv[1]) if len(sys.argv) > 1 else 500
+SCENARIO = sys.argv[2] if len(sys.argv) > 2 else "default"
 # (frame, vx 0.1 mm/s, vy, yaw cdeg/s); None: stop. Frame 0 stands up.
 COMMANDS = ((60, 1200, 0, 0), (160, 0, 0, 3000), (230, 600, 600, 0), (300, -800, 0, 0), (400, None, 0, 0))
 BUSY = array("i", [0] * FRAMES)  # us from a frame's start to the end of its step
 START = array("i", [0] * FRAMES)  # us from the first frame's start
 LATE = array("i", [0])  # frames begun a whole period after the last with the background sender still busy
 COMMAND_US = array("i", [0] * len(COMMANDS))  # each command's time (Robot.walk/stop) after its frame's step, us
+# drive: (frame, what, args); "walk" (vx, vy, yaw), "stop", "gait" (gait), "height" (0.1 mm),
+# "pose" (roll, pitch cdeg). The walks come every 10 frames while walking.
+JOY = ((1200, 0, 0), (1500, 0, 1500), (600, 600, 0), (0, 1200, 0), (-800, 0, 0), (0, 0, 3000), (900, -400, -1000))
+DRIVE = (
+    (110, "gait", 2),  # ripple while walking
+    (200, "gait", 0),  # back to the tripod
+    (300, "gait", 1),  # tetrapod
+    (380, "gait", 0),
+    (440, "stop", 0),
+    (560, "height", 700),
+    (600, "pose", (300, 0)),  # asked while the height is still being checked: refused, asked again below
+    (700, "pose", (300, 0)),
+    (1000, "height", 800),
+    (1400, "pose", (0, 0)),
+)
+DRIVE_LOG = []  # (frame, what, code at once, frames until done, job code)
+
+
+def drive(robot, n, pending):
+    """The drive scenario's commands for frame n (after the step, as the console's)."""
+    if pending[0] >= 0 and not robot.configuring():
+        DRIVE_LOG[pending[0]][3] = n - pending[1]
+        DRIVE_LOG[pending[0]][4] = robot.job_code
+        pending[0] = -1
+    if 60 <= n < 440 and n % 10 == 0:
+        c = JOY[(n // 10) % len(JOY)]
+        robot.walk(c[0], c[1], c[2])
+    for f, what, arg in DRIVE:
+        if f != n:
+            continue
+        if what == "stop":
+            code = robot.stop()
+        elif what == "gait":
+            code = robot.set_gait(arg, wait=False)
+        elif what == "height":
+            code = robot.set_height(arg, wait=False)
+        else:
+            code = robot.set_pose(roll=arg[0], pitch=arg[1], wait=False)
+        DRIVE_LOG.append([n, what, code, -1, -1])
+        if code == 0 and robot.configuring():
+            pending[0] = len(DRIVE_LOG) - 1
+            pending[1] = n
 
 
 def loop(r, frames):
     bg = getattr(r.bank, "_sender", None)
     k = 0
+    pending = [-1, 0]
     t_first = clock.ticks_us()
     for n in range(frames):
         t0 = clock.ticks_us()
@@ -41,9 +90,11 @@ def loop(r, frames):
         if bg is not None and bg._st[3] and n and clock.ticks_diff(t0, t_first) - START[n - 1] >= 19990:
             LATE[0] += 1
         r.step()
+        if SCENARIO == "drive":
+            drive(r.robot, n, pending)
         BUSY[n] = clock.ticks_diff(clock.ticks_us(), t0)
         START[n] = clock.ticks_diff(t0, t_first)
-        if k < len(COMMANDS) and COMMANDS[k][0] == n:
+        if SCENARIO != "drive" and k < len(COMMANDS) and COMMANDS[k][0] == n:
             # after the step, in the frame's slack, where Runner.run polls the console
             c = COMMANDS[k]
             if c[1] is None:
@@ -55,7 +106,7 @@ def loop(r, frames):
         r.wait()
 
 
-def summary(free_after_boot, heap, bg=None):
+def summary(r, free_after_boot, heap, bg=None):
     busy = sorted(BUSY)
     gaps = sorted(START[n + 1] - START[n] for n in range(FRAMES - 1))
     return {
@@ -77,6 +128,10 @@ def summary(free_after_boot, heap, bg=None):
         "sender": list(bg.stats) if bg is not None else None,  # refills, writes done, NACKs
         "frames_begun_with_bus_busy": LATE[0],
         "commands_us": list(COMMAND_US),
+        "scenario": SCENARIO,
+        "drive": DRIVE_LOG if SCENARIO == "drive" else None,
+        "job_steps": r.robot.job_steps,
+        "overruns": r.robot.overruns,
     }
 
 
@@ -95,4 +150,4 @@ loop(r, FRAMES)
 heap = (gc.mem_alloc() - before) / FRAMES if weigh else -1
 gc.enable()
 print(runner.status_line(r))
-print(json.dumps(summary(free, heap, getattr(r.bank, "_sender", None))))
+print(json.dumps(summary(r, free, heap, getattr(r.bank, "_sender", None))))
