@@ -50,6 +50,7 @@ DRIVE = (
     (1000, "height", 800),
     (1400, "pose", (0, 0)),
 )
+JOB = array("i", [0, 0])  # frames begun with a configure under way, the longest of them (us)
 DRIVE_LOG = []  # (frame, what, code at once, frames until done, job code)
 
 
@@ -89,10 +90,15 @@ def loop(r, frames):
         # (a frame begun at once after an overrun may find the last bursts still going out)
         if bg is not None and bg._st[3] and n and clock.ticks_diff(t0, t_first) - START[n - 1] >= 19990:
             LATE[0] += 1
+        busy = r.robot.configuring()
         r.step()
         if SCENARIO == "drive":
             drive(r.robot, n, pending)
         BUSY[n] = clock.ticks_diff(clock.ticks_us(), t0)
+        if busy:
+            JOB[0] += 1
+            if BUSY[n] > JOB[1]:
+                JOB[1] = BUSY[n]
         START[n] = clock.ticks_diff(t0, t_first)
         if SCENARIO != "drive" and k < len(COMMANDS) and COMMANDS[k][0] == n:
             # after the step, in the frame's slack, where Runner.run polls the console
@@ -131,6 +137,8 @@ def summary(r, free_after_boot, heap, bg=None):
         "scenario": SCENARIO,
         "drive": DRIVE_LOG if SCENARIO == "drive" else None,
         "job_steps": r.robot.job_steps,
+        "configure_frames": JOB[0],
+        "configure_frame_max_us": JOB[1],
         "overruns": r.robot.overruns,
     }
 
@@ -149,5 +157,6 @@ before = gc.mem_alloc() if weigh else 0
 loop(r, FRAMES)
 heap = (gc.mem_alloc() - before) / FRAMES if weigh else -1
 gc.enable()
+gc.collect()  # the summary's sorted copies need the heap the loop's commands left behind
 print(runner.status_line(r))
 print(json.dumps(summary(r, free, heap, getattr(r.bank, "_sender", None))))
