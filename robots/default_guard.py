@@ -1,4 +1,4 @@
-"""The servo guard's answers for robots/default.py's own settings (hexapod.guardtable): made by
+"""The servo guard's answers for robots/default.py's own settings (hexapod.reach.find_table): made by
 `python -m hexapod_host.guard_table default`, checked against the live guard by tests/test_guard_table.py.
 Do not edit: run that again after changing the robot file or the guard."""
 

@@ -1,4 +1,4 @@
-"""robots/default_guard.py (hexapod.guardtable): the servo guard's answers for the robot file's own
+"""robots/default_guard.py (hexapod.reach's guard table): the servo guard's answers for the robot file's own
 settings, made on the host, so that power-up and a change to a gait at its own cycle solve no IK.
 
 Oracles: the live guard (reach.disc_radii, reach.servo_radii) and the exhaustive form of the
@@ -10,7 +10,7 @@ import types
 
 import robots.default as d
 import robots.default_guard as table
-from hexapod import geometry, guardtable, tick
+from hexapod import geometry, reach, tick
 from hexapod.body import Body
 from hexapod.gait import swing_stance_ticks
 from hexapod.walk import Walker
@@ -37,7 +37,7 @@ def _other_file(**change):
 def test_the_table_holds_the_live_guards_answers_bit_for_bit():
     g = geometry.load(d)
     discs, servo = live_entries(g)
-    assert tuple(table.ROBOT) == guardtable.robot_key(g)
+    assert tuple(table.ROBOT) == reach.robot_key(g)
     assert [tuple(r) for r in table.DISCS] == discs
     assert [tuple(r) for r in table.SERVO] == servo
     assert len(servo) == 4  # every gait at the robot file's cycle
@@ -85,14 +85,14 @@ def test_a_pose_a_height_or_another_robot_file_runs_the_live_guard():
     probe = Body(g)
     probe.set_target([0, 0, 0, 500, 0, 0, 0, 0, 0])
     probe.jump()
-    assert not guardtable.table_discs(table, probe, w.ground, w.lift, [0] * 6)  # a pose
-    assert not guardtable.table_discs(table, Body(g), -700 << 4, w.lift, [0] * 6)  # another height
-    assert not guardtable.table_discs(table, Body(g), w.ground, 250, [0] * 6)  # another lift
-    assert guardtable.table_discs(table, Body(g), w.ground, w.lift, [0] * 6)
-    assert not guardtable.table_servo(table, w, 2, 2400, w.lift, w.step, w.rho)  # another cycle
-    assert guardtable.find_table(geometry.load(_other_file(FEMUR=860))) is None
-    assert guardtable.find_table(geometry.load(_other_file(SERVO=dict(d.SERVO, planner_share_permille=300)))) is None
-    assert guardtable.find_table(g) is table
+    assert not reach.table_discs(table, probe, w.ground, w.lift, [0] * 6)  # a pose
+    assert not reach.table_discs(table, Body(g), -700 << 4, w.lift, [0] * 6)  # another height
+    assert not reach.table_discs(table, Body(g), w.ground, 250, [0] * 6)  # another lift
+    assert reach.table_discs(table, Body(g), w.ground, w.lift, [0] * 6)
+    assert not reach.table_servo(table, w, 2, 2400, w.lift, w.step, w.rho)  # another cycle
+    assert reach.find_table(geometry.load(_other_file(FEMUR=860))) is None
+    assert reach.find_table(geometry.load(_other_file(SERVO=dict(d.SERVO, planner_share_permille=300)))) is None
+    assert reach.find_table(g) is table
     with CountingIK(g) as count:
         assert robot.set_gait(2, 2400) == tick.OK
     assert count.solves > 500

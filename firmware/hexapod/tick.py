@@ -30,10 +30,9 @@ from micropython import const
 from hexapod.body import FINE_SHIFT, Body
 from hexapod.fixmath import cos, isqrt, mul_q15, sin
 from hexapod.gait import TICK_MS, TRIPOD, check_cycle_ms, check_gait
-from hexapod.guardtable import find_table, table_discs
 from hexapod.leg import OK
 from hexapod.posture import POSTURE_STEP, Posture
-from hexapod.reach import disc_steps
+from hexapod.reach import disc_steps, find_table, table_discs
 from hexapod.servo import ServoMap
 from hexapod.turns import sweep_command
 from hexapod.walk import SERVO_SPEED, SPEED_MAX, STEP_MAX, STOPPED, YAW_RATE_MAX, Walker
@@ -82,9 +81,10 @@ WAKE_FRAMES = const(24)  # 3 groups x WAKE_STAGGER: frames the first pose is hel
 WAKE_GROUP = (0, 1, 2, 2, 1, 0)  # each leg's group (legs 1 RF .. 6 LF)
 RHO_MIN = const(50)  # a leg needs a reach disc this wide (0.1 mm) to walk
 # A configure asked with wait=False (the console's) runs in the frames' slack: this many of its IK
-# solves (hexapod.reach's steps, the posture trial's) after each tick's frame, ~0.8 ms each on an
-# emulated Pico, so no frame takes more than about 6 ms (hexapod pico bench frame --scenario drive).
-JOB_STEPS = const(3)
+# solves (hexapod.reach's steps, the posture trial's) after each tick's frame. On an emulated Pico
+# a solve there costs ~0.6-0.75 ms, a frame with a walk command ~4.2 ms before them: two keep it
+# under 6 ms (three made 6.4 ms: hexapod pico bench frame --scenario drive, docs/pico.md).
+JOB_STEPS = const(2)
 
 
 def describe(code):
@@ -149,6 +149,9 @@ _STAND_STRAIGHT = const(1)
 _SIT = const(2)
 _SIT_LIFTED = const(3)
 _HEIGHT = const(4)
+# The configures Robot._steps finishes besides a gait (0..3, hexapod.gait's numbers).
+_POSE = const(5)
+_PARAMS = const(6)
 
 
 class Robot:
@@ -508,6 +511,45 @@ class Robot:
             return self.job_code
         return OK
 
+    def _steps(self, what, path, discs, steps, arg):
+        """A configure's generator: the posture trial (path), the reach discs, the walker's
+        configure (steps), then what it changes: what is a gait (arg its cycle), _PARAMS (arg the
+        cycle), _POSE (arg the pose) or _HEIGHT (arg the ground to go back to when refused)."""
+        w = self.walker
+        code = OK
+        if path is not None:
+            for _ in path:
+                yield
+            code = self._path_code
+        if code == OK and discs is not None:
+            for _ in discs:
+                yield
+        if code == OK and what == _PARAMS and self.mode == WALKING and not self._roomy(self._rho):
+            code = UNREACHABLE  # that lift would leave a walking leg no room to step
+        if code == OK:
+            for _ in steps:
+                yield
+            code = w.configured
+        if code != OK:
+            if what == _HEIGHT:
+                w.ground = arg
+        elif what == _POSE:
+            self.body.set_target(arg)
+        elif what == _HEIGHT:
+            if path is not None:
+                self.posture.to_height(w, w.ground)
+                self.after = STANDING
+                self.mode = MOVING
+        elif what == _PARAMS:
+            self.cycle_ms = arg
+            self.cycles[self.gait] = arg
+        else:
+            self.gait = what
+            self.cycle_ms = arg
+            self.cycles[what] = arg
+        self._end(code)
+        yield
+
     def _end(self, code):
         self.job_code = code
         self._job = None
@@ -548,31 +590,7 @@ class Robot:
             path = self._path_steps(_HEIGHT)
         discs = self._discs(self.body, w.lift)
         steps = w.configure_steps(self.gait, self.cycle_ms, w.lift, w.step, self._rho, False)
-        return self._start(self._height_steps(old, path, discs, steps), True, wait)
-
-    def _height_steps(self, old, path, discs, steps):
-        w = self.walker
-        if path is not None:
-            for _ in path:
-                yield
-            if self._path_code != OK:
-                w.ground = old
-                self._end(self._path_code)
-                yield
-                return
-        if discs is not None:
-            for _ in discs:
-                yield
-        for _ in steps:
-            yield
-        if w.configured != OK:
-            w.ground = old
-        elif path is not None:
-            self.posture.to_height(w, w.ground)
-            self.after = STANDING
-            self.mode = MOVING
-        self._end(w.configured)
-        yield
+        return self._start(self._steps(_HEIGHT, path, discs, steps, old), True, wait)
 
     def _feet_reachable(self, body):
         """True when every foot, at the walker's ground height, solves under body's pose."""
@@ -600,18 +618,7 @@ class Robot:
         w = self.walker
         discs = self._discs(probe, w.lift)
         steps = w.configure_steps(self.gait, self.cycle_ms, w.lift, w.step, self._rho, False)
-        return self._start(self._pose_steps(discs, steps, pose), True, wait)
-
-    def _pose_steps(self, discs, steps, pose):
-        if discs is not None:
-            for _ in discs:
-                yield
-        for _ in steps:
-            yield
-        if self.walker.configured == OK:
-            self.body.set_target(pose)
-        self._end(self.walker.configured)
-        yield
+        return self._start(self._steps(_POSE, None, discs, steps, pose), True, wait)
 
     def set_gait(self, gait, cycle_ms=None, wait=True):
         """Switch gait (gait.TRIPOD ...) at cycle_ms (ms), else at the gait's own cycle time: now
@@ -625,17 +632,7 @@ class Robot:
         w = self.walker
         cycle = self.cycles[gait] if cycle_ms is None else cycle_ms
         steps = w.configure_steps(gait, cycle, w.next_lift, w.step, w.next_rho)
-        return self._start(self._gait_steps(steps, gait, cycle), False, wait)
-
-    def _gait_steps(self, steps, gait, cycle):
-        for _ in steps:
-            yield
-        if self.walker.configured == OK:
-            self.gait = gait
-            self.cycle_ms = cycle
-            self.cycles[gait] = cycle
-        self._end(self.walker.configured)
-        yield
+        return self._start(self._steps(gait, None, None, steps, cycle), False, wait)
 
     def set_params(self, step_length=None, lift_height=None, cycle_ms=None, wait=True):
         """Step length and lift height (0.1 mm), the present gait's cycle time (ms); each bounded
@@ -653,23 +650,7 @@ class Robot:
         self._probe.jump()
         discs = self._discs(self._probe, lift)
         steps = w.configure_steps(self.gait, cycle, lift, step, self._rho)
-        return self._start(self._params_steps(discs, steps, cycle), False, wait)
-
-    def _params_steps(self, discs, steps, cycle):
-        if discs is not None:
-            for _ in discs:
-                yield
-        if self.mode == WALKING and not self._roomy(self._rho):
-            self._end(UNREACHABLE)  # that lift would leave a walking leg no room to step
-            yield
-            return
-        for _ in steps:
-            yield
-        if self.walker.configured == OK:
-            self.cycle_ms = cycle
-            self.cycles[self.gait] = cycle
-        self._end(self.walker.configured)
-        yield
+        return self._start(self._steps(_PARAMS, None, discs, steps, cycle), False, wait)
 
     def walk(self, vx, vy, yaw_rate):
         """Walk at vx, vy (0.1 mm/s) turning at yaw_rate (cdeg/s); scaled down to what reach allows

@@ -32,8 +32,7 @@ from micropython import const
 from hexapod.body import FINE, FINE_SHIFT, Body
 from hexapod.fixmath import ONE, cos, isqrt, mul_q15, sin
 from hexapod.gait import TICK_MS, TRIPOD, GaitClock, actual_cycle_ms, check_cycle_ms, check_gait, swing_stance_ticks
-from hexapod.guardtable import table_servo
-from hexapod.reach import servo_steps
+from hexapod.reach import servo_steps, table_servo
 from hexapod.trajectory import swing_shape, swing_stroke
 
 # The viper twins (docs/viper.md): the tick's walker steps compiled by the viper emitter where
@@ -105,7 +104,7 @@ class Walker:
         self._peak = [0]
         self.guard_buf = [0] * 9  # reach.disc_steps' and servo_steps' scratch (a foot, two ticks' angles)
         self.guard_tmp = [0, 0]
-        self.table = None  # the robot file's guard table (hexapod.guardtable), set by the Robot
+        self.table = None  # the robot file's guard table (hexapod.reach.find_table), set by the Robot
         self.pose_body = None  # the Body whose pose the servo-speed check uses (else level)
         self.fx = _words(6)  # current feet, body frame, fine
         self.fy = _words(6)
@@ -204,7 +203,7 @@ class Walker:
         return self._configure(guard, gait, cycle_ms, lift, step, rho, strict)
 
     def _configure(self, guard, gait, cycle_ms, lift, step, rho, strict):
-        # The guard's answer from the robot file's table (hexapod.guardtable), else its solves.
+        # The guard's answer from the robot file's table (hexapod.reach.table_servo), else its solves.
         t = self.table
         if guard is not None and (t is None or not table_servo(t, self, gait, cycle_ms, lift, step, rho)):
             # No need to look past what the reach and the step allow already.

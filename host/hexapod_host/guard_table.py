@@ -1,4 +1,4 @@
-"""The guard table of a robot file (hexapod.guardtable): the live guard's answers for its own
+"""The guard table of a robot file (hexapod.reach.find_table): the live guard's answers for its own
 settings, written as robots/NAME_guard.py. Run after changing a robot file or the guard:
 
     .venv/bin/python -m hexapod_host.guard_table default > robots/default_guard.py
@@ -11,7 +11,7 @@ import sys
 from hexapod import reach
 from hexapod.body import Body
 from hexapod.gait import NAMES, swing_stance_ticks
-from hexapod.guardtable import robot_key
+from hexapod.reach import robot_key
 from hexapod.walk import Walker
 
 
@@ -44,7 +44,7 @@ def table_text(robot_module):
     g = geo.load(robot_module)
     discs, servo = live_entries(g)
     lines = [
-        '"""The servo guard\'s answers for robots/%s.py\'s own settings (hexapod.guardtable): made by' % g.name,
+        '"""The servo guard\'s answers for robots/%s.py\'s own settings (hexapod.reach.find_table): made by' % g.name,
         "`python -m hexapod_host.guard_table %s`, checked against the live guard by tests/test_guard_table.py."
         % g.name,
         'Do not edit: run that again after changing the robot file or the guard."""',

@@ -40,16 +40,13 @@ COMMAND_US = array("i", [0] * len(COMMANDS))  # each command's time (Robot.walk/
 # "pose" (roll, pitch cdeg). The walks come every 10 frames while walking.
 JOY = ((1200, 0, 0), (1500, 0, 1500), (600, 600, 0), (0, 1200, 0), (-800, 0, 0), (0, 0, 3000), (900, -400, -1000))
 DRIVE = (
-    (110, "gait", 2),  # ripple while walking
-    (200, "gait", 0),  # back to the tripod
-    (300, "gait", 1),  # tetrapod
-    (380, "gait", 0),
+    (110, "gait", (2, 0)),  # ripple while walking (its own cycle: from the guard table)
+    (200, "gait", (0, 0)),  # back to the tripod
+    (300, "gait", (0, 1200)),  # the tripod at 1.2 s: not in the table, checked over ~1,100 frames
     (440, "stop", 0),
-    (560, "height", 700),
-    (600, "pose", (300, 0)),  # asked while the height is still being checked: refused, asked again below
-    (700, "pose", (300, 0)),
-    (1000, "height", 800),
-    (1400, "pose", (0, 0)),
+    (600, "pose", (300, 0)),  # asked while that is still being checked: refused
+    (1650, "height", 700),  # checked over ~2,000 frames, standing
+    (1800, "gait", (1, 0)),  # asked meanwhile: refused
 )
 JOB = array("i", [0, 0])  # frames begun with a configure under way, the longest of them (us)
 DRIVE_LOG = []  # (frame, what, code at once, frames until done, job code)
@@ -70,13 +67,13 @@ def drive(robot, n, pending):
         if what == "stop":
             code = robot.stop()
         elif what == "gait":
-            code = robot.set_gait(arg, wait=False)
+            code = robot.set_gait(arg[0], arg[1] or None, wait=False)
         elif what == "height":
             code = robot.set_height(arg, wait=False)
         else:
             code = robot.set_pose(roll=arg[0], pitch=arg[1], wait=False)
         DRIVE_LOG.append([n, what, code, -1, -1])
-        if code == 0 and robot.configuring():
+        if code == 0 and what != "stop" and robot.configuring():
             pending[0] = len(DRIVE_LOG) - 1
             pending[1] = n
 
@@ -130,6 +127,10 @@ def _sorted(a):
 
 
 def summary(r, free_after_boot, heap, bg=None):
+    worst_at = 0
+    for n in range(FRAMES):
+        if BUSY[n] > BUSY[worst_at]:
+            worst_at = n
     for n in range(FRAMES - 1):
         GAPS[n] = START[n + 1] - START[n]
     busy = _sorted(BUSY)
@@ -138,6 +139,7 @@ def summary(r, free_after_boot, heap, bg=None):
         "frames": FRAMES,
         "frame_median_us": busy[FRAMES // 2],
         "frame_max_us": busy[-1],
+        "frame_max_at": worst_at,
         "frame_p99_us": busy[(FRAMES * 99) // 100],
         "period_min_us": gaps[0],
         "period_max_us": gaps[-1],
