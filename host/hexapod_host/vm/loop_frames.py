@@ -45,8 +45,8 @@ DRIVE = (
     (300, "gait", (0, 1200)),  # the tripod at 1.2 s: not in the table, checked over ~1,100 frames
     (440, "stop", 0),
     (600, "pose", (300, 0)),  # asked while that is still being checked: refused
-    (1650, "height", 700),  # checked over ~2,000 frames, standing
-    (1800, "gait", (1, 0)),  # asked meanwhile: refused
+    (1750, "height", 700),  # checked over ~2,000 frames, standing
+    (1850, "gait", (1, 0)),  # asked meanwhile: refused
 )
 JOB = array("i", [0, 0])  # frames begun with a configure under way, the longest of them (us)
 DRIVE_LOG = []  # (frame, what, code at once, frames until done, job code)
