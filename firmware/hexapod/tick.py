@@ -511,13 +511,18 @@ class Robot:
             return self.job_code
         return OK
 
-    def _steps(self, what, path, discs, steps, arg):
-        """A configure's generator: the posture trial (path), the reach discs, the walker's
-        configure (steps), then what it changes: what is a gait (arg its cycle), _PARAMS (arg the
-        cycle), _POSE (arg the pose) or _HEIGHT (arg the ground to go back to when refused)."""
+    def _steps(self, what, feet, path, discs, steps, arg):
+        """A configure's generator: the feet where they stand (feet: UNREACHABLE when one cannot
+        stay there), the posture trial (path), the reach discs, the walker's configure (steps),
+        then what it changes: what is a gait (arg its cycle), _PARAMS (arg the cycle), _POSE (arg
+        the pose) or _HEIGHT (arg the ground to go back to when refused)."""
         w = self.walker
         code = OK
-        if path is not None:
+        if feet is not None:
+            for _ in feet:
+                yield
+            code = self._path_code
+        if code == OK and path is not None:
             for _ in path:
                 yield
             code = self._path_code
@@ -580,26 +585,28 @@ class Robot:
         w = self.walker
         old = w.ground
         w.set_ground(height)
-        standing = self.mode == STANDING
-        if standing and not self._feet_reachable(self.body):
-            w.ground = old
-            return UNREACHABLE
-        path = None
-        if standing:
+        feet = path = None
+        if self.mode == STANDING:
+            feet = self._feet_steps(self.body)
             self._start_feet()
             path = self._path_steps(_HEIGHT)
         discs = self._discs(self.body, w.lift)
         steps = w.configure_steps(self.gait, self.cycle_ms, w.lift, w.step, self._rho, False)
-        return self._start(self._steps(_HEIGHT, path, discs, steps, old), True, wait)
+        return self._start(self._steps(_HEIGHT, feet, path, discs, steps, old), True, wait)
 
-    def _feet_reachable(self, body):
-        """True when every foot, at the walker's ground height, solves under body's pose."""
+    def _feet_steps(self, body):
+        """Whether every foot, at the walker's ground height, solves under body's pose, one leg a
+        step (a generator; _path_code UNREACHABLE when one does not)."""
         w = self.walker
+        leg = self._trial_leg
+        self._path_code = OK
         for i in range(6):
-            body.to_leg(i, w.fx[i], w.fy[i], w.ground, self._leg, 0)
-            if self.geometry.legs[i].ik(self._leg[0], self._leg[1], self._leg[2], self._angles, 0) != OK:
-                return False
-        return True
+            body.to_leg(i, w.fx[i], w.fy[i], w.ground, leg, 0)
+            code = self.geometry.legs[i].ik(leg[0], leg[1], leg[2], self._trial_angles, 0)
+            yield
+            if code != OK:
+                self._path_code = UNREACHABLE
+                return
 
     def set_pose(self, x=0, y=0, z=0, roll=0, pitch=0, yaw=0, cx=0, cy=0, cz=0, wait=True):
         """Body pose (0.1 mm, cdeg) about centre (cx, cy, cz); only standing still; moved gradually
@@ -613,12 +620,10 @@ class Robot:
         probe = self._probe
         probe.set_target(pose)
         probe.jump()
-        if not self._feet_reachable(probe):
-            return UNREACHABLE
         w = self.walker
         discs = self._discs(probe, w.lift)
         steps = w.configure_steps(self.gait, self.cycle_ms, w.lift, w.step, self._rho, False)
-        return self._start(self._steps(_POSE, None, discs, steps, pose), True, wait)
+        return self._start(self._steps(_POSE, self._feet_steps(probe), None, discs, steps, pose), True, wait)
 
     def set_gait(self, gait, cycle_ms=None, wait=True):
         """Switch gait (gait.TRIPOD ...) at cycle_ms (ms), else at the gait's own cycle time: now
@@ -632,7 +637,7 @@ class Robot:
         w = self.walker
         cycle = self.cycles[gait] if cycle_ms is None else cycle_ms
         steps = w.configure_steps(gait, cycle, w.next_lift, w.step, w.next_rho)
-        return self._start(self._steps(gait, None, None, steps, cycle), False, wait)
+        return self._start(self._steps(gait, None, None, None, steps, cycle), False, wait)
 
     def set_params(self, step_length=None, lift_height=None, cycle_ms=None, wait=True):
         """Step length and lift height (0.1 mm), the present gait's cycle time (ms); each bounded
@@ -650,7 +655,7 @@ class Robot:
         self._probe.jump()
         discs = self._discs(self._probe, lift)
         steps = w.configure_steps(self.gait, cycle, lift, step, self._rho)
-        return self._start(self._steps(_PARAMS, None, discs, steps, cycle), False, wait)
+        return self._start(self._steps(_PARAMS, None, None, discs, steps, cycle), False, wait)
 
     def walk(self, vx, vy, yaw_rate):
         """Walk at vx, vy (0.1 mm/s) turning at yaw_rate (cdeg/s); scaled down to what reach allows
