@@ -83,14 +83,15 @@ def loop(r, frames):
     k = 0
     pending = [-1, 0]
     t_first = clock.ticks_us()
+    driving = SCENARIO == "drive"
     for n in range(frames):
+        busy = r.robot._job is not None  # (read before the frame's clock starts: not the frame's time)
         t0 = clock.ticks_us()
         # (a frame begun at once after an overrun may find the last bursts still going out)
         if bg is not None and bg._st[3] and n and clock.ticks_diff(t0, t_first) - START[n - 1] >= 19990:
             LATE[0] += 1
-        busy = r.robot.configuring()
         r.step()
-        if SCENARIO == "drive":
+        if driving:
             drive(r.robot, n, pending)
         BUSY[n] = clock.ticks_diff(clock.ticks_us(), t0)
         if busy:
@@ -98,7 +99,7 @@ def loop(r, frames):
             if BUSY[n] > JOB[1]:
                 JOB[1] = BUSY[n]
         START[n] = clock.ticks_diff(t0, t_first)
-        if SCENARIO != "drive" and k < len(COMMANDS) and COMMANDS[k][0] == n:
+        if not driving and k < len(COMMANDS) and COMMANDS[k][0] == n:
             # after the step, in the frame's slack, where Runner.run polls the console
             c = COMMANDS[k]
             if c[1] is None:
