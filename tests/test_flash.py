@@ -37,7 +37,8 @@ def expected(board, entry, drivers):
     files.append("boards/%s.py" % board)
     if entry == "code.py":
         files.append("boot.py")  # CircuitPython: gives code.py the flash for `save`
-    return sorted(files + ["robots/__init__.py", "robots/default.py", entry])
+    # The robot file and its servo guard table (hexapod.reach.find_table).
+    return sorted(files + ["robots/__init__.py", "robots/default.py", "robots/default_guard.py", entry])
 
 
 def as_mpy(paths):
