@@ -145,6 +145,7 @@ class Console:
         self.lines = 0  # lines answered
         self._job = None  # a multi-line reply under way (selftest): step() once a frame, abort(), done
         self._job_tag = None  # its request's tag: each of its lines carries it
+        self._gait_reply = -1  # a gait being checked over frames (Robot.set_gait wait=False): its reply waits
         # The robot file's calibration (robots/<robot>_cal.py): (centre_us, direction, min_us,
         # max_us) per servo; centre_us is the pulse at the servo's reference angle (ref_cdeg).
         self.base = tuple((s.centre_us, s.direction, s.min_us, s.max_us) for s in self.robot.servos)
@@ -202,6 +203,8 @@ class Console:
                     self.robot.stop()
         if self._job is not None:
             self._job_step()
+        if self._gait_reply >= 0 and not self.robot.configuring():
+            self._gait_done()
         reader = self.reader
         if reader is None:
             return
@@ -643,10 +646,25 @@ class Console:
             self._args(args, 1, "a gait name (%s)" % ", ".join(gait.NAMES))
             if args[0] not in gait.NAMES:
                 raise ValueError("%r, allowed %s" % (args[0][:20], ", ".join(gait.NAMES)))
-            code = self.robot.set_gait(gait.NAMES.index(args[0]))
+            g = gait.NAMES.index(args[0])
+            # Checked over the next frames (the servo guard's solves), the robot walking on
+            # meanwhile and the console answering other lines: the reply comes when it is done.
+            code = self.robot.set_gait(g, wait=False)
             if code:
                 return self._refused(code)
+            if self.robot.configuring():
+                self._gait_reply = g
+                return None
         return "ok gait " + gait.NAMES[self.robot.gait]
+
+    def _gait_done(self):
+        self._gait_reply = -1
+        code = self.robot.job_code
+        reply = self._refused(code) if code else "ok gait " + gait.NAMES[self.robot.gait]
+        if reply[:4] == "err " and not reply.startswith("err gait:"):
+            reply = "err gait: " + reply[4:]
+        self.lines += 1
+        self.out(reply)
 
     def _sonar(self, args):
         self._args(args, 0, "no arguments")

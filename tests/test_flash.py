@@ -40,8 +40,11 @@ def expected(board, entry, drivers):
     files.append("boards/%s.py" % board)
     if entry == "code.py":
         files.append("boot.py")  # CircuitPython: gives code.py the flash for `save`
-    # the robot's build and its calibration file (servo rows, sonar mounts: hexapod.robotcal)
-    return sorted(files + ["robots/__init__.py", "robots/default.py", "robots/default_cal.py", entry])
+    # the robot's build, its calibration file (servo rows, sonar mounts: hexapod.robotcal) and its
+    # servo guard table (hexapod.reach.find_table)
+    return sorted(
+        files + ["robots/__init__.py", "robots/default.py", "robots/default_cal.py", "robots/default_guard.py", entry]
+    )
 
 
 def as_mpy(paths):

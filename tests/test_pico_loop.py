@@ -97,7 +97,7 @@ def test_boot_bench_reports_the_first_burst(fs, capsys):
     result = json.loads(capsys.readouterr().out)
     # The first burst after imports and the guard's solves; then 50 Hz frames. (The trace's clock,
     # the runner's cycle count at 125 MHz, reads the board's 20 ms frames as 19.8 ms: within 2 %.)
-    assert 2.0 < result["first_burst_s"] < 6.0 and abs(result["frame_period_ms"] - 20) < 0.4, result
+    assert 0.2 < result["first_burst_s"] <= 1.0 and abs(result["frame_period_ms"] - 20) < 0.4, result
     assert result["frames_in_6s"] > 50, result
 
 

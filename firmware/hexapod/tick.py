@@ -32,7 +32,7 @@ from hexapod.fixmath import cos, isqrt, mul_q15, sin
 from hexapod.gait import TICK_MS, TRIPOD, check_cycle_ms, check_gait
 from hexapod.leg import OK
 from hexapod.posture import POSTURE_STEP, Posture
-from hexapod.reach import disc_radii
+from hexapod.reach import disc_steps, find_table, table_discs
 from hexapod.servo import ServoMap
 from hexapod.turns import sweep_command
 from hexapod.walk import SERVO_SPEED, SPEED_MAX, STEP_MAX, STOPPED, YAW_RATE_MAX, Walker
@@ -61,6 +61,7 @@ JOG_SERVO = const(27)  # a jog or calibration refused by a servo: jog_servo, jog
 # 28 is hexapod.walk.SERVO_SPEED.
 PATH_IK = const(30)  # a posture move refused: on its way leg path_leg would fail its IK (jog_code, _excess)
 PATH_SERVO = const(31)  # a posture move refused: on its way servo jog_servo would leave its range (jog_code, _excess)
+CONFIGURING = const(32)  # refused: a gait, cycle, lift, pose or height change is still being checked
 
 RELAXED = const(0)
 SITTING = const(1)
@@ -79,6 +80,11 @@ WAKE_STAGGER = const(8)
 WAKE_FRAMES = const(24)  # 3 groups x WAKE_STAGGER: frames the first pose is held
 WAKE_GROUP = (0, 1, 2, 2, 1, 0)  # each leg's group (legs 1 RF .. 6 LF)
 RHO_MIN = const(50)  # a leg needs a reach disc this wide (0.1 mm) to walk
+# A configure asked with wait=False (the console's) runs in the frames' slack: this many of its IK
+# solves (hexapod.reach's steps, the posture trial's) after each tick's frame. On an emulated Pico
+# a solve there costs ~0.6-0.75 ms, a frame with a walk command ~4.2 ms before them: two keep it
+# under 6 ms (three made 6.4 ms: hexapod pico bench frame --scenario drive, docs/pico.md).
+JOB_STEPS = const(2)
 
 
 def describe(code):
@@ -96,6 +102,7 @@ def describe(code):
         PATH_IK: "refused: on the way a foot would leave its reach or a joint pass its limit",
         PATH_SERVO: "refused: on the way a pulse would leave its servo's calibrated range",
         SERVO_SPEED: "refused: the servos are too slow for this gait's swing (longer cycle or lower lift)",
+        CONFIGURING: "refused: a gait, pose or height change is still being checked; try again shortly",
     }.get(code, "unknown reason %d" % code)
 
 
@@ -142,6 +149,9 @@ _STAND_STRAIGHT = const(1)
 _SIT = const(2)
 _SIT_LIFTED = const(3)
 _HEIGHT = const(4)
+# The configures Robot._steps finishes besides a gait (0..3, hexapod.gait's numbers).
+_POSE = const(5)
+_PARAMS = const(6)
 
 
 class Robot:
@@ -172,6 +182,15 @@ class Robot:
         self._pulses = array("i", [0] * 18)
         self._leg = [0, 0, 0]
         self._rho = [0] * 6
+        # The posture trial's own scratch: it may run between ticks, which write _angles and _pulses.
+        self._trial_angles = array("i", [0] * 18)
+        self._trial_pulses = array("i", [0] * 18)
+        self._trial_leg = [0, 0, 0]
+        self._path_code = OK
+        self._job = None  # a configure under way (a generator stepped JOB_STEPS solves a tick)
+        self._holds = False  # it needs the robot standing still (a pose or height): walking waits
+        self.job_code = OK  # how the last configure ended (set_* with wait=False)
+        self.job_steps = 0  # solves done by configures in the frames' slack (a work counter)
         self.mode = RELAXED
         self.after = RELAXED  # the mode a running posture move ends in
         self.wake = WAKE_FRAMES  # frames since a move left RELAXED, up to WAKE_FRAMES (soft start)
@@ -199,7 +218,10 @@ class Robot:
         # Each gait keeps its own cycle time (ms): the robot file's until set_params sets one.
         self.cycles = list(geometry.gait_cycle_ms)
         self.cycle_ms = self.cycles[TRIPOD]
-        disc_radii(self.walker, self._probe, self.walker.lift, self._rho)
+        # The robot file's own settings come from its guard table (robots/NAME_guard.py, made on
+        # the host and checked against the live guard), else the guard runs here.
+        self.walker.table = self._table = find_table(geometry)
+        self._drain(self._discs(self._probe, self.walker.lift))
         self.walker.pose_body = self._probe  # the servo-speed check sees the pose asked for
         self.walker.configure(TRIPOD, self.cycle_ms, self.walker.lift, self.walker.step, self._rho)
         # Until told otherwise (assume_angles), the robot rests on its body, feet at neutral.
@@ -209,7 +231,22 @@ class Robot:
     # -- the tick ----------------------------------------------------------------------
 
     def tick(self, now_ms):
-        """One 20 ms frame at loop time now_ms; returns OK or the reason the frame was held."""
+        """One 20 ms frame at loop time now_ms; returns OK or the reason the frame was held.
+        A configure under way (wait=False) then takes JOB_STEPS of its IK solves."""
+        code = self._frame(now_ms)
+        if self._job is not None:
+            self._work(JOB_STEPS)
+        return code
+
+    def _work(self, n):
+        job = self._job
+        for _ in range(n):
+            next(job)
+            self.job_steps += 1
+            if self._job is None:
+                return
+
+    def _frame(self, now_ms):
         if self._timed:
             d = (now_ms - self._last_ms) & _WRAP
             if d > TICK_MS:
@@ -346,6 +383,8 @@ class Robot:
     def _can_move(self):
         if self.mode == WALKING:
             return WALKING_NOW
+        if self._holds:
+            return CONFIGURING
         if self.mode == MOVING or not _settled(self.body):
             return BUSY
         return OK
@@ -406,33 +445,120 @@ class Robot:
     def _path_clear(self, plan):
         """Try the posture move `plan` on the scratch feet (already where the move starts), frame
         by frame as the tick would send it: OK, or PATH_IK / PATH_SERVO for its first bad frame."""
+        self._drain(self._path_steps(plan))
+        return self._path_code
+
+    def _path_steps(self, plan):
+        """_path_clear one leg solve at a time (a generator; its code in _path_code when done)."""
         f = self._feet
         trial = self._trial
         self._plan(trial, f, plan)
         legs = self.geometry.legs
-        a = self._angles
-        p = self._pulses
-        leg = self._leg
+        a = self._trial_angles
+        p = self._trial_pulses
+        leg = self._trial_leg
         more = True
+        self._path_code = OK
         while more:  # every frame of the move, then the pose it ends in (once more: it is held there)
             more = trial.step(f)
             for i in range(6):
                 self.body.to_leg(i, f.fx[i], f.fy[i], f.fz[i], leg, 0)
                 code = legs[i].ik(leg[0], leg[1], leg[2], a, 3 * i)
+                yield
                 if code != OK:
                     self.path_leg = i
                     self.jog_code = code
                     self.jog_excess = legs[i].excess
                     trial.clear()
-                    return PATH_IK
+                    self._path_code = PATH_IK
+                    return
             for k in range(18):
                 code = self.servos[k].pulse(a[k], p, k)
                 if code != OK:
                     self.path_leg = k // 3
                     self._servo_refused(k, code, self.servos[k].excess)
                     trial.clear()
-                    return PATH_SERVO
+                    self._path_code = PATH_SERVO
+                    return
+
+    # -- configures: now (wait=True), or JOB_STEPS solves a tick (wait=False) ---------------
+
+    def configuring(self):
+        """True while a configure asked with wait=False is under way (its code then in job_code)."""
+        return self._job is not None
+
+    def _drain(self, steps):
+        if steps is not None:
+            for _ in steps:
+                pass
+
+    def _discs(self, body, lift):
+        """The reach discs under body's pose at lift into _rho: from the guard table (None), else
+        a generator that finds them (reach.disc_steps)."""
+        w = self.walker
+        if self._table is not None and table_discs(self._table, body, w.ground, lift, self._rho):
+            return None
+        return disc_steps(w, body, lift, self._rho)
+
+    def _start(self, job, holds, wait):
+        """Run a configure's generator now (wait: returns its code), or from the next tick on
+        (returns OK at once; configuring() until done, then job_code)."""
+        self._job = job
+        self._holds = holds
+        if wait:
+            while self._job is not None:
+                next(job)
+            return self.job_code
         return OK
+
+    def _steps(self, what, feet, path, discs, steps, arg):
+        """A configure's generator: the feet where they stand (feet: UNREACHABLE when one cannot
+        stay there), the posture trial (path), the reach discs, the walker's configure (steps),
+        then what it changes: what is a gait (arg its cycle), _PARAMS (arg the cycle), _POSE (arg
+        the pose) or _HEIGHT (arg the ground to go back to when refused)."""
+        w = self.walker
+        code = OK
+        if feet is not None:
+            for _ in feet:
+                yield
+            code = self._path_code
+        if code == OK and path is not None:
+            for _ in path:
+                yield
+            code = self._path_code
+        if code == OK and discs is not None:
+            for _ in discs:
+                yield
+        if code == OK and what == _PARAMS and self.mode == WALKING and not self._roomy(self._rho):
+            code = UNREACHABLE  # that lift would leave a walking leg no room to step
+        if code == OK:
+            for _ in steps:
+                yield
+            code = w.configured
+        if code != OK:
+            if what == _HEIGHT:
+                w.ground = arg
+        elif what == _POSE:
+            self.body.set_target(arg)
+        elif what == _HEIGHT:
+            if path is not None:
+                self.posture.to_height(w, w.ground)
+                self.after = STANDING
+                self.mode = MOVING
+        elif what == _PARAMS:
+            self.cycle_ms = arg
+            self.cycles[self.gait] = arg
+        else:
+            self.gait = what
+            self.cycle_ms = arg
+            self.cycles[what] = arg
+        self._end(code)
+        yield
+
+    def _end(self, code):
+        self.job_code = code
+        self._job = None
+        self._holds = False
 
     def relax(self):
         """Sit down, then let the servos go limp."""
@@ -443,8 +569,9 @@ class Robot:
             self.after = RELAXED
         return code
 
-    def set_height(self, height):
-        """Body height above the ground, 0.1 mm, within the robot file's range; moved gradually."""
+    def set_height(self, height, wait=True):
+        """Body height above the ground, 0.1 mm, within the robot file's range; moved gradually
+        (wait=False: checked over the next frames, job_code says how it ended)."""
         g = self.geometry
         if not isinstance(height, int) or isinstance(height, bool):
             raise ValueError("height: need a whole number (0.1 mm), got %r" % (height,))
@@ -453,74 +580,68 @@ class Robot:
         code = self._can_move()
         if code != OK:
             return code
+        if self._job is not None:
+            return CONFIGURING
         w = self.walker
         old = w.ground
         w.set_ground(height)
-        if self.mode == STANDING and not self._feet_reachable(self.body):
-            w.ground = old
-            return UNREACHABLE
+        feet = path = None
         if self.mode == STANDING:
+            feet = self._feet_steps(self.body)
             self._start_feet()
-            code = self._path_clear(_HEIGHT)
-            if code != OK:
-                w.ground = old
-                return code
-        disc_radii(w, self.body, w.lift, self._rho)
-        code = w.configure(self.gait, self.cycle_ms, w.lift, w.step, self._rho, False)
-        if code != OK:
-            w.ground = old
-            return code
-        if self.mode == STANDING:
-            self.posture.to_height(w, w.ground)
-            self.after = STANDING
-            self.mode = MOVING
-        return OK
+            path = self._path_steps(_HEIGHT)
+        discs = self._discs(self.body, w.lift)
+        steps = w.configure_steps(self.gait, self.cycle_ms, w.lift, w.step, self._rho, False)
+        return self._start(self._steps(_HEIGHT, feet, path, discs, steps, old), True, wait)
 
-    def _feet_reachable(self, body):
-        """True when every foot, at the walker's ground height, solves under body's pose."""
+    def _feet_steps(self, body):
+        """Whether every foot, at the walker's ground height, solves under body's pose, one leg a
+        step (a generator; _path_code UNREACHABLE when one does not)."""
         w = self.walker
+        leg = self._trial_leg
+        self._path_code = OK
         for i in range(6):
-            body.to_leg(i, w.fx[i], w.fy[i], w.ground, self._leg, 0)
-            if self.geometry.legs[i].ik(self._leg[0], self._leg[1], self._leg[2], self._angles, 0) != OK:
-                return False
-        return True
+            body.to_leg(i, w.fx[i], w.fy[i], w.ground, leg, 0)
+            code = self.geometry.legs[i].ik(leg[0], leg[1], leg[2], self._trial_angles, 0)
+            yield
+            if code != OK:
+                self._path_code = UNREACHABLE
+                return
 
-    def set_pose(self, x=0, y=0, z=0, roll=0, pitch=0, yaw=0, cx=0, cy=0, cz=0):
-        """Body pose (0.1 mm, cdeg) about centre (cx, cy, cz); only standing still; moved gradually."""
+    def set_pose(self, x=0, y=0, z=0, roll=0, pitch=0, yaw=0, cx=0, cy=0, cz=0, wait=True):
+        """Body pose (0.1 mm, cdeg) about centre (cx, cy, cz); only standing still; moved gradually
+        (wait=False: checked over the next frames, job_code says how it ended)."""
         pose = [x, y, z, roll, pitch, yaw, cx, cy, cz]
         self._probe.check_pose(pose)
         if self.mode != STANDING:
             return WALKING_NOW if self.mode == WALKING else (BUSY if self.mode == MOVING else NOT_STANDING)
+        if self._job is not None:
+            return CONFIGURING
         probe = self._probe
         probe.set_target(pose)
         probe.jump()
-        if not self._feet_reachable(probe):
-            return UNREACHABLE
         w = self.walker
-        disc_radii(w, probe, w.lift, self._rho)
-        code = w.configure(self.gait, self.cycle_ms, w.lift, w.step, self._rho, False)
-        if code != OK:
-            return code
-        self.body.set_target(pose)
-        return OK
+        discs = self._discs(probe, w.lift)
+        steps = w.configure_steps(self.gait, self.cycle_ms, w.lift, w.step, self._rho, False)
+        return self._start(self._steps(_POSE, self._feet_steps(probe), None, discs, steps, pose), True, wait)
 
-    def set_gait(self, gait, cycle_ms=None):
+    def set_gait(self, gait, cycle_ms=None, wait=True):
         """Switch gait (gait.TRIPOD ...) at cycle_ms (ms), else at the gait's own cycle time: now
-        when stopped, else when no foot is in the air."""
+        when stopped, else when no foot is in the air (wait=False: checked over the next frames
+        while the robot walks on in its gait, job_code says how it ended)."""
         check_gait(gait)
         if cycle_ms is not None:
             check_cycle_ms(cycle_ms)
+        if self._job is not None:
+            return CONFIGURING
         w = self.walker
         cycle = self.cycles[gait] if cycle_ms is None else cycle_ms
-        code = w.configure(gait, cycle, w.next_lift, w.step, w.next_rho)
-        if code == OK:
-            self.gait = gait
-            self.cycle_ms = cycle
-            self.cycles[gait] = cycle
-        return code
+        steps = w.configure_steps(gait, cycle, w.next_lift, w.step, w.next_rho)
+        return self._start(self._steps(gait, None, None, None, steps, cycle), False, wait)
 
-    def set_params(self, step_length=None, lift_height=None, cycle_ms=None):
-        """Step length and lift height (0.1 mm), the present gait's cycle time (ms); each bounded (ValueError)."""
+    def set_params(self, step_length=None, lift_height=None, cycle_ms=None, wait=True):
+        """Step length and lift height (0.1 mm), the present gait's cycle time (ms); each bounded
+        (ValueError). wait=False: checked over the next frames, job_code says how it ended."""
         w = self.walker
         step = w.step if step_length is None else step_length
         lift = w.next_lift if lift_height is None else lift_height
@@ -528,16 +649,13 @@ class Robot:
         w.check_step(step)
         w.check_lift(lift)
         check_cycle_ms(cycle)
+        if self._job is not None:
+            return CONFIGURING
         self._probe.set_target(self.body.target)
         self._probe.jump()
-        disc_radii(w, self._probe, lift, self._rho)
-        if self.mode == WALKING and not self._roomy(self._rho):
-            return UNREACHABLE  # that lift would leave a walking leg no room to step
-        code = w.configure(self.gait, cycle, lift, step, self._rho)
-        if code == OK:
-            self.cycle_ms = cycle
-            self.cycles[self.gait] = cycle
-        return code
+        discs = self._discs(self._probe, lift)
+        steps = w.configure_steps(self.gait, cycle, lift, step, self._rho)
+        return self._start(self._steps(_PARAMS, None, None, discs, steps, cycle), False, wait)
 
     def walk(self, vx, vy, yaw_rate):
         """Walk at vx, vy (0.1 mm/s) turning at yaw_rate (cdeg/s); scaled down to what reach allows
@@ -545,6 +663,8 @@ class Robot:
         self.walker.check_command(vx, vy, yaw_rate)
         if self.mode != STANDING and self.mode != WALKING:
             return BUSY if self.mode == MOVING else NOT_STANDING
+        if self._holds:
+            return CONFIGURING  # a pose or height is being checked: the robot stands still till then
         if not _settled(self.body):
             return BUSY
         if (vx or vy or yaw_rate) and not self._roomy(self.walker.rho):

@@ -37,7 +37,7 @@ from hexapod.limits import (  # largest |vx|, |vy| (0.1 mm/s) and |yaw rate| (cd
     YAW_RATE_MAX,
     is_whole,
 )
-from hexapod.reach import servo_radii
+from hexapod.reach import servo_steps, table_servo
 from hexapod.trajectory import swing_shape, swing_stroke
 
 # The viper twins (docs/viper.md): the tick's walker steps compiled by the viper emitter where
@@ -101,6 +101,13 @@ class Walker:
         # turn the joints faster than the servo budget (docs/physics.md, 2026-11-23 reversals).
         self.stance_rho = _words(6)
         self.servo_peak = 0  # largest joint change (cdeg/tick) of a swing without a step, last configure
+        self.configured = OK  # the last configure's code (configure_steps leaves it here)
+        self._caps = [0] * 6  # the servo guard's scratch: how far it looks, its radii and peak
+        self._srho = [0] * 6
+        self._peak = [0]
+        self.guard_buf = [0] * 9  # reach.disc_steps' and servo_steps' scratch (a foot, two ticks' angles)
+        self.guard_tmp = [0, 0]
+        self.table = None  # the robot file's guard table (hexapod.reach.find_table), set by the Robot
         self.pose_body = None  # the Body whose pose the servo-speed check uses (else level)
         self.fx = _words(6)  # current feet, body frame, fine
         self.fy = _words(6)
@@ -177,18 +184,43 @@ class Walker:
         not lift and lower a foot in this gait's swing at this cycle time and lift within 90 %
         of their budget (geometry.servo_step). Not strict (a new pose or height): taken all
         the same with no room to step (srho 0), so that walking is refused until it changes."""
+        for _ in self.configure_steps(gait, cycle_ms, lift, step, rho, strict):
+            pass
+        return self.configured
+
+    def configure_steps(self, gait, cycle_ms, lift, step, rho, strict=True):
+        """configure one IK solve at a time: the settings are checked now (ValueError), then a
+        generator that yields after each of the servo guard's solves (reach.servo_steps) and
+        takes the settings when exhausted, leaving configure's code in `configured`. rho is
+        read when the guard starts (a caller may fill it first), the pose (pose_body) now."""
         check_gait(gait)
         check_cycle_ms(cycle_ms)
         self.check_lift(lift)
         self.check_step(step)
+        guard = None
         limit = self.geometry.servo_step
         if limit:
             body = self.pose_body if self.pose_body is not None else Body(self.geometry)
             ticks = swing_stance_ticks(gait, cycle_ms, [0, 0])
-            srho = [0] * 6
+            guard = servo_steps(self, body, ticks[0], ticks[1], lift, limit, self._caps, self._srho, self._peak)
+        return self._configure(guard, gait, cycle_ms, lift, step, rho, strict)
+
+    def _configure(self, guard, gait, cycle_ms, lift, step, rho, strict):
+        # The guard's answer from the robot file's table (hexapod.reach.table_servo), else its solves.
+        t = self.table
+        if guard is not None and (t is None or not table_servo(t, self, gait, cycle_ms, lift, step, rho)):
             # No need to look past what the reach and the step allow already.
-            caps = [rho[i] if rho[i] < step else step for i in range(6)]
-            peak = servo_radii(self, body, ticks[0], ticks[1], lift, limit, caps, srho)
+            for i in range(6):
+                self._caps[i] = rho[i] if rho[i] < step else step
+            for _ in guard:
+                yield
+        self.configured = self.take(gait, cycle_ms, lift, step, rho, strict, guard is not None)
+
+    def take(self, gait, cycle_ms, lift, step, rho, strict, guarded):
+        """configure's last part, with the servo guard's radii and peak (guarded) in _srho, _peak."""
+        if guarded:
+            limit = self.geometry.servo_step
+            peak = self._peak[0]
             self.servo_peak = peak
             # The lift alone may use 90 % of the budget: shorter swings accelerate the joints
             # harder than the servos follow within 80 % of stall (docs/physics.md).
@@ -196,7 +228,7 @@ class Walker:
             if over and strict:
                 return SERVO_SPEED
             for i in range(6):
-                self.next_srho[i] = 0 if over else srho[i]
+                self.next_srho[i] = 0 if over else self._srho[i]
         self.step = step
         self.next_gait = gait
         self.next_cycle_ms = cycle_ms

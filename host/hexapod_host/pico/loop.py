@@ -60,7 +60,7 @@ for m in chips.values():
     recorder(m)
     bus.attach(m)
 SONAR = stub_board.sonar_models(BOARD, %r)
-sys.argv[:] = ["host", "%d"]
+sys.argv[:] = ["host", "%d", "%s"]
 """
 
 
@@ -69,20 +69,20 @@ def _script():
         return f.read()
 
 
-def host(frames):
+def host(frames, scenario="default"):
     """(output lines, bursts) of the loop on the stub machine (CPython)."""
-    out = CPythonRuntime().run(HOST_SETUP % (DISTANCES, frames) + _script() + "\nprint('BURSTS', BURSTS)\n")
+    out = CPythonRuntime().run(HOST_SETUP % (DISTANCES, frames, scenario) + _script() + "\nprint('BURSTS', BURSTS)\n")
     lines = out.splitlines()
     bursts = [(a, list(c)) for a, c in eval(lines[-1][len("BURSTS ") :])]  # noqa: S307 (our own repr)
     return lines[:-1], bursts
 
 
-def board(frames, fs):
+def board(frames, fs, scenario="default"):
     """(status, output lines, bursts, stats) of the loop on the emulated Pico."""
     with tempfile.TemporaryDirectory() as tmp:
         script = os.path.join(tmp, "loop_frames.py")
         with open(script, "w") as f:
-            f.write("import sys\nsys.argv[:] = ['pico', '%d']\n" % frames + _script())
+            f.write("import sys\nsys.argv[:] = ['pico', '%d', '%s']\n" % (frames, scenario) + _script())
         trace = os.path.join(tmp, "trace.jsonl")
         status, out, err, stats = pico.run(
             [script], fs=fs, devices=pico.devices(distances=list(DISTANCES)), trace=trace
@@ -118,5 +118,5 @@ def boot_main(seconds, fs, times=None):
 def host_main(frames):
     """(output, bursts) of main.main(frames) on the stub machine (CPython)."""
     run_main = "import main\nmain.main(%d, clock=clock)\nprint('BURSTS', BURSTS)\n" % frames
-    lines = CPythonRuntime().run(HOST_SETUP % (DISTANCES, frames) + run_main).splitlines()
+    lines = CPythonRuntime().run(HOST_SETUP % (DISTANCES, frames, "default") + run_main).splitlines()
     return lines[:-1], [(a, list(c)) for a, c in eval(lines[-1][len("BURSTS ") :])]  # noqa: S307

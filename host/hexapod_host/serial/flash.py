@@ -65,9 +65,10 @@ def boards():
 
 
 def robots():
-    """Robot names: the files in robots/ but their calibration files (robots/<robot>_cal.py)."""
+    """Robot names: the files in robots/ but their calibration files (robots/<robot>_cal.py) and
+    guard tables (robots/<robot>_guard.py: hexapod.guardtable)."""
     names = [f[:-3] for f in os.listdir(os.path.join(ROOT, "robots")) if f.endswith(".py") and f != "__init__.py"]
-    return sorted(n for n in names if not n.endswith(CAL))
+    return sorted(n for n in names if not n.endswith(CAL) and not n.endswith("_guard"))
 
 
 def board_data(board):
@@ -149,6 +150,9 @@ def select_files(board, robot):
     core = [f for f in core if f.endswith(".py")]
     chosen = [os.path.join(ROOT, "boards", n) for n in ("__init__.py", board + ".py")]
     chosen += [os.path.join(ROOT, "robots", n) for n in ("__init__.py", robot + ".py", robot + CAL + ".py")]
+    table = os.path.join(ROOT, "robots", robot + "_guard.py")  # the robot's guard table, when it has one
+    if os.path.isfile(table):
+        chosen.append(table)
     if cp and os.path.isfile(os.path.join(FIRMWARE, "boot.py")):
         chosen.append(os.path.join(FIRMWARE, "boot.py"))  # makes the flash writable for `save`
     files, outside = closure(entry, core + chosen)

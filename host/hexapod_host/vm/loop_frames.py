@@ -8,7 +8,12 @@
 # sender (drivers/_i2c_rp2.py) its counts and how many frames began a whole period after the last
 # with its bursts still on the bus. The script's walk commands run after their frame's step, in the
 # slack where Runner.run polls the console; their own time is `commands_us`.
-# Arguments: [frames (default 500)].
+# The "drive" scenario drives as a person with a joystick would: a walk command five times a
+# second (ramps, reversals, crabbing, turning), gait changes while walking, stops, and height and
+# pose changes while standing, all asked as the console asks them (wait=False: checked over the
+# frames' slack); its frame time counts the commands made in that frame, and it also reports each
+# configure's frames (asked to done) and codes.
+# Arguments: [frames (default 500)] [scenario: default or drive].
 import gc
 import json
 import sys
@@ -23,27 +28,78 @@ import main
 import runner
 
 FRAMES = int(sys.argv[1]) if len(sys.argv) > 1 else 500
+SCENARIO = sys.argv[2] if len(sys.argv) > 2 else "default"
 # (frame, vx 0.1 mm/s, vy, yaw cdeg/s); None: stop. Frame 0 stands up.
 COMMANDS = ((60, 1200, 0, 0), (160, 0, 0, 3000), (230, 600, 600, 0), (300, -800, 0, 0), (400, None, 0, 0))
 BUSY = array("i", [0] * FRAMES)  # us from a frame's start to the end of its step
 START = array("i", [0] * FRAMES)  # us from the first frame's start
+GAPS = array("i", [0] * (FRAMES - 1))  # the periods, for the summary
 LATE = array("i", [0])  # frames begun a whole period after the last with the background sender still busy
 COMMAND_US = array("i", [0] * len(COMMANDS))  # each command's time (Robot.walk/stop) after its frame's step, us
+# drive: (frame, what, args); "walk" (vx, vy, yaw), "stop", "gait" (gait), "height" (0.1 mm),
+# "pose" (roll, pitch cdeg). The walks come every 10 frames while walking.
+JOY = ((1200, 0, 0), (1500, 0, 1500), (600, 600, 0), (0, 1200, 0), (-800, 0, 0), (0, 0, 3000), (900, -400, -1000))
+DRIVE = (
+    (110, "gait", (2, 0)),  # ripple while walking (its own cycle: from the guard table)
+    (200, "gait", (0, 0)),  # back to the tripod
+    (300, "gait", (0, 1200)),  # the tripod at 1.2 s: not in the table, checked over ~1,100 frames
+    (440, "stop", 0),
+    (600, "pose", (300, 0)),  # asked while that is still being checked: refused
+    (1750, "height", 700),  # checked over ~2,000 frames, standing
+    (1850, "gait", (1, 0)),  # asked meanwhile: refused
+)
+JOB = array("i", [0, 0])  # frames begun with a configure under way, the longest of them (us)
+DRIVE_LOG = []  # (frame, what, code at once, frames until done, job code)
+
+
+def drive(robot, n, pending):
+    """The drive scenario's commands for frame n (after the step, as the console's)."""
+    if pending[0] >= 0 and not robot.configuring():
+        DRIVE_LOG[pending[0]][3] = n - pending[1]
+        DRIVE_LOG[pending[0]][4] = robot.job_code
+        pending[0] = -1
+    if 60 <= n < 440 and n % 10 == 0:
+        c = JOY[(n // 10) % len(JOY)]
+        robot.walk(c[0], c[1], c[2])
+    for f, what, arg in DRIVE:
+        if f != n:
+            continue
+        if what == "stop":
+            code = robot.stop()
+        elif what == "gait":
+            code = robot.set_gait(arg[0], arg[1] or None, wait=False)
+        elif what == "height":
+            code = robot.set_height(arg, wait=False)
+        else:
+            code = robot.set_pose(roll=arg[0], pitch=arg[1], wait=False)
+        DRIVE_LOG.append([n, what, code, -1, -1])
+        if code == 0 and what != "stop" and robot.configuring():
+            pending[0] = len(DRIVE_LOG) - 1
+            pending[1] = n
 
 
 def loop(r, frames):
     bg = getattr(r.bank, "_sender", None)
     k = 0
+    pending = [-1, 0]
     t_first = clock.ticks_us()
+    driving = SCENARIO == "drive"
     for n in range(frames):
+        busy = r.robot._job is not None  # (read before the frame's clock starts: not the frame's time)
         t0 = clock.ticks_us()
         # (a frame begun at once after an overrun may find the last bursts still going out)
         if bg is not None and bg._st[3] and n and clock.ticks_diff(t0, t_first) - START[n - 1] >= 19990:
             LATE[0] += 1
         r.step()
+        if driving:
+            drive(r.robot, n, pending)
         BUSY[n] = clock.ticks_diff(clock.ticks_us(), t0)
+        if busy:
+            JOB[0] += 1
+            if BUSY[n] > JOB[1]:
+                JOB[1] = BUSY[n]
         START[n] = clock.ticks_diff(t0, t_first)
-        if k < len(COMMANDS) and COMMANDS[k][0] == n:
+        if not driving and k < len(COMMANDS) and COMMANDS[k][0] == n:
             # after the step, in the frame's slack, where Runner.run polls the console
             c = COMMANDS[k]
             if c[1] is None:
@@ -55,13 +111,36 @@ def loop(r, frames):
         r.wait()
 
 
-def summary(free_after_boot, heap, bg=None):
-    busy = sorted(BUSY)
-    gaps = sorted(START[n + 1] - START[n] for n in range(FRAMES - 1))
+def _sorted(a):
+    """a (an array) sorted in place (Shell's gaps): a list of 1,600 frames would need one
+    contiguous block the board's heap may no longer have after the loop."""
+    gap = len(a) // 2
+    while gap:
+        for i in range(gap, len(a)):
+            v = a[i]
+            j = i
+            while j >= gap and a[j - gap] > v:
+                a[j] = a[j - gap]
+                j -= gap
+            a[j] = v
+        gap = gap // 2 if gap > 2 else gap - 1
+    return a
+
+
+def summary(r, free_after_boot, heap, bg=None):
+    worst_at = 0
+    for n in range(FRAMES):
+        if BUSY[n] > BUSY[worst_at]:
+            worst_at = n
+    for n in range(FRAMES - 1):
+        GAPS[n] = START[n + 1] - START[n]
+    busy = _sorted(BUSY)
+    gaps = _sorted(GAPS)
     return {
         "frames": FRAMES,
         "frame_median_us": busy[FRAMES // 2],
         "frame_max_us": busy[-1],
+        "frame_max_at": worst_at,
         "frame_p99_us": busy[(FRAMES * 99) // 100],
         "period_min_us": gaps[0],
         "period_max_us": gaps[-1],
@@ -77,6 +156,12 @@ def summary(free_after_boot, heap, bg=None):
         "sender": list(bg.stats) if bg is not None else None,  # refills, writes done, NACKs
         "frames_begun_with_bus_busy": LATE[0],
         "commands_us": list(COMMAND_US),
+        "scenario": SCENARIO,
+        "drive": DRIVE_LOG if SCENARIO == "drive" else None,
+        "job_steps": r.robot.job_steps,
+        "configure_frames": JOB[0],
+        "configure_frame_max_us": JOB[1],
+        "overruns": r.robot.overruns,
     }
 
 
@@ -94,5 +179,6 @@ before = gc.mem_alloc() if weigh else 0
 loop(r, FRAMES)
 heap = (gc.mem_alloc() - before) / FRAMES if weigh else -1
 gc.enable()
+gc.collect()  # the summary's sorted copies need the heap the loop's commands left behind
 print(runner.status_line(r))
-print(json.dumps(summary(free, heap, getattr(r.bank, "_sender", None))))
+print(json.dumps(summary(r, free, heap, getattr(r.bank, "_sender", None))))
