@@ -146,6 +146,7 @@ class Console:
         self._job = None  # a multi-line reply under way (selftest): step() once a frame, abort(), done
         self._job_tag = None  # its request's tag: each of its lines carries it
         self._gait_reply = -1  # a gait being checked over frames (Robot.set_gait wait=False): its reply waits
+        self._gait_tag = None  # that request's tag: its late reply carries it
         # The robot file's calibration (robots/<robot>_cal.py): (centre_us, direction, min_us,
         # max_us) per servo; centre_us is the pulse at the servo's reference angle (ref_cdeg).
         self.base = tuple((s.centre_us, s.direction, s.min_us, s.max_us) for s in self.robot.servos)
@@ -335,8 +336,11 @@ class Console:
             return "err %s: %s" % (word, e)
         except Exception as e:  # the loop must go on whatever a command hits
             return "err %s: internal error %s %s" % (word, type(e).__name__, e)
-        if reply is None:  # a multi-line reply started: poll() prints its lines, the end line last
-            self._job_tag = tag
+        if reply is None:  # a multi-line reply started, or a gait's check: poll() prints the rest
+            if word == "gait":
+                self._gait_tag = tag
+            else:
+                self._job_tag = tag
             return None
         if reply[:4] == "err " and not reply.startswith("err " + word + ":"):
             reply = "err %s: %s" % (word, reply[4:])  # every err names its command
@@ -664,7 +668,8 @@ class Console:
         if reply[:4] == "err " and not reply.startswith("err gait:"):
             reply = "err gait: " + reply[4:]
         self.lines += 1
-        self.out(reply)
+        self._say(self._gait_tag, reply)
+        self._gait_tag = None
 
     def _sonar(self, args):
         self._args(args, 0, "no arguments")

@@ -86,3 +86,24 @@ def test_a_status_during_a_gait_change_is_answered_in_the_next_frame(both_runtim
     assert 100 < n < 4000
     assert [line for line in later if "gait" in line] == ["ok gait ripple"]
     assert rows[5] == "ok gait ripple"
+
+
+TAGGED = """
+frames(150)
+say("stand")
+frames(150)
+before = len(REPLIES)
+reader.feed(b"#5 gait ripple\\n")
+n = 0
+while not any(x.startswith("#5 ok") or x.startswith("#5 err") for x in REPLIES[before:]) and n < 4000:
+    frames(1)
+    n += 1
+print(repr(REPLIES[before:]))
+"""
+
+
+def test_a_tagged_gait_change_says_working_then_its_late_reply_carries_the_tag(both_runtimes):
+    # The link (docs/console.md, "Request tags") pairs the reply checked over frames with its request.
+    cp, mp = both_runtimes(RIG + COUNT + TAGGED, heapsize="4m")
+    assert cp == mp
+    assert eval(cp.splitlines()[-1]) == ["#5 working", "#5 ok gait ripple"]  # noqa: S307 (our own repr)
