@@ -49,6 +49,7 @@ DRIVE = (
     (1850, "gait", (1, 0)),  # asked meanwhile: refused
 )
 JOB = array("i", [0, 0])  # frames begun with a configure under way, the longest of them (us)
+PENDING = [-1, 0]  # the drive's configure awaited: its DRIVE_LOG row, its frame (made here: the loop is weighed)
 DRIVE_LOG = []  # (frame, what, code at once, frames until done, job code)
 
 
@@ -81,7 +82,7 @@ def drive(robot, n, pending):
 def loop(r, frames):
     bg = getattr(r.bank, "_sender", None)
     k = 0
-    pending = [-1, 0]
+    pending = PENDING
     t_first = clock.ticks_us()
     driving = SCENARIO == "drive"
     for n in range(frames):
