@@ -180,7 +180,7 @@ load(%r)
     # 2026-11-27) above its own floor below (45 KB), plus one more qstr pool. MicroPython keeps every
     # name a loaded module interns for good (runner.release frees code, never names) in pools that
     # double: the 7th, 8.2 KB, opened when the running names passed ~1,260 (the fault log, the
-XX
+    # link's tags and issue 19's split together: 1,311), and the next, ~16 KB, opens near 2,500
     # names. 45 + 10.3 + 16 = 71.3 KB: 72 KB (30 % of the heap) stays free while the loop runs.
     # History: 100 KB until 2026-11-24 (the viper tick paths and the background I2C sender took
     # ~12 KB for a 3x faster frame: docs/pico.md); 90 KB (3/8) until the 7th pool opened.
