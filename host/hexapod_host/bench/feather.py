@@ -49,7 +49,7 @@ def rig(board_name=BOARD):
 
     board = boards.load(board_name)
     chips = [[c["address"], c["osc_hz"]] for c in board["pca9685"]["chips"]]
-    sonars = [[t, e, SONAR_MM10[k]] for k, (t, e) in enumerate(boards.sensor_pins(board))]
+    sonars = [[t, e, SONAR_MM10[k]] for k, (t, e) in enumerate(boards.sonar_pins(board))]
     return {"chips": chips, "sonars": sonars}
 
 

@@ -264,7 +264,7 @@ def _devices(args):
     them; UsageError names a bad distance."""
     from hexapod import board as boards
 
-    n = len(boards.sensor_pins(boards.load("pico")))
+    n = len(boards.sonar_pins(boards.load("pico")))
     words = args.sonar_cm or [str(v) for v in SONAR_DEFAULT_CM]
     if len(words) not in (1, n):
         raise UsageError("--sonar-cm: %d values; allowed 1 (for every sonar) or %d (one each)" % (len(words), n))

@@ -2,8 +2,7 @@
 frame by frame, through hexapod_host.wall.sim.Trial, the very loop `hexapod sim wall` runs
 (the board's firmware on the stub machine, the room's sonars, the body moved by its feet)."""
 
-from drivers import hcsr04
-from hexapod import follow, tick
+from hexapod import follow, sensors, tick
 from hexapod_host.view.source import Source, pose
 from hexapod_host.wall.room import BODY_HALF
 from hexapod_host.wall.sim import FRAME_S, Trial, trial_seed
@@ -76,7 +75,7 @@ class SimSource(Source):
             **legs,
             "body": {"x": b.x, "y": b.y, "z": z, "yaw": b.theta},
             "distances": [_mm(v) for v in runner.distances],
-            "sonar_status": [hcsr04.STATUS_NAMES[s] for s in runner.sonar_status],
+            "sonar_status": [sensors.STATUS_NAMES[s] for s in runner.sonar_status],
             "mode": tick.MODE_NAMES[rig.robot.mode],
             "follow": {
                 "mode": follow.MODE_NAMES[f.mode],

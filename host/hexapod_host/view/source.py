@@ -12,7 +12,7 @@ snapshot() keys, units as the view shows them (mm, degrees, rad for the body's y
     body          {"x", "y", "yaw"}: the body centre in the world, mm and rad; "z": coxa height
                   above the ground, mm
     distances     the five sonars' last readings, mm (None when not ok), drivers.hcsr04 order
-    sonar_status  the five sonars' status names (drivers.hcsr04.STATUS_NAMES)
+    sonar_status  the five sonars' status names (hexapod.sensors.STATUS_NAMES)
     mode          the robot's mode name (hexapod.tick.MODE_NAMES)
     follow        the wall follower: mode, side, setpoint_mm, error_mm, output_dps, sensor_state
     counters      frames, held, overruns, bus_failed, reinit, sonar_faults
