@@ -59,6 +59,20 @@ def standing_robot(gait):
     return robot, t
 
 
+def weighed(before):
+    """Heap bytes allocated since gc.mem_alloc() read before; the collector back on."""
+    heap = gc.mem_alloc() - before
+    gc.enable()
+    return heap
+
+
+def settle(robot, t):
+    """Tick the robot (20 ms apart from t) until it no longer walks: after a weighed pass."""
+    while robot.mode == tick.WALKING:
+        robot.tick(t)
+        t += 20
+
+
 def keep_best(best, n, d, first):
     """Tick n's time d (us, clamped to 16 bits) kept in best if first or faster; returns the clamped d."""
     if d > 65535:
@@ -88,12 +102,9 @@ def one_pass(gait, best, first):
         if d > worst:
             worst = d
         t += 20
-    heap = gc.mem_alloc() - before
-    gc.enable()
+    heap = weighed(before)
     robot.stop()
-    while robot.mode == tick.WALKING:
-        robot.tick(t)
-        t += 20
+    settle(robot, t)
     return heap, worst, robot.faults
 
 
@@ -191,12 +202,9 @@ def one_wall_pass(best, first):
         if d > worst:
             worst = d
         t += 20
-    heap = gc.mem_alloc() - before
-    gc.enable()
+    heap = weighed(before)
     fol.off()
-    while robot.mode == tick.WALKING:
-        robot.tick(t)
-        t += 20
+    settle(robot, t)
     return heap, worst, robot.faults
 
 
