@@ -37,7 +37,9 @@ browser:
 
 # The tests run in a random order (pytest-randomly), so that a test relying on what another left
 # behind fails; the seed is printed first: `make test SEED=n` replays that order.
-SEED ?= $(shell od -An -N2 -tu2 /dev/urandom | tr -d ' ')
+ifndef SEED
+SEED := $(shell od -An -N2 -tu2 /dev/urandom | tr -d ' ')
+endif
 
 test: $(STAMP) pico-firmware browser
 	$(BIN)/ruff check .
