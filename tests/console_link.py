@@ -49,7 +49,8 @@ class ConsoleLink:
         self.reader.feed(line.encode() + b"\n")
         for _ in range(20):
             self.frames(1)
-            if len(self.replies) > before:
+            # a tagged slow command's '#N working' comes first (docs/console.md): its reply follows
+            if len(self.replies) > before and not self.replies[-1].endswith(" working"):
                 return self.replies[-1]
         raise AssertionError("no reply to %r in 20 frames" % line)
 

@@ -30,7 +30,9 @@ def standing_robot():
         rig.stand()
         _STANDING.append((rig.robot, rig.t))
     robot, t = _STANDING[0]
-    return copy.deepcopy(robot), t
+    # The robot's guard table is a module (robots/default_guard.py): shared, not copied.
+    table = getattr(robot, "_table", None)
+    return copy.deepcopy(robot, {} if table is None else {id(table): table}), t
 
 
 class Rig:

@@ -59,12 +59,14 @@ def boot(folder, cal, setting, frames, typed=(), every=50, calibrated=None):
     board = stub_board.reset("pico")
     _, chips = stub_board.pca9685_models(board)
     stub_board.sonar_models(board, [3000 + 1000 * k for k in range(5)])
+    # The VM's path starts with '' (the working folder: the repository), and main.py imports the
+    # robot file at its top, so `robots` came from '' as a relative path: every robot module the
+    # boot needs is imported here, before the chdir below would hide them.
+    table = stub_board.servo_table(board)
+    __import__("robots.default_guard")
     here = os.getcwd()
     os.chdir(folder)
     try:
-        # After the chdir: the VM's path starts with '' (the working folder), so a `robots` package
-        # imported before it would look for robots.default in this folder.
-        table = stub_board.servo_table(board)
         for name in (calstore.FILE, calstore.TMP):
             if name in os.listdir():
                 os.remove(name)
