@@ -4,6 +4,7 @@ board console (firmware/console.py) on the pico board's loop on the stub machine
 Expected angles come from the float reference IK (hexapod_host.testing.reference), pulses from the default
 robot's calibration rows worked by hand (centre_us + direction * 10 us per degree from the reference)."""
 
+import contextlib
 import os
 import re
 import shutil
@@ -176,17 +177,31 @@ def screen_until(text, timeout=5.0):
         time.sleep(0.05)
 
 
-@pytest.mark.skipif(
+NEEDS_TMUX = pytest.mark.skipif(
     shutil.which("tmux") is None, reason="tmux is not installed (apt-get install tmux): it plays the person"
 )
-def test_jog_in_a_terminal_as_a_person_would():
+
+
+@contextlib.contextmanager
+def jog_in_tmux():
+    """`hexapod jog` in a 100x30 tmux session ("jog") on the real console over a pty: yields (the
+    console link, its pty path, stop() that pulls the cable). The shell prints jog's exit status
+    after it and stays a moment so the screen can be read."""
     fake = ConsoleLink()
     path, stop = serve_pty(fake)
-    # The shell prints jog's exit status after it, and stays a moment so the screen can be read.
     cmd = "%s -m hexapod_host jog --port %s; echo exit=$?; sleep 5" % (sys.executable, path)
     tmux("kill-server")
     try:
         assert tmux("new-session", "-d", "-s", "jog", "-x", "100", "-y", "30", cmd).returncode == 0
+        yield fake, path, stop
+    finally:
+        tmux("kill-server")
+        stop()
+
+
+@NEEDS_TMUX
+def test_jog_in_a_terminal_as_a_person_would():
+    with jog_in_tmux() as (fake, path, stop):
         shown = screen_until("leg 1")
         assert "foot   x    130.0  y      0.0  z    -80.0" in shown, shown
         tmux("send-keys", "-t", "jog", "5", "+", "+", "Up", "NPage")
@@ -203,9 +218,6 @@ def test_jog_in_a_terminal_as_a_person_would():
         tmux("send-keys", "-t", "jog", "q")
         shown = screen_until("exit=")
         assert "hexapod jog: nudge 5 -10 0 0: lost the board on %s" % path in shown and "exit=1" in shown, shown
-    finally:
-        tmux("kill-server")
-        stop()
     assert fake.lines[:2] == ["get 1", "get 1"] and "nudge 5 10 0 0" in fake.lines and "nudge 5 0 0 -10" in fake.lines
 
 
@@ -300,9 +312,7 @@ def test_jog_end_to_end_through_the_virtual_board(tmp_path):
         os.close(slave)
 
 
-@pytest.mark.skipif(
-    shutil.which("tmux") is None, reason="tmux is not installed (apt-get install tmux): it plays the person"
-)
+@NEEDS_TMUX
 def test_jog_in_a_terminal_on_the_virtual_board(tmp_path):
     """The same by hand on the firmware loop in the VM: a typed foot command, two keys, the screen and the chip."""
     from hexapod_host import mpvm
@@ -380,16 +390,9 @@ class FakeLink:
         return "ok"
 
 
-@pytest.mark.skipif(
-    shutil.which("tmux") is None, reason="tmux is not installed (apt-get install tmux): it plays the person"
-)
+@NEEDS_TMUX
 def test_ctrl_c_and_esc_at_the_prompt_in_a_terminal_reach_no_board():
-    fake = ConsoleLink()
-    path, stop = serve_pty(fake)
-    cmd = "%s -m hexapod_host jog --port %s; echo exit=$?; sleep 5" % (sys.executable, path)
-    tmux("kill-server")
-    try:
-        assert tmux("new-session", "-d", "-s", "jog", "-x", "100", "-y", "30", cmd).returncode == 0
+    with jog_in_tmux() as (fake, _, _):
         screen_until("foot   x    130.0")
         tmux("send-keys", "-t", "jog", ":", "sta", "C-c")  # a person changing their mind (raw mode: a key, no signal)
         tmux("send-keys", "-t", "jog", ":", "x", "Escape")
@@ -399,9 +402,6 @@ def test_ctrl_c_and_esc_at_the_prompt_in_a_terminal_reach_no_board():
         tmux("send-keys", "-t", "jog", "q")
         shown = screen_until("exit=")
         assert "exit=0" in shown, shown
-    finally:
-        tmux("kill-server")
-        stop()
     assert fake.lines == ["get 1", "get 1", "cal 1 coxa", "gait ripple"]
     assert all(32 <= b <= 126 or b == 10 for b in fake.raw), fake.raw  # no control byte came in
     assert fake.robot.mode == 3  # still standing (tick.STANDING): nothing interrupted the loop
