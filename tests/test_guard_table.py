@@ -58,24 +58,24 @@ def test_the_tables_servo_radii_are_the_exhaustive_guards():
 
 
 def test_power_up_and_each_gait_at_its_cycle_solve_no_ik_and_end_as_the_live_guard():
-    g = geometry.load(d)
+    solves, states = _power_up_and_every_gait(geometry.load(d))
+    assert solves == 0
+    live = geometry.load(d)
+    live.name = "no table"  # (no robots/no table_guard.py: the guard runs)
+    solves, want = _power_up_and_every_gait(live)
+    assert solves > 4 * 1000  # what the table saves: discs, then each gait's servo radii
+    assert states == want
+
+
+def _power_up_and_every_gait(g):
+    """(IK solves, the robot's state after power-up and after each gait at its own cycle) for g."""
     with CountingIK(g) as count:
         robot = _robot(g)
         states = [_state(robot)]
         for gait in range(4):
             assert robot.set_gait(gait) == tick.OK
             states.append(_state(robot))
-    assert count.solves == 0
-    live = geometry.load(d)
-    live.name = "no table"  # (no robots/no table_guard.py: the guard runs)
-    with CountingIK(live) as count:
-        robot = _robot(live)
-        want = [_state(robot)]
-        for gait in range(4):
-            assert robot.set_gait(gait) == tick.OK
-            want.append(_state(robot))
-    assert count.solves > 4 * 1000  # what the table saves: discs, then each gait's servo radii
-    assert states == want
+    return count.solves, states
 
 
 def test_a_pose_a_height_or_another_robot_file_runs_the_live_guard():
