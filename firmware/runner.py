@@ -221,10 +221,12 @@ class Runner:
                 seen[k] = v
                 if found < 0:
                     found = k
+        if found >= 0:
+            return found
         for k in range(len(seen)):
-            if found < 0 and chips[k].offline:
-                found = k
-        return found if found >= 0 else 0
+            if chips[k].offline:
+                return k
+        return 0
 
     def note_reset(self, cause_is_watchdog):
         """At boot: log a watchdog reset, unless the newest kept fault is already this one (a soft
