@@ -1,4 +1,4 @@
-"""docs/wiring.md and the README carry, for every board file, the wiring tables rendered from that
+"""docs/wiring.md carries, for every board file, the wiring tables rendered from that
 file's data, and for the robot's calibration file its servo and sonar tables."""
 
 import importlib
@@ -74,7 +74,7 @@ def test_every_board_file_has_a_title():
 
 
 def test_wiring_doc_matches_the_board_files():
-    for doc_name in ("docs/wiring.md", "README.md"):
+    for doc_name in ("docs/wiring.md",):
         with open(os.path.join(ROOT, doc_name)) as f:
             doc = f.read()
         for name in TITLES:

@@ -93,8 +93,8 @@ def test_readme_console_heap_figures_are_the_benchs():
     frames = {}
     for f in json.loads(out.strip().splitlines()[-1])["frames"]:
         frames.setdefault(f["line"].split()[0], f["heap_bytes"])  # the first of each: `foot 2 130 5 -80`
-    readme = read("README.md")
-    para = next(p for p in readme.split("\n\n") if p.startswith("Serial console (") and "console_frames" in p)
+    figures = read("docs/figures.md")
+    para = next(p for p in figures.split("\n\n") if p.startswith("Serial console (") and "console_frames" in p)
     claimed = dict(re.findall(r"`(\w+) [^`]*`\s+\d+ us / (\d+)\s+bytes", para))
     assert set(claimed) >= {"get", "foot", "trim"}, claimed
     assert {k: int(v) for k, v in claimed.items()} == {k: frames[k] for k in claimed}
