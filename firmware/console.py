@@ -513,6 +513,7 @@ class Console:
     # -- commands -------------------------------------------------------------------------
 
     def _help(self, args):
+        self._args(args, 0, "no arguments")
         return "ok " + COMMANDS
 
     def _status(self, args):

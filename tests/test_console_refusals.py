@@ -100,6 +100,7 @@ print(repr((r.robot.mode, r.follower.mode, out)))
 # Bad arguments for every command; then the lines a state refuses (checked per state below).
 BAD = [
     "status now",
+    "help me",
     "stand 1",
     "sit 1",
     "relax 1",
