@@ -50,6 +50,16 @@ NUMBERS = st.one_of(
 )
 ARG = st.one_of(st.sampled_from(ARGS), NUMBERS, st.text(max_size=6))
 COMMAND = st.tuples(st.sampled_from(WORDS), st.lists(ARG, max_size=5)).map(lambda t: " ".join([t[0], *t[1]]))
+
+
+def servo_line(word, values):
+    """'WORD L J V' lines: any leg, any joint, V drawn from values."""
+    return st.builds(
+        lambda leg, j, v: "%s %d %s %s" % (word, leg, j, v), st.integers(1, 6), st.sampled_from(JOINTS), values
+    )
+
+
+JOINTS = ["coxa", "femur", "tibia"]
 # Mostly commands shaped right with sensible numbers, so that the robot really moves and
 # recalibrates; then anything at all.
 SHAPED = st.one_of(
@@ -61,37 +71,17 @@ SHAPED = st.one_of(
         st.integers(-180, 60),
     ),
     st.builds(lambda leg, d: "nudge %d %s %s %s" % (leg, d, d, d), st.integers(1, 6), st.integers(-30, 30)),
-    st.builds(
-        lambda leg, j, a: "joint %d %s %d" % (leg, j, a),
-        st.integers(1, 6),
-        st.sampled_from(["coxa", "femur", "tibia"]),
-        st.integers(-190, 190),
-    ),
-    st.builds(
-        lambda leg, j, u: "pulse %d %s %d" % (leg, j, u),
-        st.integers(1, 6),
-        st.sampled_from(["coxa", "femur", "tibia"]),
-        st.integers(400, 2600),
-    ),
-    st.builds(
-        lambda leg, j, t: "trim %d %s %d" % (leg, j, t),
-        st.integers(1, 6),
-        st.sampled_from(["coxa", "femur", "tibia"]),
-        st.integers(-350, 350),
-    ),
+    servo_line("joint", st.integers(-190, 190)),
+    servo_line("pulse", st.integers(400, 2600)),
+    servo_line("trim", st.integers(-350, 350)),
     st.builds(
         lambda leg, j, a, b: "range %d %s %d %d" % (leg, j, a, b),
         st.integers(1, 6),
-        st.sampled_from(["coxa", "femur", "tibia"]),
+        st.sampled_from(JOINTS),
         st.integers(450, 1600),
         st.integers(1400, 2600),
     ),
-    st.builds(
-        lambda leg, j, d: "dir %d %s %d" % (leg, j, d),
-        st.integers(1, 6),
-        st.sampled_from(["coxa", "femur", "tibia"]),
-        st.sampled_from([1, -1, 0]),
-    ),
+    servo_line("dir", st.sampled_from([1, -1, 0])),
     st.builds(
         lambda a, b, c: "walk %d %d %d" % (a, b, c),
         st.integers(-350, 350),

@@ -35,6 +35,13 @@ def test_default_robot_loads_in_both_runtimes(rt):
     assert max(xs) - min(xs) == 1750 and max(ys) - min(ys) == 1550
 
 
+def mounts_with(leg, row):
+    """The default robot's MOUNTS with leg's row (1-6) replaced."""
+    import robots.default as d
+
+    return d.MOUNTS[: leg - 1] + (row,) + d.MOUNTS[leg:]
+
+
 BAD = [
     (dict(COXA=-1), "COXA|coxa"),
     (dict(FEMUR=0), "femur"),
@@ -45,71 +52,11 @@ BAD = [
     (dict(MOUNTS=()), "MOUNTS"),
     (dict(MOUNTS=((875, -775, -4500),) * 5), "MOUNTS"),
     (dict(MOUNTS=((875, -775),) * 6), "leg 1"),
-    (
-        dict(
-            MOUNTS=(
-                (875, 775, -4500),
-                (0, -775, -9000),
-                (-875, -775, -13500),
-                (-875, 775, 13500),
-                (0, 775, 9000),
-                (875, 775, 4500),
-            )
-        ),
-        "leg 1 .RF.: y 775",
-    ),
-    (
-        dict(
-            MOUNTS=(
-                (875, -775, 4500),
-                (0, -775, -9000),
-                (-875, -775, -13500),
-                (-875, 775, 13500),
-                (0, 775, 9000),
-                (875, 775, 4500),
-            )
-        ),
-        "leg 1 .RF.: angle",
-    ),
-    (
-        dict(
-            MOUNTS=(
-                (875, -775, -4500),
-                (0, -775, -9000),
-                (-875, -775, -13500),
-                (-875, 775, 13500),
-                (0, 775, 9000),
-                (-900, 775, 4500),
-            )
-        ),
-        "ahead",
-    ),
-    (
-        dict(
-            MOUNTS=(
-                (875, -775, -4500),
-                (0, -775, -9000),
-                (-875, -775, -13500),
-                (-875, 775, 13500),
-                (0, 775, 9000),
-                (875, 99999, 4500),
-            )
-        ),
-        "leg 6",
-    ),
-    (
-        dict(
-            MOUNTS=(
-                (875, -775, -4500),
-                (0, -775, -9000),
-                (-875, -775, -13500),
-                (-875, 775, 13500),
-                (0, 775, 9000),
-                (875, 775, 4500.0),
-            )
-        ),
-        "whole number",
-    ),
+    (dict(MOUNTS=mounts_with(1, (875, 775, -4500))), "leg 1 .RF.: y 775"),
+    (dict(MOUNTS=mounts_with(1, (875, -775, 4500))), "leg 1 .RF.: angle"),
+    (dict(MOUNTS=mounts_with(6, (-900, 775, 4500))), "ahead"),
+    (dict(MOUNTS=mounts_with(6, (875, 99999, 4500))), "leg 6"),
+    (dict(MOUNTS=mounts_with(6, (875, 775, 4500.0))), "whole number"),
     (dict(NEUTRAL_REACH=100), "NEUTRAL_REACH"),
     (dict(NEUTRAL_REACH=5000), "NEUTRAL_REACH"),
     (dict(BODY_HEIGHT=5000), "BODY_HEIGHT"),
