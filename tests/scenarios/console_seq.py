@@ -24,6 +24,7 @@ import _stub_pins
 import console
 import main
 import stub_board
+from scenarios.rig import servo_state
 
 import robots.default as d
 from hexapod import tick
@@ -223,12 +224,7 @@ def command(g):
 
 def _snap(b):
     r = b.robot
-    return [
-        list(r.pulses),
-        list(r.angles),
-        r.mode,
-        [(s.centre_us, s.direction, s.min_us, s.max_us) for s in r.servos],
-        list(b.con.trims),
+    return servo_state(r, b.con) + [
         r.gait,
         b.r.follower.mode,
         list(r.walker.fx),

@@ -24,6 +24,18 @@ def stand(robot, now=0):
     return now
 
 
+def servo_state(robot, con):
+    """What a refused console command must leave as it was: the pulses, angles and mode, each
+    servo's calibration (centre_us, direction, min_us, max_us) and the console's trims."""
+    return [
+        list(robot.pulses),
+        list(robot.angles),
+        robot.mode,
+        [(s.centre_us, s.direction, s.min_us, s.max_us) for s in robot.servos],
+        list(con.trims),
+    ]
+
+
 class Rig:
     """A tick.Robot on a FrameBuffer (default servos) and the clock its ticks read."""
 

@@ -12,6 +12,7 @@ import console
 import main
 import stub_board
 from scenarios.calstore import StubFS
+from scenarios.rig import servo_state
 
 from hexapod import tick
 
@@ -67,15 +68,7 @@ class Board:
         return [[a, list(m.regs), list(m.out)] for a, m in sorted(self.chips.items())]
 
     def state(self):
-        r = self.robot
-        return [
-            list(r.pulses),
-            list(r.angles),
-            r.mode,
-            [(s.centre_us, s.direction, s.min_us, s.max_us) for s in r.servos],
-            list(self.con.trims),
-            self.con.cal_source,
-        ]
+        return servo_state(self.robot, self.con) + [self.con.cal_source]
 
 
 def stand(b):
