@@ -15,6 +15,7 @@ import tty
 import pytest
 
 from hexapod_host.commands import cli
+from hexapod_host.commands import console as console_cmd
 from hexapod_host.serial import jog
 from hexapod_host.serial.link import Link, LinkError, PortBusy
 from hexapod_host.testing.runtimes import micropython_missing
@@ -203,6 +204,44 @@ def test_kill_9_leaves_no_vm_serving_the_pty(tmp_path):
         if proc.poll() is None:
             proc.kill()
             proc.wait()
+
+
+def test_the_next_virtual_board_removes_what_a_kill_9_left(tmp_path):
+    dead = subprocess.Popen(["true"])
+    dead.wait()  # a pid that no process has now
+    names = [
+        "hexapod-cal-%d-abc" % dead.pid,  # its owner is gone: removed
+        "hexapod-cal-%d-def" % os.getpid(),  # owner running: kept
+        "hexapod-cal-x-ghi",  # not a pid: kept
+        "hexapod-calm-%d-jkl" % dead.pid,  # another prefix: kept
+    ]
+    for name in names:
+        (tmp_path / name).mkdir()
+    (tmp_path / names[0] / "hexapod_cal.txt").write_text("hexapod-cal 2\n")
+    (tmp_path / ("hexapod-cal-%d-file" % dead.pid)).write_text("")  # a file, not a directory: kept
+    removed = console_cmd.remove_stale_cal_dirs(str(tmp_path))
+    assert removed == [str(tmp_path / names[0])]
+    assert sorted(os.listdir(tmp_path)) == sorted(names[1:] + ["hexapod-cal-%d-file" % dead.pid])
+
+
+def test_kill_9_without_cal_dir_leaves_a_directory_the_next_board_removes():
+    proc, path, cal_dir = _virtual_board()
+    try:
+        (vm,) = children(proc.pid)
+        proc.kill()  # kill -9: no handler runs
+        proc.wait(10)
+        assert gone(vm) and os.path.isdir(cal_dir)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+    proc, path, second = _virtual_board()
+    try:
+        assert not os.path.exists(cal_dir) and os.path.isdir(second)
+    finally:
+        proc.send_signal(signal.SIGTERM)
+        proc.wait(10)
+    assert not os.path.exists(second)
 
 
 @pytest.mark.parametrize("sig", [signal.SIGHUP, signal.SIGTERM])

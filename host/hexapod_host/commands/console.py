@@ -3,6 +3,7 @@
 
 import os
 import pty
+import shutil
 import signal
 import subprocess
 import sys
@@ -138,6 +139,38 @@ def _robot_ok(name):
         raise UsageError("no robot %r; allowed: %s" % (name, ", ".join(have)))
 
 
+# The temporary calibration directory names the process that owns it: a `kill -9` runs no clean-up,
+# so the next virtual board removes every such directory whose owner is gone.
+CAL_PREFIX = "hexapod-cal-%d-"
+
+
+def remove_stale_cal_dirs(parent=None):
+    """Remove the temporary calibration directories (in parent, default the system's temporary
+    folder) of virtual boards that are no longer running; returns the paths removed."""
+    parent = parent or tempfile.gettempdir()
+    removed = []
+    for name in os.listdir(parent):
+        words = name.split("-")
+        if len(words) < 4 or words[:2] != ["hexapod", "cal"] or not words[2].isdigit():
+            continue
+        path = os.path.join(parent, name)
+        if not os.path.isdir(path) or os.stat(path).st_uid != os.getuid() or _running(int(words[2])):
+            continue
+        shutil.rmtree(path, ignore_errors=True)
+        removed.append(path)
+    return removed
+
+
+def _running(pid):
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True  # someone else's process
+    return True
+
+
 def virtual_board(args):
     _board_ok(args.board)
     _robot_ok(args.robot)
@@ -149,13 +182,14 @@ def virtual_board(args):
 
     # SIGTERM, and SIGHUP (the terminal closed): stop the VM and remove the temporary calibration
     # directory, as Ctrl-C does; armed before the directory exists. (kill -9 cannot be caught: the
-    # VM dies with us, _die_with_parent.)
+    # VM dies with us, _die_with_parent, and the next virtual board removes the directory.)
     old = {sig: signal.signal(sig, stop) for sig in (signal.SIGTERM, signal.SIGHUP)}
     tmp = proc = None
     try:
         cal_dir = args.cal_dir
         if cal_dir is None:
-            tmp = tempfile.TemporaryDirectory(prefix="hexapod-cal-")
+            remove_stale_cal_dirs()
+            tmp = tempfile.TemporaryDirectory(prefix=CAL_PREFIX % os.getpid())
             cal_dir = tmp.name
         proc, path, master, slave = start_virtual_board(args.board, args.robot, os.path.abspath(cal_dir))
         print(path, flush=True)
