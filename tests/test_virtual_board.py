@@ -131,21 +131,25 @@ def status_of(link):
 
 
 def test_a_walk_not_renewed_stops_in_real_time(board):
+    # On the board's own clock, with no bound on the host's timing (the machine may be busy): the
+    # deadlines below only stop a hang. The stub clock's tests pin the timeout to the frame.
     path, link = board()
     assert link.request("stand") == "ok mode moving"
     deadline = time.monotonic() + 15
     while status_of(link)["mode"] != "standing":
         assert time.monotonic() < deadline
         time.sleep(0.1)
-    for _ in range(4):  # renewed every 0.4 s: it keeps walking
+    for _ in range(4):  # each renewal answers with the full timeout
         assert link.request("walk 60 0 0") == "ok walk 60.0 0.0 0.00 timeout_ms 1000"
-        time.sleep(0.4)
-        assert status_of(link)["mode"] == "walking"
-    t0 = time.monotonic()
-    while status_of(link)["walk_ms"] != "0":
+    left = []
+    deadline = time.monotonic() + 15
+    while not left or left[-1] != 0:  # counts down on its own to 0, never past the timeout
+        st = status_of(link)
+        assert st["mode"] == "walking" or st["walk_ms"] == "0", st
+        left.append(int(st["walk_ms"]))
+        assert time.monotonic() < deadline
         time.sleep(0.02)
-    waited = time.monotonic() - t0
-    assert 0.4 <= waited <= 1.0  # the last walk was 0.4 s old: it expired 0.6 s later
+    assert left == sorted(left, reverse=True) and left[0] <= 1000, left
     deadline = time.monotonic() + 5
     while status_of(link)["mode"] != "standing":  # the steps under way finish, the feet land
         assert time.monotonic() < deadline
