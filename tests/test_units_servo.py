@@ -63,6 +63,8 @@ def test_seed001_pulse_map():
     assert r.pulse(9000, out, 0) == BELOW_MIN and r.excess == 150 and out[0] == 1234  # out untouched
     assert r.pulse(-9000, out, 0) == ABOVE_MAX and r.excess == 50
     assert r.clamp(3000) == 2300 and r.clamp(10) == 700 and r.clamp(1500) == 1500
+    # at exactly the limits, on CPython alone too (the VM may be missing): one us either side
+    assert [r.clamp(us) for us in (699, 700, 701, 2299, 2300, 2301)] == [700, 700, 701, 2299, 2300, 2300]
 
 
 def test_a_reference_angle_changes_the_reference_not_the_mapping():
