@@ -5,39 +5,8 @@ files carried before, centre at angle 0) for every angle."""
 
 import pytest
 
-DELETE = "<delete>"
-
-PRELUDE = """
-from scenarios.boards import thaw
-from hexapod import robotcal
-import robots.default as geo
-import robots.default_cal as cal
-GOOD = {"REFERENCE": cal.REFERENCE, "SERVOS": cal.SERVOS, "SONARS": cal.SONARS}
-
-
-def mutated(path, value):
-    d = thaw(GOOD)
-    o = d
-    for k in path[:-1]:
-        o = o[k]
-    if value == "<delete>":
-        del o[path[-1]]
-    else:
-        o[path[-1]] = value
-    return d
-
-
-def why(fn, *args):
-    try:
-        fn(*args)
-        return "accepted"
-    except ValueError as e:
-        return str(e)
-
-
-def check(d, limits=geo.LIMITS):
-    return why(robotcal.validate, "default", d, limits)
-"""
+DELETE = "<delete>"  # scenarios.robot_cal.DELETE
+SCENARIO = "scenarios.robot_cal:"
 
 # (path, new value, the message's text after "robot 'default': ")
 MUTATIONS = [
@@ -84,19 +53,11 @@ MUTATIONS = [
 
 
 def run_mutations(rt, mutations):
-    src = PRELUDE + "print([check(mutated(p, v)) for p, v in %r])" % ([m[:2] for m in mutations],)
-    return rt.value(src, heapsize="2m")
+    return rt.with_heapsize("2m").call(SCENARIO + "mutations", [m[:2] for m in mutations])
 
 
 def test_the_shipped_calibration_passes_and_a_copy_too(rt):
-    src = (
-        PRELUDE
-        + """
-print([check(GOOD), check(thaw(GOOD)), check(GOOD, None), robotcal.load("default", geo.LIMITS) is not None,
-       len(robotcal.servo_maps(robotcal.load("default")))])
-"""
-    )
-    assert rt.value(src) == ["accepted", "accepted", "accepted", True, 18]
+    assert rt.call(SCENARIO + "shipped") == ["accepted", "accepted", "accepted", True, 18]
 
 
 def test_many_bad_calibrations_each_fail_with_a_clear_value_error(rt):
@@ -108,22 +69,12 @@ def test_many_bad_calibrations_each_fail_with_a_clear_value_error(rt):
 
 
 def test_messages_are_identical_on_both_runtimes(both_runtimes):
-    src = PRELUDE + "print([check(mutated(p, v)) for p, v in %r])" % ([m[:2] for m in MUTATIONS],)
-    cpython, micropython = both_runtimes(src, heapsize="2m")
+    cpython, micropython = both_runtimes.with_heapsize("2m").call(SCENARIO + "mutations", [m[:2] for m in MUTATIONS])
     assert cpython == micropython
 
 
 def test_a_failing_validation_changes_nothing(rt):
-    src = (
-        PRELUDE
-        + """
-d = mutated(("SERVOS", 3, 2), 2450)
-before = repr(d)
-r = check(d)
-print((repr(d) == before, "centre_us" in r, repr(GOOD["SERVOS"]) == repr(cal.SERVOS)))
-"""
-    )
-    assert rt.value(src) == (True, True, True)
+    assert rt.call(SCENARIO + "failing_changes_nothing") == (True, True, True)
 
 
 @pytest.mark.parametrize(
@@ -135,24 +86,14 @@ print((repr(d) == before, "centre_us" in r, repr(GOOD["SERVOS"]) == repr(cal.SER
     ],
 )
 def test_loading_an_unknown_robot_is_a_value_error(rt, name, fragment):
-    assert fragment in rt.value(PRELUDE + "print(repr(why(robotcal.load, %r)))" % (name,))
+    assert fragment in rt.call(SCENARIO + "load_error", name)
 
 
 def test_servo_maps_give_seed_001_pulses_and_the_mounts_come_in_sonar_order(rt):
     # The rows the board files carried before the move (centre_us at angle 0, direction): every
     # angle inside the joint limits maps to the same pulse, 10 us per degree (seed 001).
     old = [(1500, 1), (1500, 1), (2400, 1)] * 3 + [(1500, 1), (1500, -1), (600, -1)] * 3
-    src = (
-        PRELUDE
-        + """
-c = robotcal.load("default", geo.LIMITS)
-maps = robotcal.servo_maps(c)
-lim = geo.LIMITS
-print(([[maps[k].raw(a) for a in range(lim[2 * (k % 3)], lim[2 * (k % 3) + 1] + 1, 50)] for k in range(18)],
-       [m.ref_cdeg for m in maps[:3]], robotcal.sensor_mounts(c), maps[0] is not robotcal.servo_maps(c)[0]))
-"""
-    )
-    pulses, refs, mounts, fresh = rt.value(src, heapsize="2m")
+    pulses, refs, mounts, fresh = rt.with_heapsize("2m").call(SCENARIO + "maps_and_mounts")
     limits = (-9000, 9000, -9000, 9000, -18000, 0)  # robots/default.py LIMITS
     for k, (centre, direction) in enumerate(old):
         lo, hi = limits[2 * (k % 3)], limits[2 * (k % 3) + 1]
