@@ -10,17 +10,7 @@ import pytest
 
 from tests.console_rig import RIG, clean_stubs  # noqa: F401 (autouse fixture)
 
-# The whole loop on the stub machine (scenarios.runner.Loop), its chips plugged in by the source.
-SETUP = """
-import _stub_clock as clock
-import main
-from scenarios.runner import Loop
-LOOP = Loop()
-plug = LOOP.plug
-def frames(r, n):
-    LOOP.r = r
-    return LOOP.frames(n)
-"""
+SCENARIO = "scenarios.sensors:"
 
 GOOD = ((1300, 0, 0), (1000, 2100, 9000), (-1000, 2100, 9000), (1000, -2100, -9000), (-1000, -2100, -9000))
 
@@ -88,25 +78,9 @@ CASES = [
     ),
 ]
 
-CHECK = """
-from hexapod import sensors
-def why(m):
-    try:
-        sensors.check_mounts(m)
-        return None
-    except ValueError as e:
-        return str(e)
-print([why(m) for m in %r])
-"""
-
 
 def test_the_contract_is_seed_000s_ring_and_the_datasheets_codes(rt):
-    src = """
-from hexapod import sensors as s
-print((s.SENSOR_NAMES, (s.FRONT, s.LEFT_FRONT, s.LEFT_REAR, s.RIGHT_FRONT, s.RIGHT_REAR), s.STATUS_NAMES,
-       (s.OK, s.OUT_OF_RANGE, s.NO_ECHO, s.STUCK, s.TOO_CLOSE, s.WAIT, s.PENDING), s.NO_DISTANCE, s.MIN_RANGE))
-"""
-    names, order, words, codes, none, min_range = rt.value(src)
+    names, order, words, codes, none, min_range = rt.call(SCENARIO + "contract")
     assert names == tuple(ORDER.split(", ")) and order == (0, 1, 2, 3, 4)
     assert words[: len(codes) - 1] == ("ok", "out_of_range", "no_echo", "stuck", "too_close", "wait")  # docs/console.md
     assert codes == (0, 1, 2, 3, 4, 5, 6) and none == -1
@@ -114,110 +88,32 @@ print((s.SENSOR_NAMES, (s.FRONT, s.LEFT_FRONT, s.LEFT_REAR, s.RIGHT_FRONT, s.RIG
 
 
 def test_mounts_check_accepts_and_refuses_with_clear_messages(rt):
-    got = rt.value(CHECK % ([m for m, _ in CASES],))
+    got = rt.call(SCENARIO + "mounts_checked", [m for m, _ in CASES])
     assert got == [want for _, want in CASES]
 
 
 def test_mounts_check_says_the_same_on_both_runtimes(both_runtimes):
-    cp, mp = both_runtimes(CHECK % ([m for m, _ in CASES],))
+    cp, mp = both_runtimes.call(SCENARIO + "mounts_checked", [m for m, _ in CASES])
     assert cp == mp
 
 
 def test_the_robot_file_and_the_default_mounts_agree(rt):
-    src = """
-from hexapod import robotcal, sensors
-print(robotcal.sensor_mounts(robotcal.load("default")) == sensors.DEFAULT_MOUNTS)
-"""
-    assert rt.value(src) is True
+    assert rt.call(SCENARIO + "robot_mounts_are_the_default") is True
     assert GOOD == ((1300, 0, 0), (1000, 2100, 9000), (-1000, 2100, 9000), (1000, -2100, -9000), (-1000, -2100, -9000))
-
-
-RING = """
-from hexapod import sensors
-class Ring:
-    # a round robin that reports, per tick, (index, status, distance) from a script
-    def __init__(self, script):
-        self.script = script
-        self.n = 0
-    def tick(self, dist, status):
-        i, st, d = self.script[self.n %% len(self.script)]
-        self.n += 1
-        if i >= 0:
-            status[i] = st
-            dist[i] = d if st == sensors.OK else sensors.NO_DISTANCE
-        return i
-script = %r
-"""
 
 
 def test_the_sonar_ring_is_a_frame_sensor(rt):
     # ok, wait, nothing, out of range, no echo, stuck, too close: four faults
     script = [(0, 0, 3000), (1, 5, 0), (-1, 0, 0), (2, 1, 0), (3, 2, 0), (4, 3, 0), (0, 4, 0)]
-    src = (
-        RING % (script,)
-        + """
-s = sensors.Sonars(Ring(script))
-out = []
-for t in range(7):
-    out.append((s.frame(20 * t), s.faults))
-print((out, s.distances, s.status))
-"""
-    )
-    out, dist, status = rt.value(src)
+    out, dist, status = rt.call(SCENARIO + "ring_frames", script, 7)
     assert out == [(0, 0), (1, 0), (-1, 0), (2, 1), (3, 2), (4, 3), (0, 4)]
     assert dist == [-1, -1, -1, -1, -1] and status == [4, 5, 1, 2, 3]
 
 
-# A battery monitor that is not there yet: the Runner asks it once a frame beside the sonars.
-BATTERY = """
-class Battery:
-    def __init__(self, log):
-        self.log = log
-        self.faults = 0
-        self.mv = array("i", [0])
-        self.frames = 0
-    def frame(self, now_ms):
-        self.frames += 1
-        self.mv[0] = 7400 - (now_ms & 0xFF)
-        if self.log is not None:
-            self.log.append(("battery", now_ms))
-        return 0
-"""
-
-
 def test_a_new_kind_of_sensor_plugs_in_beside_the_sonars(both_runtimes):
-    src = (
-        SETUP
-        + "from array import array\nimport robots.default\nfrom runner import Runner\n"
-        + "from hexapod import geometry, sensors, tick\n"
-        + BATTERY
-        + """
-plug(0x40)
-plug(0x41)
-log = []
-class Logged:
-    # the sonar ring main.build made, noting when a frame asked it
-    def __init__(self, ring):
-        self.ring = ring
-        self.split = ring.split
-    def tick(self, dist, status):
-        log.append(("sonar", clock.ticks_ms()))
-        return self.ring.tick(dist, status)
-r0 = main.build(clock=clock)
-sonars = sensors.Sonars(Logged(r0.sonars.ring))
-battery = Battery(log)
-r = Runner(r0.robot.geometry, r0.robot.servos, r0.bank, sonars, clock, others=(battery,))
-r.robot.stand_up()
-frames(r, 200)
-print((battery.frames, r.frames, log[:4], [k for k, _ in log].count("sonar"), sonars.faults, r.sonar_faults,
-       r.distances is sonars.distances, r.robot.mode == tick.STANDING, r.sonars is sonars and r.others == (battery,)))
-"""
-    )
-    cp, mp = both_runtimes(src, heapsize="4m")
+    cp, mp = both_runtimes.with_heapsize("4m").call(SCENARIO + "extra_sensor", 200)
     assert cp == mp
-    n, frames_run, first, sonar_calls, faults, runner_faults, same, standing, order = ast.literal_eval(
-        cp.strip().splitlines()[-1]
-    )
+    n, frames_run, first, sonar_calls, faults, runner_faults, same, standing, order = cp
     assert n == frames_run == sonar_calls == 200 and standing and same and order
     t = first[0][1]  # the first frame's start (building took a moment of the virtual clock)
     assert first == [("sonar", t), ("battery", t), ("sonar", t + 20), ("battery", t + 20)]  # sonars first, each frame
@@ -225,29 +121,7 @@ print((battery.frames, r.frames, log[:4], [k for k, _ in log].count("sonar"), so
 
 
 def test_a_frame_with_an_extra_sensor_allocates_nothing(mp):
-    from hexapod_host.testing.runtimes import HEAP_PROBE
-
-    src = (
-        SETUP
-        + HEAP_PROBE
-        + "from array import array\nfrom runner import Runner\nfrom hexapod import sensors\n"
-        + BATTERY
-        + """
-plug(0x40)
-plug(0x41)
-r0 = main.build(clock=clock)
-battery = Battery(None)
-r = Runner(r0.robot.geometry, r0.robot.servos, r0.bank, r0.sonars, clock, others=(battery,))
-r.robot.stand_up()
-frames(r, 150)
-def run(n):
-    for _ in range(n):
-        r.step()
-        r.wait()
-print((heap_bytes(run, 50), battery.frames))
-"""
-    )
-    heap, n = mp.value(src, heapsize="4m")
+    heap, n = mp.with_heapsize("4m").call(SCENARIO + "extra_sensor_heap", 150, 50)
     assert heap == 0 and n == 250
 
 
