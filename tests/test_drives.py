@@ -217,6 +217,7 @@ def test_metrics_against_a_hand_made_record():
     recs = [(0, 50.0, 0.0, 0.0, 1.0, 0.2, 0.0, 0, 80.0), (1, 50.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1, 70.0)]
     res = metrics.summarise(recs, 100.0)
     assert res["held_share"] == 0.5 and res["tracking"] == 0.5 and res["gait_changes"] == 1
+    assert res["held_commanded_mm"] == 1.0  # the held tick's 50 mm/s x 0.02 s
     assert res["min_stability_margin_mm"] == 70.0
     # A move against the command counts negative.
     assert metrics.summarise([(0, 50.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0, None)], 100.0)["tracking"] == -1.0

@@ -12,7 +12,8 @@ the mean neutral-foot radius R sweeps, so that turning in place is a distance li
 commanded distance is sum |c| dt, c = (cvx, cvy, R cyaw); the distance along the commanded path is
 the body's move projected on c's direction, sum (dx cvx + dy cvy + R^2 dpsi cyaw) / |c| (a move
 against the command counts negative), both over the ticks with a command. tracking = along /
-commanded; with nothing commanded it is 1.0 (nothing asked, nothing owed).
+commanded; with nothing commanded it is 1.0 (nothing asked, nothing owed). held_commanded_mm: the
+commanded distance of the held ticks (what the holds cost at most).
 """
 
 import math
@@ -37,15 +38,16 @@ def summarise(records, radius_mm):
     """The drive's figures from its tick records (module docstring); a dict of plain values."""
     n = len(records)
     held = sum(r[0] for r in records)
-    commanded = along = 0.0
+    commanded = along = lost = 0.0
     changes = 0
     margins = []
     last_gait = records[0][7] if records else None
-    for _held, cvx, cvy, cyaw, dx, dy, dpsi, gait, margin in records:
+    for held_k, cvx, cvy, cyaw, dx, dy, dpsi, gait, margin in records:
         arc = radius_mm * math.radians(cyaw)
         size = math.sqrt(cvx * cvx + cvy * cvy + arc * arc)
         if size:
             commanded += size * DT
+            lost += size * DT * held_k
             along += (dx * cvx + dy * cvy + radius_mm * math.radians(dpsi) * arc) / size
         if gait != last_gait:
             changes += 1
@@ -58,6 +60,7 @@ def summarise(records, radius_mm):
         "held_share": round(held / n, 4) if n else 0.0,
         "commanded_mm": round(commanded, 1),
         "along_mm": round(along, 1),
+        "held_commanded_mm": round(lost, 1),
         "tracking": round(along / commanded, 4) if commanded else 1.0,
         "gait_changes": changes,
         "min_stability_margin_mm": round(min(margins), 1) if margins else None,

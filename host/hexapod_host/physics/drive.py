@@ -37,6 +37,7 @@ def play(commands, gait=0, module=None, servo=None, on_tick=None):
     m, d, mj = run.model, run.data, run.mj
     kp, stall = run.sm["kp"], run.sm["stall"]
     peak = 0.0
+    peak_tick = 0
     saturated = 0
     tilt = 0.0
     faults = 0
@@ -60,7 +61,8 @@ def play(commands, gait=0, module=None, servo=None, on_tick=None):
             mj.mj_step(m, d)
             demand = np.abs(kp * (d.ctrl - d.qpos[7:]))
             top = float(demand.max())
-            peak = top if top > peak else peak
+            if top > peak:
+                peak, peak_tick = top, k
             saturated += top > stall
         x1, y1, yaw1 = run.body_pose()
         turn = math.remainder(yaw1 - yaw0, 2 * math.pi)
@@ -89,6 +91,7 @@ def play(commands, gait=0, module=None, servo=None, on_tick=None):
         stall_nm=stall,
         peak_torque_nm=round(peak, 3),
         peak_torque_share=round(peak / stall, 4),
+        peak_torque_t_ms=peak_tick * TICK_MS,
         saturated_share=round(saturated / (ticks * STEPS_PER_TICK), 4),
         max_tilt_deg=round(tilt, 2),
         margin_ticks_share=round(matched / ticks, 4),
