@@ -9,14 +9,12 @@ import pytest
 
 import robots.default as default_robot
 from hexapod import geometry
-from hexapod.gait import NAMES, TICK_MS
+from hexapod.gait import NAMES
 from hexapod_host import drives
 from hexapod_host.commands import cli
 from hexapod_host.drives import make_joystick, metrics, runs
 from hexapod_host.drives.play import play
 from hexapod_host.testing.runtimes import micropython_missing
-
-DT = TICK_MS / 1000.0
 
 
 def runtimes():
