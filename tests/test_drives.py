@@ -251,3 +251,14 @@ def test_physics_straight_walk_and_reversal(capsys, tmp_path):
     assert 0.3 < res["peak_torque_share"] <= 0.8 and res["saturated_share"] == 0.0
     assert res["max_tilt_deg"] < 3.0 and res["min_stability_margin_mm"] > 40
     assert res["frame_faults"] == 0 and res["refused"] == []
+
+
+def test_the_walkers_origin_moves_do_not_show_as_body_moves(monkeypatch):
+    # The walker moves its ground frame's origin to the body after ~26 m (walk._REANCHOR); the player
+    # adds that back. With the origin moved every 10 mm instead, the rows must not change.
+    from hexapod import walk
+
+    cmds = stream({"t_ms": 0, "vx": 40, "yaw": 5}, {"t_ms": 3000, "vy": -30}, {"t_ms": 6000, "stop": True})
+    before = play(cmds, 0, "cpython")["_rows"]
+    monkeypatch.setattr(walk, "_REANCHOR", 1600)
+    assert play(cmds, 0, "cpython")["_rows"] == before
