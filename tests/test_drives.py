@@ -262,3 +262,15 @@ def test_the_walkers_origin_moves_do_not_show_as_body_moves(monkeypatch):
     before = play(cmds, 0, "cpython")["_rows"]
     monkeypatch.setattr(walk, "_REANCHOR", 1600)
     assert play(cmds, 0, "cpython")["_rows"] == before
+
+
+def test_kinematics_cli_plot(capsys, tmp_path, monkeypatch):
+    png = tmp_path / "held.png"
+    assert cli.main(["sim", "kinematics", "--commands", "reversals", "--runtime", "cpython", "--plot", str(png)]) == 0
+    assert capsys.readouterr().out.endswith("plot: %s\n" % png)
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10000
+    monkeypatch.setattr(runs, "run_all", lambda *a, **k: pytest.fail("ran before checking --plot"))
+    for bad in (str(tmp_path / "no" / "x.png"), str(tmp_path / "x.jpg"), str(tmp_path)):
+        with pytest.raises(SystemExit) as stop:
+            cli.main(["sim", "kinematics", "--commands", "reversals", "--plot", bad])
+        assert stop.value.code == 2 and "--plot: " in capsys.readouterr().err
