@@ -61,6 +61,7 @@ BAD = [
     ('{"t_ms": 0, "yaw": 1.005}\n', "line 1: yaw: 1.005 has more decimals"),
     ('{"t_ms": 0, "vx": "40"}\n', 'line 1: vx: "40", allowed -300.0..300.0 mm/s'),
     ('{"t_ms": 0, "vx": NaN}\n', "line 1: not JSON (NaN is not a number JSON allows)"),
+    ('{"t_ms": 0, "vx": 40, "vx": -40}\n', "line 1: not JSON (key 'vx' twice)"),
     ('{"t_ms": 0, "stop": 1}\n', "line 1: stop: 1, allowed true or false"),
     ('{"t_ms": 0, "stop": true, "yaw": 5}\n', "line 1: stop: true with yaw 5: a stop carries no speed"),
     ('{"t_ms": 0}\n{"t_ms": 20, "vx": 40, "gait": "Ripple"}\n', 'line 2: gait: "Ripple", allowed'),

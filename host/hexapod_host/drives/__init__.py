@@ -85,7 +85,7 @@ def _line(name, n, line, last):
     if not line.strip():
         raise StreamError("%s: empty line: every line is one JSON object" % where)
     try:
-        obj = json.loads(line, parse_constant=_no_constant)
+        obj = json.loads(line, parse_constant=_no_constant, object_pairs_hook=_no_twice)
     except ValueError as err:
         raise StreamError("%s: not JSON (%s)" % (where, err)) from None
     if not isinstance(obj, dict):
@@ -140,6 +140,16 @@ def _whole(v):
 def _show(v):
     text = json.dumps(v)
     return text if len(text) <= 30 else text[:27] + "..."
+
+
+def _no_twice(pairs):
+    """A JSON object whose keys are all different (json keeps the last of a repeated key silently)."""
+    seen = {}
+    for key, value in pairs:
+        if key in seen:
+            raise ValueError("key %r twice" % key[:30])
+        seen[key] = value
+    return seen
 
 
 def _no_constant(name):
