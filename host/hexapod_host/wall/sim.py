@@ -204,6 +204,8 @@ class Trial:
             fw.close()
             raise
         self.limit = int(world.time_limit_s / FRAME_S) if max_frames is None else max_frames
+        (fx1, fy1, fx2, fy2) = world.finish
+        self.course_mm = ((fx1 + fx2) / 2 - px) * ux + ((fy1 + fy2) / 2 - py) * uy
         self.errors, self.path, self.trace = [], 0.0, []
         self.legs = wall_physics.MOVERS[mover](body, standing)
         self.why, self.faults, self.n = "time limit", 0, 0
@@ -282,6 +284,7 @@ class Trial:
             "success": self.finished,
             "why": self.why,
             "time_s": round(self.n * FRAME_S, 2),
+            "course_mm": round(self.course_mm, 1),
             "frames": self.n,
             "path_mm": round(self.path, 1),
             "rms_mm": math.sqrt(sum(v * v for v in e) / len(e)) if e else None,
@@ -351,10 +354,35 @@ def summarise(setpoint, results):
         "steady_state_mm": round(sum(steady) / len(steady), 2) if steady else None,
         "overshoot_mm": round(sum(r["overshoot_mm"] for r in results) / len(results), 2),
         "time_s": round(sum(r["time_s"] for r in ok) / len(ok), 2) if ok else None,
+        **speed_share(ok),
         "contacts": sum(1 for r in results if r["contact"]),
         "faults": sum(r["faults"] for r in results),
         "failures": why,
     }
+
+
+def top_speed_mm_s():
+    """The gait's top accepted speed, mm/s: the forward speed the walker commands (after reach, step and
+    servo guard, docs/physics.md "Servo speed guard") when asked the most a walk takes, in the gait
+    and cycle a Robot of robots/default.py starts in (the follower's: the tripod at 1 s, 48.3 mm/s)."""
+    import robots.default as d
+    from hexapod import geometry, tick
+    from hexapod.limits import SPEED_MAX
+
+    g = geometry.load(d)
+    walker = tick.Robot(g, tick.default_servos(g), tick.FrameBuffer()).walker
+    walker.command(SPEED_MAX, 0, 0)
+    return walker.cmd[0] / 10.0
+
+
+def speed_share(ok):
+    """mean_speed_mm_s: the course (start to the finish's middle, along the start wall) / the mean
+    time of the successful trials; top_speed_share: that / top_speed_mm_s() (issue 22 point 5)."""
+    if not ok:
+        return {"mean_speed_mm_s": None, "top_speed_mm_s": None, "top_speed_share": None}
+    top = top_speed_mm_s()
+    speed = ok[0]["course_mm"] / (sum(r["time_s"] for r in ok) / len(ok))
+    return {"mean_speed_mm_s": round(speed, 2), "top_speed_mm_s": top, "top_speed_share": round(speed / top, 4)}
 
 
 def run_trials(
@@ -438,7 +466,7 @@ def table(rows):
                 "-" if r["rms_mm"] is None else "%.1f mm" % r["rms_mm"],
                 "-" if r["steady_state_mm"] is None else "%+.1f mm" % r["steady_state_mm"],
                 "%.1f mm" % r["overshoot_mm"],
-                "-" if r["time_s"] is None else "%.1f s" % r["time_s"],
+                "-" if r["time_s"] is None else "%.1f s (%.0f %% of top)" % (r["time_s"], 100 * r["top_speed_share"]),
                 "%d" % r["contacts"],
                 PAPER,
             )

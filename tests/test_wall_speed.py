@@ -1,0 +1,43 @@
+"""`hexapod sim wall`'s top_speed_share (issue 22 point 5): the mean speed along the wall between start
+and finish against the gait's top accepted speed, beside time_s."""
+
+import json
+
+import pytest
+
+from hexapod_host.commands import cli
+from hexapod_host.wall import sim
+from hexapod_host.wall.world import load
+
+
+def test_the_top_accepted_speed_is_the_tripods_48_3_mm_s():
+    # docs/physics.md "Servo speed guard": the tripod at its 1.0 s cycle, 48.3 mm/s forward at most.
+    assert sim.top_speed_mm_s() == 48.3
+
+
+def test_the_wall_course_is_1_5_m():
+    # wall.json: start 20 cm along the wall, finish line at 170 cm: 1,500 mm (the same in gap.json).
+    for name in ("wall", "gap"):
+        trial = sim.Trial(load(name), 12, 0, disturb=False, max_frames=0)
+        try:
+            assert trial.result()["course_mm"] == 1500.0
+        finally:
+            trial.close()
+
+
+def test_the_share_from_the_mean_time_worked_by_hand():
+    # Two successes over 1,500 mm in 40 s and 50 s: mean time 45 s, 1500 / 45 = 33.33 mm/s,
+    # / 48.3 = 0.6901 (issue 22: 44.6-45.5 s is about 69 % of the tripod's top speed).
+    ok = [{"course_mm": 1500.0, "time_s": 40.0}, {"course_mm": 1500.0, "time_s": 50.0}]
+    got = sim.speed_share(ok)
+    assert got["mean_speed_mm_s"] == pytest.approx(33.33, abs=0.005)
+    assert got["top_speed_share"] == pytest.approx(1500 / 45 / 48.3, abs=1e-4)
+    assert sim.speed_share([]) == {"mean_speed_mm_s": None, "top_speed_mm_s": None, "top_speed_share": None}
+
+
+def test_cli_json_reports_it_beside_time_s(capsys):
+    assert cli.main(["sim", "wall", "--world", "gap", "--trials", "1", "--json", "--jobs", "1"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["success_rate"] == 1.0
+    assert out["top_speed_share"] == pytest.approx(1500 / out["time_s"] / 48.3, abs=1e-3)
+    assert out["rows"][0]["top_speed_share"] == out["top_speed_share"]
