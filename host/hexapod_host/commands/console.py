@@ -140,18 +140,23 @@ def start_virtual_board(board="pico", robot="default", cal_dir="", frames=-1, *,
         search += os.pathsep + WALL_DIR  # the simulator's rig.py: its Tee and set_distances
         args.append("%d,%d" % (vm_in, vm_out))
     env = dict(os.environ, MICROPYPATH=search)
-    proc = subprocess.Popen(
-        args,
-        stdin=master,
-        stdout=master,
-        env=env,
-        start_new_session=True,  # Ctrl-C in the terminal reaches us; we stop the VM
-        preexec_fn=_die_with_parent(os.getpid()),
-        pass_fds=(vm_in, vm_out) if room is not None else (),
-    )
+    try:
+        proc = subprocess.Popen(
+            args,
+            stdin=master,
+            stdout=master,
+            env=env,
+            start_new_session=True,  # Ctrl-C in the terminal reaches us; we stop the VM
+            preexec_fn=_die_with_parent(os.getpid()),
+            pass_fds=(vm_in, vm_out) if room is not None else (),
+        )
+    except BaseException:
+        for fd in (master, slave) + ((vm_in, to_vm, from_vm, vm_out) if room is not None else ()):
+            os.close(fd)
+        raise
     proc.room = room
     if room is not None:
-        os.close(vm_in)
+        os.close(vm_in)  # the VM's ends are the VM's
         os.close(vm_out)
         room.start(os.fdopen(to_vm, "w"), os.fdopen(from_vm))
     # Keep our slave fd open: with no client the master would read EOF/EIO; with it the VM's
