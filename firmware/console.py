@@ -537,7 +537,7 @@ class Console:
                 left,
                 f.side if on else "off",
                 follow.MODE_NAMES[f.mode],
-                format_fixed(f.distance if on else 0, 1),
+                format_fixed(f.distance, 1) if on and f.distance >= 0 else "-",  # no distance (yet)
                 format_fixed(f.angle if on else 0, 2),
                 format_fixed(f.error if on else 0, 1),
                 format_fixed(f.output if on else 0, 2),

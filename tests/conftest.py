@@ -19,7 +19,8 @@ def pytest_sessionstart(session):
 @pytest.fixture
 def virtual_board():
     """start(cal_dir) -> (pty path, an open Link): `hexapod virtual-board` for pico/default in the
-    MicroPython VM (cal_dir "": no calibration filesystem); every board started is stopped after."""
+    MicroPython VM (cal_dir "": no calibration filesystem); every board started is stopped after.
+    start(cal_dir, world=W) -> (pty path, link, room): its sonars in world W's room (--world)."""
     from hexapod_host.commands.console import start_virtual_board
     from hexapod_host.serial.link import Link
     from hexapod_host.testing.runtimes import micropython_missing
@@ -28,12 +29,12 @@ def virtual_board():
         pytest.skip(micropython_missing())
     started = []
 
-    def start(cal_dir):
-        proc, path, master, slave = start_virtual_board("pico", "default", cal_dir)
+    def start(cal_dir, world=None):
+        proc, path, master, slave = start_virtual_board("pico", "default", cal_dir, world=world)
         link = Link.open(path, timeout=10)
         started.append((proc, master, slave, link))
         link.request("help")  # the VM is up
-        return path, link
+        return (path, link) if world is None else (path, link, proc.room)
 
     yield start
     for proc, master, slave, link in started:

@@ -446,3 +446,40 @@ def test_tibia_trim_has_room_both_ways_at_its_reference(both_runtimes):
     assert r[12].endswith("trim 10 dir 1 min_us 600 max_us 2400") and pulses[13] == "1510"
     assert pulses[14] == "1610"
     assert r[-1] == []
+
+
+WALL_D = re.compile(r" wall_d (\S+) ")
+
+
+def test_status_shows_no_wall_distance_as_a_dash(rt):
+    """`wall_d` is '-' while there is no distance: following off (was 0.0), and following with
+    both left sonars hearing nothing (was -0.1, the follower's -1 sentinel); with both left
+    sonars 120.0 mm from a wall parallel to the body, the distance: 120 mm within the driver's
+    echo rounding (1 us of echo is 0.17 mm)."""
+    deaf = transcript(
+        rt,
+        ["status", "stand"],
+        """frames(120)
+SONAR[1].missing_echo = True
+SONAR[2].missing_echo = True
+print(repr(say("wall left 12")))
+frames(10)
+print(repr(say("status")))
+""",
+    ).splitlines()
+    heard = transcript(
+        rt,
+        ["stand"],
+        """frames(120)
+SONAR[1].set_distance(1200)
+SONAR[2].set_distance(1200)
+print(repr(say("wall left 12")))
+frames(30)
+print(repr(say("status")))
+""",
+    ).splitlines()
+    r = [ast.literal_eval(x) for x in deaf + heard]
+    assert r[2] == "ok wall left setpoint 12.00" and r[5] == r[2]
+    assert WALL_D.search(r[0]).group(1) == "-" and " wall off " in r[0]
+    assert WALL_D.search(r[3]).group(1) == "-" and " wall left " in r[3]
+    assert abs(float(WALL_D.search(r[6]).group(1)) - 120.0) <= 0.2, r[6]

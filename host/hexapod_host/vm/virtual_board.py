@@ -1,7 +1,14 @@
 # Runs inside the MicroPython VM: the board's loop (main.build on the stub machine with the
 # PCA9685 and HC-SR04 models) with the serial console on stdin/stdout, paced to real time.
 # `hexapod virtual-board` starts it on a pseudo-terminal. Arguments: board name, robot name,
-# calibration directory ('' = no calibration file), frames to run (-1 = for ever).
+# calibration directory ('' = no calibration file), frames to run (-1 = for ever), and the room's
+# pipes ('R,W': file descriptors; absent = no room).
+#
+# The room (`--world`, hexapod_host.wall.board_room on the host): before each frame the sonar
+# models take their five distances from pipe R (0.1 mm, 0 = nothing heard; the wall simulator's
+# rig.set_distances), after it the 18 pulses the core sent go out on pipe W (the rig's Tee), one
+# line each; the host moves the body by its feet and casts the beams. Without a room the sonars
+# answer fixed distances.
 #
 # Virtual time drives the models (sonar echoes, the PCA9685's clock); after each frame the
 # script sleeps until the real clock has caught up with the virtual one, so a client sees a
@@ -27,6 +34,7 @@ BOARD = sys.argv[1] if len(sys.argv) > 1 else "pico"
 ROBOT = sys.argv[2] if len(sys.argv) > 2 else "default"
 CAL_DIR = sys.argv[3] if len(sys.argv) > 3 else ""
 FRAMES = int(sys.argv[4]) if len(sys.argv) > 4 else -1
+ROOM = sys.argv[5] if len(sys.argv) > 5 else ""
 
 board = stub_board.reset(BOARD)
 bus, models = stub_board.pca9685_models(board)
@@ -35,6 +43,16 @@ chips = [models[a] for a in sorted(models)]  # the model command: 0x40 first
 sonars = stub_board.sonar_models(board, [3000 + 1000 * k for k in range(5)])
 
 r = main.build(BOARD, ROBOT, clock=clock)
+room_in = room_out = tee = None
+if ROOM:
+    import rig  # the wall simulator's firmware side (host/hexapod_host/wall, on MICROPYPATH)
+
+    fd_in, fd_out = ROOM.split(",")
+    # Open for the VM's life. Unbuffered on the unix port (and its flush fsyncs: EINVAL on a pipe).
+    room_in = open("/dev/fd/" + fd_in)  # noqa: SIM115
+    room_out = open("/dev/fd/" + fd_out, "w")  # noqa: SIM115
+    tee = rig.Tee(r.bank)
+    r.robot.frame = tee
 if CAL_DIR:
     os.chdir(CAL_DIR)
 
@@ -96,9 +114,16 @@ def serve(frames):
     n = 0
     try:
         while frames < 0 or n < frames:
+            if room_in is not None:
+                line = room_in.readline()
+                if not line:  # the host's room is gone: so is the host
+                    sys.exit(1)
+                rig.set_distances(sonars, [int(v) for v in line.split()])
             r.step()
             con.poll()
             r.wait()
+            if room_out is not None:
+                room_out.write(" ".join([str(p) for p in tee.pulses]) + "\n")
             n += 1
             ahead = clock.ticks_diff(clock.ticks_ms(), v0) - time.ticks_diff(time.ticks_ms(), t0)
             if ahead > 0:

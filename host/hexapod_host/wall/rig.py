@@ -50,6 +50,14 @@ class Tee:
         return self.bank.reinits if self.bank is not None else 0
 
 
+def set_distances(sonars, d):
+    """What each HC-SR04 model answers on its next ping: d in 0.1 mm, NO_ECHO for nothing heard
+    (also the virtual board's room, hexapod_host.vm.virtual_board)."""
+    for k in range(len(sonars)):
+        v = d[k]
+        sonars[k].set_distance(v if v > 0 else hcsr04_model.MAX_RANGE + 1)
+
+
 class Rig:
     """main.build's Runner on the stub machine, HC-SR04 models at distances the caller sets."""
 
@@ -69,9 +77,7 @@ class Rig:
 
     def set_distances(self, d):
         """What each model answers on its next ping: 0.1 mm, NO_ECHO for nothing heard."""
-        for k in range(len(self.sonars)):
-            v = d[k]
-            self.sonars[k].set_distance(v if v > 0 else hcsr04_model.MAX_RANGE + 1)
+        set_distances(self.sonars, d)
 
     def stand(self):
         """Stand up; returns the frames it took (the sonars ping all along)."""

@@ -122,6 +122,36 @@ def echo(r, noise=0.0, drop=False):
     return int(round((r + noise) * 10))
 
 
+def answers(body, walls, rng=None):
+    """The five sonars' answers (0.1 mm, 0: nothing heard) for the body where it is: each beam
+    cast into the walls; with rng, noise (sd NOISE_MM) and dropouts (DROPOUT) drawn from it."""
+    d = []
+    for k in range(5):
+        sx, sy, h = body.sensor_pose(k)
+        r = beam_distance(walls, sx, sy, h)
+        noise = rng.gauss(0.0, NOISE_MM) if rng is not None else 0.0
+        drop = rng.random() < DROPOUT if rng is not None else False
+        d.append(echo(r, noise, drop))
+    return d
+
+
+def side_midpoint(body, side):
+    """The body-frame (x, y) mm of the midpoint between the side sonars that face the wall."""
+    pair = (1, 2) if side == "left" else (3, 4)
+    return sum(body.sensors[k][0] for k in pair) / 2, sum(body.sensors[k][1] for k in pair) / 2
+
+
+def place_at_start(body, world, side, distance_mm, heading=0.0):
+    """Put the body at the world's start: the side sonars' midpoint distance_mm from the start
+    wall on `side`, facing along the wall, turned by heading (rad, left +)."""
+    mx, my = side_midpoint(body, side)
+    (px, py), (ux, uy), (nx, ny) = world.start_frame(side)
+    theta = math.atan2(uy, ux) + heading
+    wx, wy = px + nx * distance_mm, py + ny * distance_mm
+    c, s = math.cos(theta), math.sin(theta)
+    body.place(wx - (c * mx - s * my), wy - (s * mx + c * my), theta)
+
+
 def wall_distance(walls, x, y):
     return min(point_segment(x, y, *w) for w in walls)
 
@@ -177,19 +207,13 @@ class Trial:
         self.gains = gains = gains or PAPER_GAINS
         milli = [int(round(g * 1000)) for g in gains]
         self.body = body = Body()
-        pair = (1, 2) if side == "left" else (3, 4)
-        self.mx = sum(body.sensors[k][0] for k in pair) / 2
-        self.my = sum(body.sensors[k][1] for k in pair) / 2
-        (px, py), (ux, uy), (nx, ny) = world.start_frame(side)
+        self.mx, self.my = side_midpoint(body, side)
         self.disturb, self.record = disturb, record
         self.off = off = (rng.choice((-1, 1)) * rng.uniform(*OFFSET_CM) * 10.0) if disturb else 0.0
         self.head = head = math.radians(rng.uniform(-HEADING_DEG, HEADING_DEG)) if disturb else 0.0
         self.speed = 1.0 + (rng.gauss(0.0, SPEED_SD) if disturb else 0.0)
         self.slip_sd = math.radians(SLIP_DEG_PER_STRIDE) / math.sqrt(STRIDE_FRAMES) if disturb else 0.0
-        theta = math.atan2(uy, ux) + head
-        wx, wy = px + nx * (sp + off), py + ny * (sp + off)  # the side sonars' midpoint
-        c, s = math.cos(theta), math.sin(theta)
-        body.place(wx - (c * self.mx - s * self.my), wy - (s * self.mx + c * self.my), theta)
+        place_at_start(body, world, side, sp + off, head)
         standing = body.neutral_legs()
         touched = body.touches(walls)
         if touched >= 0:
@@ -219,14 +243,7 @@ class Trial:
 
     def pings(self):
         """The five sonars' answers (0.1 mm) for the body where it is, noise and dropouts drawn."""
-        rng, body, d = self.rng, self.body, []
-        for k in range(5):
-            sx, sy, h = body.sensor_pose(k)
-            r = beam_distance(self.walls, sx, sy, h)
-            noise = rng.gauss(0.0, NOISE_MM) if self.disturb else 0.0
-            drop = rng.random() < DROPOUT if self.disturb else False
-            d.append(echo(r, noise, drop))
-        return d
+        return answers(self.body, self.walls, self.rng if self.disturb else None)
 
     def step(self):
         """One 20 ms frame: pings, the firmware's frame, the body moved, the rules checked. Sets
