@@ -16,6 +16,7 @@ import pytest
 from hexapod_host.serial import guided
 from tests.console_link import ConsoleLink
 from tests.console_rig import clean_stubs  # noqa: F401 (autouse fixture)
+from tests.test_jog import NEEDS_TMUX, jog_in_tmux, screen_until, tmux
 
 # Horn error after fitting, tenths of a degree (a 25-tooth spline is 14.4 degrees a tooth: within
 # +-7.2 degrees), leg-major, coxa femur tibia.
@@ -228,3 +229,46 @@ def test_refusals_and_a_dead_link():
     guide.key("ENTER")
     assert guide.phase == guided.QUIT and not guide.connected and guide.message.endswith("lost the board")
     assert guide.render()[1].startswith("DISCONNECTED joint 1 coxa 2.00")
+
+
+def test_the_jog_tool_runs_the_guide_on_G_and_comes_back(tmp_path):
+    from hexapod_host.serial import jog
+
+    board = ConsoleLink()
+    maker = Maker(board)
+    tool = jog.Jog(maker, progress=str(tmp_path / "g.json"), sleep=lambda s: None)
+    tool.start()
+    tool.key("G")
+    assert tool.guide is not None and tool.screen()[0].startswith("guided calibration  servo 1 of 18: leg 1 coxa")
+    assert maker.seen[-1][0] == "pulse 1 coxa 1500"
+    tool.key("ENTER")  # the horn is on: the sweep runs
+    assert tool.screen()[1].startswith("swept: first +10 deg, counter-clockwise seen from above")
+    tool.key("ESC")
+    assert tool.guide is None and tool.view.message.startswith("quit, nothing saved")
+    assert jog.render(tool.view)[0].startswith("hexapod jog ")  # the jog screen again
+    assert "save" not in [line for line, _ in maker.seen]
+
+
+@NEEDS_TMUX
+def test_guided_in_a_terminal_as_a_person_would(tmp_path):
+    progress = tmp_path / "g.json"
+    with jog_in_tmux("--guided", "--progress", str(progress)) as (fake, path, stop):
+        shown = screen_until("servo 1 of 18")
+        assert "leg 1 coxa at its reference pulse 1500 us: fit the horn at 0.00 deg" in shown, shown
+        tmux("send-keys", "-t", "jog", "Enter")
+        shown = screen_until("the right way?")
+        assert "step: sweep" in shown, shown
+        tmux("send-keys", "-t", "jog", "y")
+        shown = screen_until("step: trim")
+        tmux("send-keys", "-t", "jog", "+", "+", "Enter")  # trim +20 us, done: the next servo
+        shown = screen_until("servo 2 of 18: leg 1 femur")
+        assert "(1 done)" in shown, shown
+        tmux("send-keys", "-t", "jog", "Escape")
+        shown = screen_until("quit, nothing saved")
+        assert "hexapod jog " in shown and "1 of 18 done, kept to resume" in shown, shown
+        tmux("send-keys", "-t", "jog", "q")
+        shown = screen_until("exit=")
+        assert "exit=0" in shown, shown
+    assert json.loads(progress.read_text()) == {"done": [[1, "coxa", 20, 1]]}
+    assert "save" not in fake.lines and "hexapod_cal.txt" not in fake.fs.files
+    assert fake.lines.count("joint 1 coxa 10.00") == 1 and "trim 1 coxa 20" in fake.lines

@@ -208,6 +208,10 @@ class Guide:
         if self.progress and os.path.exists(self.progress):
             os.remove(self.progress)  # all done and saved on the board: nothing to resume
 
+    def over(self):
+        """Saved, or quit: no key does anything more."""
+        return self.phase in (DONE, QUIT)
+
     def _quit(self, why):
         self.phase = QUIT
         self.message = why
@@ -220,8 +224,8 @@ class Guide:
             return
         if key in ("ESC", "q"):
             self._quit(
-                "quit: nothing saved (the calibration file on the board is as it was); %d of 18 servos done%s"
-                % (len(self.done), ", kept for the next --guided" if self.progress and self.done else "")
+                "quit, nothing saved (board file as it was); %d of 18 done%s"
+                % (len(self.done), ", kept to resume" if self.progress and self.done else "")
             )
             return
         if self.phase == FIT:
