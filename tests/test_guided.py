@@ -248,7 +248,9 @@ def test_the_jog_tool_runs_the_guide_on_G_and_comes_back(tmp_path):
     assert tool.guide is not None and tool.screen()[0].startswith("guided calibration  servo 1 of 18: leg 1 coxa")
     assert maker.seen[-1][0] == "pulse 1 coxa 1500"
     tool.key("ENTER")  # the horn is on: the sweep runs
-    assert tool.screen()[1].startswith("swept: first +10 deg, counter-clockwise seen from above")
+    shown = tool.screen()
+    assert shown[1] == "swept +10 deg, then -10 deg and back: did it go the right way first?"
+    assert "+10 deg: counter-clockwise seen from above: the foot forward" in shown
     tool.key("ESC")
     assert tool.guide is None and tool.view.message.startswith("quit, nothing saved")
     assert jog.render(tool.view)[0].startswith("hexapod jog ")  # the jog screen again

@@ -28,17 +28,22 @@ SWEEP_DEG = (2, 4, 6, 8, 10, 8, 6, 4, 2, 0, -2, -4, -6, -8, -10, -8, -6, -4, -2,
 SWEEP_PAUSE_S = 0.1  # between sweep steps: 20 degrees a second, slow enough to watch
 STAND_POLLS = 300  # `status` polls (a frame or more each) waiting for the stand to finish
 SERVOS = [(leg, joint) for leg in range(1, 7) for joint in JOINTS]
+
+
 # What +10 degrees looks like on the robot (design.md: seed 004's DH angles).
-PLUS = {
-    "coxa": "counter-clockwise seen from above (legs 1-3: the foot forward; legs 4-6: backward)",
-    "femur": "up (the knee rises)",
-    "tibia": "the knee opens (the foot swings out and up)",
-}
+def plus(leg, joint):
+    """What +10 degrees looks like for this joint (design.md: seed 004's DH angles)."""
+    if joint == "coxa":
+        return "counter-clockwise seen from above: the foot %s" % ("forward" if leg <= 3 else "backward")
+    return "up: the knee rises" if joint == "femur" else "the knee opens: the foot swings out"
+
+
+# Each phase's keys, a line each (the screen may be 80 columns).
 KEYS = {
-    FIT: "Enter: the horn is on at the reference angle   p: send the reference pulse again   Esc/q: quit",
-    SWEEP: "y: it went the right way   n: the wrong way (flip its direction)   r: sweep again   Esc/q: quit",
-    TRIM: "+ -: trim by the step   < >: step 1 5 10 50 us   Enter: the horn is at the reference   Esc/q: quit",
-    STAND: "y: level, all six feet down: save   n: redo a servo (then 1-6 and c f t)   Esc/q: quit",
+    FIT: ("Enter  the horn is on at the reference angle", "p      send the reference pulse again"),
+    SWEEP: ("y      it went the right way first", "n      the wrong way: flip its direction", "r      sweep again"),
+    TRIM: ("+ -    trim by the step", "< >    step 1 5 10 50 us", "Enter  the horn is at the reference angle"),
+    STAND: ("y      level, all six feet down: save", "n      redo a servo (then its leg 1-6 and c f t)"),
 }
 
 
@@ -145,7 +150,7 @@ class Guide:
             if self.ask("joint %d %s %s" % (leg, joint, degrees(ref + 100 * d))) is None:
                 return
             self.sleep(self.pause_s)
-        self.message = "swept: first +10 deg, %s, then -10 deg and back: the right way?" % PLUS[joint]
+        self.message = "swept +10 deg, then -10 deg and back: did it go the right way first?"
 
     def _flip(self):
         leg, joint = SERVOS[self.k]
@@ -153,6 +158,8 @@ class Guide:
             return
         self.cal["dir"] = -self.cal["dir"]
         self._sweep()
+        if self.phase == SWEEP and self.connected and not self.error_shown:
+            self.message = "direction now %+d, swept again: the right way first now?" % self.cal["dir"]
 
     def _trim_start(self):
         self.phase = TRIM
@@ -282,7 +289,7 @@ class Guide:
 
     def _refuse(self, key):
         self.error_shown = True
-        self.message = "key %r does nothing here (%s)" % (key, KEYS.get(self.phase, ""))
+        self.message = "key %r does nothing here (keys below)" % (key,)
 
     # -- progress ---------------------------------------------------------------------------------
 
@@ -321,7 +328,7 @@ class Guide:
         lines = [head, status + self.message, ""]
         if self.cal and self.phase in (FIT, SWEEP, TRIM):
             lines.append(
-                "cal    centre %d us at %s deg  trim %+d  dir %+d  range %d..%d us  step %d us"
+                "cal  %d us at %s deg  trim %+d  dir %+d  range %d..%d us  step %d us"
                 % (
                     self.cal["centre_us"],
                     degrees(self.cal["ref_cdeg"]),
@@ -332,6 +339,10 @@ class Guide:
                     STEPS_US[self.step_us],
                 )
             )
+        if self.phase in (FIT, SWEEP):
+            lines.append("+10 deg: %s" % plus(leg, joint))
+        lines.append("")
+        lines += list(KEYS.get(self.phase, ()))
         if self.phase in KEYS:
-            lines.append(KEYS[self.phase])
+            lines.append("Esc q  quit: nothing saved (the servos done are kept to resume)")
         return lines
