@@ -11,6 +11,7 @@ the 1:3 divider (333 permille, mV * 333 // 1000) and the RP2040's 12-bit ADC cod
 reference: code = round(pin_mV * 4096 / 3300).
 """
 
+import json
 import os
 import subprocess
 
@@ -86,3 +87,25 @@ def test_the_battery_scenario_on_the_emulated_pico(tmp_path):
     # The ADC model was read once at build and then every 10th frame: 106 conversions in 1050 frames.
     conversions = [line for line in trace.read_text().splitlines() if '"adc"' in line]
     assert len(conversions) == readings
+
+
+@pytest.mark.parametrize(
+    "adc, message",
+    [
+        ({"pin": 25, "codes": [1]}, "run.mjs: adc.pin 25: allowed 26..29 (ADC channels 0..3)"),
+        ({"pin": 28, "codes": []}, "run.mjs: adc.codes: a non-empty list of 12-bit codes (0..4095)"),
+        ({"pin": 28, "codes": [4096]}, "run.mjs: adc.codes: a non-empty list of 12-bit codes (0..4095)"),
+    ],
+)
+def test_a_bad_adc_device_is_refused(tmp_path, adc, message):
+    devices = tmp_path / "devices.json"
+    devices.write_text(json.dumps({"adc": adc}))
+    script = tmp_path / "x.py"
+    script.write_text("print(1)\n")
+    proc = subprocess.run(
+        [pico.node(), pico.RUNNER, "--firmware", pico.firmware(), "--devices", str(devices), str(script)],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert (proc.returncode, proc.stderr.strip()) == (2, message)
