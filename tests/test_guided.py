@@ -316,3 +316,29 @@ def test_all_18_servos_on_the_virtual_board(tmp_path):
         proc.wait()
         os.close(master)
         os.close(slave)
+
+
+def test_no_save_before_the_robot_has_stood(tmp_path):
+    board = ConsoleLink()
+    maker = Maker(board)
+    progress = tmp_path / "g.json"
+    rows = [[leg, joint, t, d] for (leg, joint), t, d in zip(guided.SERVOS, WANT_TRIM, WANT_DIR, strict=True)]
+    progress.write_text(json.dumps({"done": rows}))
+
+    class Refuses:
+        stands = 0
+
+        def request(self, line):
+            if line == "stand" and not Refuses.stands:
+                Refuses.stands += 1
+                return "err stand: battery 6.39 V, cut off below 6.60 V"  # as the console says it
+            return maker.request(line)
+
+    guide = guided.Guide(Refuses(), progress=str(progress))
+    guide.start()
+    assert guide.phase == guided.STAND and guide.error_shown and guide.message.startswith("stand: battery 6.39 V")
+    guide.key("y")  # not stood: it stands, it does not save
+    assert "save" not in [line for line, _ in maker.seen] and guide.phase == guided.STAND
+    assert guide.message.startswith("standing: on a flat floor")
+    guide.key("y")
+    assert guide.phase == guided.DONE and [r[0] for r in board.saved_rows()] == WANT_TRIM

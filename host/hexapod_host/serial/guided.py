@@ -43,7 +43,10 @@ KEYS = {
     FIT: ("Enter  the horn is on at the reference angle", "p      send the reference pulse again"),
     SWEEP: ("y      it went the right way first", "n      the wrong way: flip its direction", "r      sweep again"),
     TRIM: ("+ -    trim by the step", "< >    step 1 5 10 50 us", "Enter  the horn is at the reference angle"),
-    STAND: ("y      level, all six feet down: save", "n      redo a servo (then its leg 1-6 and c f t)"),
+    STAND: (
+        "y      level, all six feet down: save (a stand that did not finish: stand again)",
+        "n      redo a servo (then its leg 1-6 and c f t)",
+    ),
 }
 
 
@@ -74,6 +77,7 @@ class Guide:
         self.done = {}  # (leg, joint) -> (trim, dir)
         self.step_us = 2  # index into STEPS_US
         self.redo = None  # after 'n' at the stand check: the leg picked, waiting for c f t
+        self.stood = False  # the standing check's stand finished
         self.message = ""
         self.error_shown = False
         self.connected = True
@@ -89,8 +93,10 @@ class Guide:
             self._quit("%s: %s" % (line, err))
             return None
         if reply.startswith("err"):
+            why = reply[3:].strip()
             self.error_shown = True
-            self.message = "%s: %s" % (line, reply[3:].strip())
+            # 'err stand: battery ...' names its command already
+            self.message = why if why.startswith(line.split()[0] + ":") else "%s: %s" % (line, why)
             return None
         self.error_shown = False
         return reply
@@ -203,7 +209,8 @@ class Guide:
 
     def _stand(self):
         self.phase = STAND
-        if self._until("stand", "standing"):
+        self.stood = self._until("stand", "standing")
+        if self.stood:
             self.message = "standing: on a flat floor, is the body level with all six feet down?"
 
     def _save(self):
@@ -268,7 +275,9 @@ class Guide:
 
     def _stand_key(self, key):
         if self.redo is None:
-            if key == "y":
+            if key == "y" and not self.stood:
+                self._stand()  # nothing is saved before the maker has seen it stand
+            elif key == "y":
                 self._save()
             elif key == "n":
                 self.redo = 0
