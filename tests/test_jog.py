@@ -183,13 +183,13 @@ NEEDS_TMUX = pytest.mark.skipif(
 
 
 @contextlib.contextmanager
-def jog_in_tmux():
-    """`hexapod jog` in a 100x30 tmux session ("jog") on the real console over a pty: yields (the
-    console link, its pty path, stop() that pulls the cable). The shell prints jog's exit status
-    after it and stays a moment so the screen can be read."""
+def jog_in_tmux(*options):
+    """`hexapod jog` (with options) in a 100x30 tmux session ("jog") on the real console over a pty:
+    yields (the console link, its pty path, stop() that pulls the cable). The shell prints jog's exit
+    status after it and stays a moment so the screen can be read."""
     fake = ConsoleLink()
     path, stop = serve_pty(fake)
-    cmd = "%s -m hexapod_host jog --port %s; echo exit=$?; sleep 5" % (sys.executable, path)
+    cmd = "%s -m hexapod_host jog --port %s %s; echo exit=$?; sleep 5" % (sys.executable, path, " ".join(options))
     tmux("kill-server")
     try:
         assert tmux("new-session", "-d", "-s", "jog", "-x", "100", "-y", "30", cmd).returncode == 0

@@ -26,11 +26,17 @@
 //
 // Devices (--devices JSON, all optional): {"i2c": {"id": 0, "sda": 4, "scl": 5},
 //   "pca9685": [{"address": 64, "plugged": true, "power_pin": 22}], "sonars": [{"trigger": 6, "echo": 7,
-//   "distance": 10000}], "temp_centi_c": 2000, "schedule": [[t_us, sonar, distance]]}
+//   "distance": 10000}], "temp_centi_c": 2000, "schedule": [[t_us, sonar, distance]],
+//   "adc": {"pin": 28, "codes": [c0, c1, ...]}}
 // A PCA9685 answers only while the firmware has routed the I2C block to those pins; its
 // register writes are decoded into per-channel counts, one --trace line per burst (STOP).
 // An HC-SR04 answers a trigger pulse >= 10 us with an echo 460 us after its falling edge, high
 // for 2 d / c (c = 331.3 + 0.606 T m/s), or held 38 ms when nothing is in 2 cm..4 m.
+// The ADC input on a pin (26..29: channels 0..3, rp2040js's RPADC): its n-th conversion returns
+// codes[n] (12-bit), the last one from then on; one --trace line per conversion. A battery
+// profile is given per conversion, not per emulated microsecond: the firmware's frame clock starts
+// after boot and imports, at no fixed time from power-up, and the hand-worked frames need the
+// readings lined up with the frames exactly (the test maps its time profile onto the readings).
 import fs from 'fs';
 import path from 'path';
 import { fileURLToPath } from 'url';
@@ -72,6 +78,13 @@ for (let i = 0; i < argv.length; i++) {
 function fail(msg) { writeErr(`run.mjs: ${msg}\n`); process.exit(2); }
 if (!opt.firmware) fail('--firmware FILE (.uf2 or .bin) is required');
 if (!(opt.main >= 0)) fail('--main takes emulated seconds >= 0');
+if (opt.devices && opt.devices.adc) {
+  const a = opt.devices.adc;
+  if (!Number.isInteger(a.pin) || a.pin < 26 || a.pin > 29) fail(`adc.pin ${a.pin}: allowed 26..29 (ADC channels 0..3)`);
+  if (!Array.isArray(a.codes) || !a.codes.length || !a.codes.every((c) => Number.isInteger(c) && c >= 0 && c <= 4095)) {
+    fail('adc.codes: a non-empty list of 12-bit codes (0..4095)');
+  }
+}
 
 // ---------- the chip and its flash ----------
 let clock, mcu, cdc, resets = 0, resetRequested = false;
@@ -273,10 +286,26 @@ function attachHCSR04(s, tempCentiC) {
   });
 }
 
+function attachADC(a) {
+  const adc = mcu.adc, ch = a.pin - 26, read = adc.onADCRead;
+  let n = 0;
+  adc.channelValues[ch] = a.codes[0];
+  adc.onADCRead = (channel) => {
+    if (channel === ch) {
+      const code = a.codes[Math.min(n, a.codes.length - 1)];
+      adc.channelValues[ch] = code;
+      record({ t: emuUs(), adc: ch, n, code });
+      n++;
+    }
+    read(channel);
+  };
+}
+
 const sonars = dev.sonars || [];
 function attachDevices() {
   if (dev.pca9685) attachPCA9685(dev.i2c || { id: 0, sda: 4, scl: 5 }, dev.pca9685);
   for (const s of sonars) attachHCSR04(s, dev.temp_centi_c ?? 2000);
+  if (dev.adc) attachADC(dev.adc);
 }
 const schedule = (dev.schedule || []).slice().sort((a, b) => a[0] - b[0]);
 

@@ -7,6 +7,7 @@ import _stub_clock as clock
 import console
 import main
 import stub_board
+from scenarios import battery_watch
 from scenarios.runner import walking_heap
 
 from hexapod import battery
@@ -74,44 +75,6 @@ def bad_setting(setting, runtime=None):
         board.update(saved)
 
 
-class Script(console.BufferReader):
-    """The console's reader for main.main: types lines at given frames and, once a frame (the
-    console polls it once a frame, after the step), logs every change of the robot's mode, the
-    battery state and the walker's requested speed; the console's lines are kept with their frame."""
-
-    def __init__(self, typed):
-        console.BufferReader.__init__(self, b"")
-        self.typed = typed  # {frame: line}
-        self.last_ms = -1
-        self.log = []  # (frame, what, value)
-        self.said = []  # (frame, line) the console printed
-        self.seen = {}
-
-    def read_byte(self):
-        now = clock.ticks_ms()
-        if now != self.last_ms:
-            self.last_ms = now
-            self.watch(now // 20)
-        return console.BufferReader.read_byte(self)
-
-    def watch(self, frame):
-        r = main.runner
-        for what, value in (
-            ("mode", r.robot.mode),
-            ("battery", r.battery.state),
-            ("req_vx", r.robot.walker.req_vx),
-        ):
-            if self.seen.get(what) != value:
-                self.seen[what] = value
-                self.log.append((frame, what, value))
-        line = self.typed.get(frame)
-        if line is not None:
-            self.feed(line.encode() + b"\n")
-
-    def say(self, line):
-        self.said.append((clock.ticks_ms() // 20, line))
-
-
 # The pack's voltage over the scenario (from_ms, mV), 2S, thresholds 7000 warn, 6600 cutoff,
 # 7200 resume (tests/test_battery.py works the frames out by hand).
 PROFILE = [
@@ -144,22 +107,14 @@ def whole(frames, typed, profile=PROFILE, setting=SETTING, boot="stand"):
     stub_board.sonar_models(board, [3000 + 1000 * k for k in range(5)])
     _stub_adc.battery(setting["pin"], setting["divider_permille"], profile)
     board["battery"] = setting
-    reader = Script(typed)
-    start = console.start
-
-    def start_here(runner, reader, os=None, opener=open, out=print, **kw):
-        return start(runner, reader, os, opener, reader.say, **kw)  # the console's lines kept
-
-    console.start = start_here
     try:
-        main.main(frames, clock=clock, reader=reader, boot=boot, calibrated=True)
+        return battery_watch.run(frames, typed, clock, lambda: clock.ticks_ms() // 20, boot)
     finally:
-        console.start = start
         board["battery"] = None  # as shipped
-    return reader.log, reader.said
 
 
-def scenario(frames=1050):
+def scenario_typed():
+    """The console lines of the battery scenario, {frame: line} (also typed on the emulated Pico)."""
     typed = walk_lines(60, 700)
     typed[640] = "status"
     typed[700] = "stand"
@@ -172,7 +127,11 @@ def scenario(frames=1050):
     typed[900] = "stand"
     typed[1000] = "status"
     typed[1001] = "faults"
-    return whole(frames, typed)
+    return typed
+
+
+def scenario(frames=1050):
+    return whole(frames, scenario_typed())
 
 
 def boot_at_cutoff(frames=100):

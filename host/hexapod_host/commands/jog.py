@@ -3,6 +3,7 @@
 docs/jog.md; the protocol is docs/console.md.
 """
 
+import os
 import sys
 
 from hexapod_host.commands import checks
@@ -13,6 +14,16 @@ def register(sub):
     p = sub.add_parser("jog", help="jog legs and servos from the keyboard, calibrate, save (docs/jog.md)")
     p.add_argument("--port", required=True, help="the board's serial port (e.g. /dev/ttyACM0), or a virtual board's")
     p.add_argument("--timeout", type=float, default=2.0, help="seconds to wait for each reply (default 2)")
+    p.add_argument(
+        "--guided",
+        action="store_true",
+        help="start in the guided calibration of all 18 servos (docs/calibration.md; G in the tool)",
+    )
+    p.add_argument(
+        "--progress",
+        default=os.path.expanduser("~/.hexapod_guided.json"),
+        help="where the guided calibration keeps the servos done, to resume (default ~/.hexapod_guided.json)",
+    )
     p.set_defaults(func=run)
 
 
@@ -32,9 +43,9 @@ def run(args):
     if not sys.stdin.isatty():
         link.close()
         raise UsageError("hexapod jog needs a terminal; for scripts use hexapod send")
-    tool = jog.Jog(link, LinkError)
+    tool = jog.Jog(link, LinkError, progress=args.progress)
     try:
-        jog_tui.run(tool, args.port)
+        jog_tui.run(tool, args.port, args.guided)
     finally:
         link.close()
     if not tool.view.connected:

@@ -269,11 +269,12 @@ def run_source(source, fs=None, **kw):
         return run([path], fs=fs, **kw)
 
 
-def devices(board_name="pico", distances=None, unplugged=(), power_pins=None):
+def devices(board_name="pico", distances=None, unplugged=(), power_pins=None, adc=None):
     """The emulated chips run.mjs attaches for a board file: its PCA9685s on its I2C pins (those
     in `unplugged` NACK; power_pins {address: GPIO}: that chip is off while the GPIO is driven
-    high, and powers up afresh when it goes low) and its five HC-SR04s at distances (0.1 mm,
-    drivers.hcsr04 order)."""
+    high, and powers up afresh when it goes low), its five HC-SR04s at distances (0.1 mm,
+    drivers.hcsr04 order), and adc (pin, [12-bit code of each conversion, in order]): the voltage on
+    that ADC pin, one code a conversion, the last one held."""
     from hexapod import board as boards
 
     board = boards.load(board_name)
@@ -285,7 +286,7 @@ def devices(board_name="pico", distances=None, unplugged=(), power_pins=None):
     def power(address):
         return {"power_pin": power_pins[address]} if power_pins and address in power_pins else {}
 
-    return {
+    out = {
         "i2c": {"id": bus["id"], "sda": bus["sda"], "scl": bus["scl"]},
         "pca9685": [
             dict({"address": c["address"], "plugged": c["address"] not in unplugged}, **power(c["address"]))
@@ -293,3 +294,6 @@ def devices(board_name="pico", distances=None, unplugged=(), power_pins=None):
         ],
         "sonars": [{"trigger": t, "echo": e, "distance": d} for (t, e), d in zip(pins, distances, strict=True)],
     }
+    if adc is not None:
+        out["adc"] = {"pin": adc[0], "codes": list(adc[1])}
+    return out

@@ -5,6 +5,8 @@ a fake link. The protocol is docs/console.md; keys are listed in KEYS and docs/j
 Steps are decimal text sent as typed, so no float ever rounds a step.
 """
 
+import time
+
 JOINTS = ("coxa", "femur", "tibia")
 STEPS_MM = ("0.5", "1", "5", "10")  # foot steps, mm
 STEPS_US = (1, 5, 10, 50)  # servo nudge and trim steps, us
@@ -30,6 +32,7 @@ KEYS = (
     ("d", "flip the servo's direction"),
     ("g", "get (refresh)"),
     ("s", "save calibration"),
+    ("G", "guided calibration of all 18 servos (docs/calibration.md)"),
     (":", "type any console command"),
     ("q", "quit"),
 )
@@ -217,10 +220,13 @@ def render(view, port=""):
 class Jog:
     """Keys in, console lines out through link.request(line) -> reply line; the view follows."""
 
-    def __init__(self, link, error=Exception):
+    def __init__(self, link, error=Exception, progress=None, sleep=time.sleep):
         self.link = link
         self.error = error  # the link's exception for a dead port or a silent board
         self.view = View()
+        self.progress = progress  # the guided calibration's progress file (guided.Guide)
+        self.sleep = sleep
+        self.guide = None  # a guided.Guide while the guided calibration runs
 
     def send(self, lines):
         """Send lines in order, stopping at the first err; the status line keeps the first line's answer
@@ -245,7 +251,38 @@ class Jog:
         self.send(refresh(self.view))
 
     def key(self, key):
+        """A jog key, or while the guided calibration runs, a key of its (ENTER and ESC by name)."""
+        if self.guide is not None:
+            self.guide.key(key)
+            self._guide_ended()
+            return
+        if key == "G":
+            from hexapod_host.serial import guided  # guided takes jog's tables: imported once both exist
+
+            self.guide = guided.Guide(self.link, self.error, self.progress, self.sleep)
+            self.guide.start()
+            self._guide_ended()
+            return
         self.send(commands_for(self.view, key))
+
+    def _guide_ended(self):
+        """Back to the jog screen once the guide is done or quit, its last word in the status line."""
+        g = self.guide
+        if not g.over():
+            return
+        self.guide = None
+        if not g.connected:
+            self.view.connected = False
+            self.view.error = True
+            self.view.message = g.message
+            return
+        self.send(refresh(self.view))
+        self.view.error = False
+        self.view.message = g.message
+
+    def screen(self, port=""):
+        """The lines to draw: the guide's while it runs, else the jog screen."""
+        return self.guide.render() if self.guide is not None else render(self.view, port)
 
     def line(self, text):
         try:

@@ -1,6 +1,7 @@
 """The jog tool's terminal: curses draws jog.render's lines and turns key presses into jog keys."""
 
 import curses
+import os
 
 from hexapod_host.serial import jog
 
@@ -54,17 +55,32 @@ def ask(screen, prompt):
         curses.curs_set(0)
 
 
-def loop(screen, tool, port):
+# Keys on the guided screen -> guided.Guide's names: Enter goes on, Esc (or Ctrl-C) quits it.
+GUIDE_KEYS = {10: "ENTER", 13: "ENTER", curses.KEY_ENTER: "ENTER", 27: "ESC", 3: "ESC"}
+
+
+def guide_key(tool, code):
+    if code in GUIDE_KEYS:
+        tool.key(GUIDE_KEYS[code])
+    elif 0 <= code < 256:
+        tool.key(chr(code))
+
+
+def loop(screen, tool, port, guided_first=False):
     # Raw mode throughout: Ctrl-C (and Ctrl-Z, Ctrl-\\) arrive as keys, never as signals, so no
     # key press races the prompt's own handling; on the jog screen Ctrl-C quits as q does.
     curses.raw()
     curses.curs_set(0)
     screen.keypad(True)
     tool.start()
+    if guided_first and tool.view.connected:
+        tool.key("G")
     while not tool.view.quit:
-        draw(screen, jog.render(tool.view, port))
+        draw(screen, tool.screen(port))
         code = screen.getch()
-        if code == 3:
+        if tool.guide is not None:
+            guide_key(tool, code)
+        elif code == 3:
             tool.key("q")
         elif code == ord(":"):
             tool.line(ask(screen, ": "))
@@ -74,5 +90,6 @@ def loop(screen, tool, port):
             tool.key(chr(code))
 
 
-def run(tool, port):
-    curses.wrapper(loop, tool, port)
+def run(tool, port, guided_first=False):
+    os.environ.setdefault("ESCDELAY", "25")  # Esc quits the guide at once, not after curses' 1 s
+    curses.wrapper(loop, tool, port, guided_first)
