@@ -229,6 +229,7 @@ class Trial:
             raise
         self.limit = int(world.time_limit_s / FRAME_S) if max_frames is None else max_frames
         (fx1, fy1, fx2, fy2) = world.finish
+        (px, py), (ux, uy), _ = world.start_frame(side)  # the course: start to finish along the start wall
         self.course_mm = ((fx1 + fx2) / 2 - px) * ux + ((fy1 + fy2) / 2 - py) * uy
         self.errors, self.path, self.trace = [], 0.0, []
         self.legs = wall_physics.MOVERS[mover](body, standing)
