@@ -296,3 +296,45 @@ def test_a_refused_rate_names_the_range(rt, hz):
     reply, state = [ast.literal_eval(x) for x in out.splitlines()]
     assert reply == "err stream: HZ %r: allowed a whole number 1..25 (lines a second)" % hz
     assert state == (0, 0)
+
+
+# A port for select.poll in the VM (io.IOBase with ioctl): POLLOUT only while it has room.
+PORT = """
+import io
+import stream
+
+
+class Port(io.IOBase):
+    def __init__(self):
+        self.room = False
+        self.got = []
+
+    def ioctl(self, req, arg):
+        if req == 3:  # MP_STREAM_POLL: POLLOUT (4) while there is room
+            return arg & 4 if self.room else 0
+        return -1  # no file descriptor: poll asks this method
+
+    def write(self, buf, n):
+        self.got.append(bytes(buf[:n]))
+        return n
+"""
+
+
+def test_a_line_goes_out_only_when_poll_says_the_output_takes_it(mp):
+    src = (
+        RIG
+        + PORT
+        + """
+port = Port()
+con.telemetry = stream.Stream(stream.PollWriter(port))
+con.do("stream on 25")
+frames(20)  # 10 lines due, no room: every one dropped, nothing written
+a = (len(port.got), con.do("stream"))
+port.room = True
+frames(20)
+print(repr((a, len(port.got), con.do("stream"), port.got[0][:3])))
+"""
+    )
+    a, written, reply, head = ast.literal_eval(mp.run(src, heapsize="4m").splitlines()[-1])
+    assert a == (0, "ok stream 25 sent 0 dropped 10")
+    assert (written, reply, head) == (10, "ok stream 25 sent 10 dropped 10", b"~T ")
