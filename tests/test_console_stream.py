@@ -338,3 +338,21 @@ print(repr((a, len(port.got), con.do("stream"), port.got[0][:3])))
     a, written, reply, head = ast.literal_eval(mp.run(src, heapsize="4m").splitlines()[-1])
     assert a == (0, "ok stream 25 sent 0 dropped 10")
     assert (written, reply, head) == (10, "ok stream 25 sent 10 dropped 10", b"~T ")
+
+
+def test_stream_is_refused_where_there_is_no_select_poll_output():
+    # CPython (and CircuitPython, by the same test on sys.implementation.name): a console with raw
+    # output but no MicroPython stream to poll refuses `stream on` by name and makes nothing.
+    from hexapod_host.testing.runtimes import CPythonRuntime
+
+    body = """
+import sys
+con.telemetry = None
+con.write = sys.stdout.write
+print(repr((con.do("stream on 5"), con.telemetry is None)))
+"""
+    out = CPythonRuntime().run(RIG + SINK + body).splitlines()[-1]
+    assert ast.literal_eval(out) == (
+        "err stream: not on cpython: streaming needs MicroPython's select.poll on the console's output",
+        True,
+    )
