@@ -171,9 +171,8 @@ def bench_frame(args, fs, tmp):
         from hexapod_host.serial import telemetry
 
         # Every line the board wrote parses (ValueError naming the field otherwise); the parts
-        # are the default scenario's.
+        # below are the default scenario's (no console in them), kept so both give the same keys.
         result["telemetry_lines"] = len([telemetry.parse(line) for line in lines if telemetry.is_telemetry(line)])
-        return result
     parts, _ = _board([_write(tmp, "parts.py", PARTS)], fs, devices=pico.devices(distances=list(pico_loop.DISTANCES)))
     result["parts"] = parts[-1]
     return result
