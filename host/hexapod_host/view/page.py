@@ -53,6 +53,7 @@ class View:
             with ui.column():
                 self._controls()
                 self.table = ui.label().style("white-space: pre; font-family: monospace").props("id=readings")
+        self._replay_timeline()
         with ui.row().classes("w-full"):
             self.dist_plot = self._plot("side distance (mm)", ["front", "rear", "set point"])
             self.pid_plot = self._plot("PID", ["error (mm)", "output (deg/s)"])
@@ -61,6 +62,13 @@ class View:
         ui.timer(PLOT_DRAW_S, self.draw_plots)
         self.draw()
         self.draw_plots()
+
+    def _replay_timeline(self):
+        """A replay's slider (timeline.py), under the scene; nothing for a live source."""
+        if hasattr(self.player.source, "seek"):
+            from hexapod_host.view.timeline import Timeline
+
+            self.timeline = Timeline(self.player)
 
     def _scene(self, d):
         xs = [v for w in d.get("walls", []) for v in (w[0], w[2])] or [0.0]

@@ -15,8 +15,9 @@ TRAIL_MM = 5.0  # a new trail point once the body is this far from the last one
 class Player:
     """One source, stepped by run() (an asyncio task) at `speed` while running."""
 
-    def __init__(self, source, speed=1.0, running=True):
+    def __init__(self, source, speed=1.0, running=True, recorder=None):
         self.source = source
+        self.recorder = recorder  # record.Recorder: every snapshot published goes into it
         self.described = source.describe()
         self.speed = self._checked(speed)
         self.running = running
@@ -58,6 +59,13 @@ class Player:
     def done(self):
         return self.source.done()
 
+    def seek(self, seconds):
+        """Jump to `seconds` into a source that can (a replay); the trail and plots start over."""
+        self.source.seek(seconds)
+        self.trail, self._due = [], 0.0
+        self.history.clear()
+        self.publish()
+
     def _frame(self):
         self.source.step()
         self.frames += 1
@@ -76,6 +84,8 @@ class Player:
     def publish(self):
         self.snap = s = self.source.snapshot()
         self.updates += 1
+        if self.recorder is not None:
+            self.recorder.write(s)
         b = s["body"]
         if not self.trail or abs(b["x"] - self.trail[-1][0]) + abs(b["y"] - self.trail[-1][1]) > TRAIL_MM:
             self.trail.append((b["x"], b["y"]))
@@ -105,4 +115,8 @@ class Player:
 
     def stop(self):
         self._stopped = True
-        self.source.close()
+        try:
+            self.source.close()
+        finally:
+            if self.recorder is not None:
+                self.recorder.close()
