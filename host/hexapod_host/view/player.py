@@ -2,7 +2,9 @@
 the pages to draw; the page's buttons call start, pause, step and set_speed."""
 
 import asyncio
+import sys
 import time
+import traceback
 from collections import deque
 
 UPDATE_S = 0.04  # the background task publishes a snapshot this often: 25 updates a second
@@ -18,6 +20,7 @@ class Player:
     def __init__(self, source, speed=1.0, running=True, recorder=None):
         self.source = source
         self.recorder = recorder  # record.Recorder: every snapshot published goes into it
+        self.listeners = []  # called after each snapshot published (the tabs' redraws)
         self.described = source.describe()
         self.speed = self._checked(speed)
         self.running = running
@@ -86,6 +89,7 @@ class Player:
         self.updates += 1
         if self.recorder is not None:
             self.recorder.write(s)
+        self._tell()
         b = s["body"]
         if not self.trail or abs(b["x"] - self.trail[-1][0]) + abs(b["y"] - self.trail[-1][1]) > TRAIL_MM:
             self.trail.append((b["x"], b["y"]))
@@ -101,6 +105,16 @@ class Player:
                 f["output_dps"],
             )
         )
+
+    def _tell(self):
+        """Each listener once; one that raises is dropped (a broken tab must not stop the source)."""
+        for fn in list(self.listeners):
+            try:
+                fn()
+            except Exception:
+                traceback.print_exc()
+                sys.stderr.write("hexapod view: a page stopped following the player after the error above\n")
+                self.listeners.remove(fn)
 
     async def run(self):
         """The background task: advance by the real time elapsed, UPDATE_S apart, until stop()."""
