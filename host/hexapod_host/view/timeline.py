@@ -30,8 +30,15 @@ class Timeline:
     def draw(self):
         src = self.player.source
         self.label.set_text(
-            "replay %s  t %.2f of %.2f s  snapshot %d of %d"
-            % (src.path, src.clock_s, src.duration_s, src.index + 1, len(src))
+            "replay %s  t %.2f of %.2f s  snapshot %d of %d%s"
+            % (
+                src.path,
+                src.clock_s,
+                src.duration_s,
+                src.index + 1,
+                len(src),
+                "  (end of the recording)" if src.done() else "",
+            )
         )
         if abs(self.slider.value - src.clock_s) > 1e-6:
             self._following = True
