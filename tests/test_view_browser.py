@@ -137,3 +137,105 @@ def test_pause_holds_the_frame_and_step_advances_it_by_one(page):
     click(driver, "start")
     assert vb.wait_for(lambda: frame(driver) > held + 5, timeout=10), status(driver)
     assert vb.page_errors(driver) == []
+
+
+# --- replay: a recording played back shows the recorded angles at the recorded frame ---
+
+LEG_ROW = re.compile(r"^\d \w\w\s+(-?\d+\.\d)\s+(-?\d+\.\d)\s+(-?\d+\.\d)$", re.M)
+
+
+def shown_angles(driver):
+    """The 18 joint angles in the page's readings table, degrees as printed (0.1)."""
+    from selenium.webdriver.common.by import By
+
+    rows = LEG_ROW.findall(driver.find_element(By.ID, "readings").text)
+    return [float(v) for row in rows for v in row]
+
+
+def recorded(path):
+    """{frame: 18 angles in degrees to 0.1} read from the file with the mcap package's reader."""
+    import json
+
+    from mcap.reader import make_reader
+
+    with open(path, "rb") as f:
+        snaps = [json.loads(m.data) for _, _, m in make_reader(f).iter_messages(topics=["/hexapod/snapshot"])]
+    return {s["frame"]: [float("%.1f" % (a / 100)) for a in s["angles"]] for s in snaps}
+
+
+def settled(driver):
+    """(frame, angles) once two readings half a second apart agree (the table redraws 4 times a second)."""
+    last = None
+    for _ in range(40):
+        now = (frame(driver), shown_angles(driver))
+        if now == last and len(now[1]) == 18:
+            return now
+        last = now
+        time.sleep(0.5)
+    raise AssertionError("the page did not settle: %r" % (last,))
+
+
+@pytest.fixture(scope="module")
+def replay_page(tmp_path_factory):
+    why = vb.missing()
+    if why:
+        if ON_CI:
+            pytest.fail("CI runs the browser tests: " + why)
+        pytest.skip(why)
+    from hexapod_host.view.player import Player
+    from hexapod_host.view.record import Recorder
+    from hexapod_host.view.sim import SimSource
+    from hexapod_host.wall import world
+
+    path = str(tmp_path_factory.mktemp("replay") / "walk.mcap")
+    ticks = iter(range(10**9))
+    src = SimSource(world.load("wall"), 12, seed=0)
+    p = Player(src, recorder=Recorder(path, src.describe(), clock=lambda: 40_000_000 * next(ticks)))
+    for _ in range(200):  # 8 s of recording, frames 0..400, 40 ms apart
+        p.advance(0.04)
+    p.stop()
+    server = vb.Server(("--replay", path, "--speed", "0.5"))
+    driver = vb.open_browser()
+    try:
+        driver.get(server.url)
+        assert vb.wait_for(lambda: frame(driver) >= 0 and shown_angles(driver), timeout=60), "no frame shown"
+        yield driver, recorded(path)
+    finally:
+        driver.quit()
+        server.stop()
+
+
+def test_a_paused_replay_shows_the_recorded_angles_at_its_frame(replay_page):
+    driver, angles = replay_page
+    click(driver, "pause")
+    f, shown = settled(driver)
+    assert f in angles, "frame %d is not in the recording" % f
+    assert shown == angles[f]
+    assert any(abs(a) > 1 for a in shown)  # not a blank table
+
+
+def test_scrubbing_the_timeline_shows_the_recorded_angles(replay_page):
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.by import By
+
+    driver, angles = replay_page
+    click(driver, "pause")
+    slider = driver.find_element(By.ID, "timeline")
+    for fraction in (0.75, 0.25):
+        # A click at that fraction of the slider's width seeks there: 8 s of recording, 400 frames.
+        x = int(slider.size["width"] * (fraction - 0.5))
+        ActionChains(driver).move_to_element_with_offset(slider, x, 0).click().perform()
+        expect = int(400 * fraction)
+        assert vb.wait_for(lambda e=expect: abs(frame(driver) - e) <= 40, timeout=20), (frame(driver), expect)
+        f, shown = settled(driver)
+        assert f in angles and shown == angles[f], (f, shown)
+    assert "paused" in status(driver)
+
+
+def test_a_replay_played_to_its_end_shows_its_last_frame(replay_page):
+    driver, angles = replay_page
+    click(driver, "start")
+    assert vb.wait_for(lambda: "done" in status(driver), timeout=60), status(driver)
+    f, shown = settled(driver)
+    assert f == 400 and shown == angles[400]
+    assert vb.page_errors(driver) == []

@@ -1,5 +1,5 @@
-"""`hexapod view --sim [--world W] [--listen HOST:PORT] [--no-browser]`: the live 3-D page
-(hexapod_host.view, docs/view.md)."""
+"""`hexapod view --sim [--world W] [--record FILE.mcap] [--listen HOST:PORT] [--no-browser]`, or
+`hexapod view --replay FILE.mcap`: the live 3-D page (hexapod_host.view, docs/view.md)."""
 
 import sys
 
@@ -19,6 +19,7 @@ def register(sub):
     src.add_argument("--virtual", action="store_true", help="the virtual board (not yet)")
     src.add_argument("--pico", action="store_true", help="the emulated Pico (not yet)")
     src.add_argument("--port", metavar="PORT", help="a real board on a serial port (not yet)")
+    src.add_argument("--replay", metavar="FILE", help="play a recording made with --record (an .mcap file)")
     p.add_argument(
         "--world", default=DEFAULT, help="with --sim: a world file or a shipped world: %s" % ", ".join(shipped())
     )
@@ -37,6 +38,9 @@ def register(sub):
         % LISTEN,
     )
     p.add_argument("--no-browser", action="store_true", help="serve only; open no browser")
+    p.add_argument(
+        "--record", metavar="FILE", help="write every snapshot with its time into FILE (.mcap; replaced if there)"
+    )
     p.set_defaults(func=run)
 
 
@@ -67,16 +71,24 @@ def parse_listen(text):
 
 
 def parse(args):
-    """Checked options: (source, speed, host, port)."""
+    """Checked options: (source, speed, host, port, the --record path or None). Nothing is
+    written or opened for writing: a refused command leaves no file behind."""
     for key, flag in LATER.items():
         if getattr(args, key):
             raise UsageError("%s: not built yet; today's source is --sim (docs/view.md says what comes next)" % flag)
-    try:
-        world = load(args.world)
-    except WorldError as err:
-        raise UsageError(str(err)) from None
-    setpoint = _number(args.setpoint, "--setpoint", 4, 50, "cm (the side sonar's reading)")
-    seed = _whole(args.seed, "--seed", 0, 2**62)
+    if args.record is not None:
+        if args.replay is not None:
+            raise UsageError("--record: not with --replay (the recording is there already)")
+        from hexapod_host.commands import checks
+
+        checks.out_file("--record", args.record, suffix=".mcap")
+    if args.replay is None:
+        try:
+            world = load(args.world)
+        except WorldError as err:
+            raise UsageError(str(err)) from None
+        setpoint = _number(args.setpoint, "--setpoint", 4, 50, "cm (the side sonar's reading)")
+        seed = _whole(args.seed, "--seed", 0, 2**62)
     speed = _number(args.speed, "--speed", 0, 100, "simulated seconds per second")
     if speed not in player_mod.SPEEDS:
         raise UsageError("--speed: %s, allowed %s" % (args.speed, _speeds()))
@@ -86,24 +98,32 @@ def parse(args):
     why = check_free(host, port)
     if why:
         raise UsageError("--listen %s: cannot listen there (%s)" % (args.listen, why))
+    if args.replay is not None:
+        from hexapod_host.view.replay import ReplayError, ReplaySource
+
+        try:
+            return ReplaySource(args.replay), speed, host, port, None
+        except ReplayError as err:
+            raise UsageError("--replay %s" % err) from None
     from hexapod_host.view.sim import SimSource
 
     try:
         source = SimSource(world, setpoint, seed)
     except WorldError as err:
         raise UsageError(str(err)) from None
-    return source, speed, host, port
+    return source, speed, host, port, args.record
 
 
 def run(args):
-    source, speed, host, port = parse(args)
+    source, speed, host, port, record_path = parse(args)
     from hexapod_host.view.player import Player
     from hexapod_host.view.server import is_loopback, serve
 
     shown = "[%s]" % host if ":" in host else host
+    d = source.describe()
     print(
-        "hexapod view: http://%s:%d  (source %s, world %s); Ctrl-C stops"
-        % (shown, port, source.name, source.world.name)
+        "hexapod view: http://%s:%d  (source %s, world %s%s); Ctrl-C stops"
+        % (shown, port, d["source"], d.get("world", "-"), ", recording to %s" % record_path if record_path else "")
     )
     if not is_loopback(host):
         sys.stderr.write(
@@ -111,5 +131,16 @@ def run(args):
             % host
         )
     sys.stdout.flush()
-    serve(Player(source, speed), host, port, show=not args.no_browser)
+    recorder = None
+    if record_path:
+        from hexapod_host.view.record import Recorder
+
+        recorder = Recorder(record_path, d)
+    player = Player(source, speed, recorder=recorder)
+    try:
+        serve(player, host, port, show=not args.no_browser)
+    finally:
+        player.stop()  # after the server's own shutdown: nothing; after an error or Ctrl-C: finishes the recording
+        if recorder is not None:
+            print("hexapod view: %d snapshots recorded in %s" % (recorder.written, record_path))
     return 0

@@ -4,8 +4,10 @@
 - player: the background task alone for PLAYER_S seconds at 1x: snapshots published per
   second and simulated seconds per real second;
 - page: the server in its own process and a headless Chromium on the page for PAGE_S seconds:
-  redraws that reached the browser per second (the page's own counter, read from its text) and
-  simulated seconds per real second. Skipped, saying why, without Chromium.
+  redraws that reached the browser per second (the page's own counter, read from its text),
+  simulated seconds per real second, and the server's CPU time over the window (Linux's
+  /proc) per redraw and as a share of one core: the figure that least follows the machine's
+  load. Skipped, saying why, without Chromium.
 
 The machine's load average is reported beside them: on a shared 2-core machine the figures
 follow it.
@@ -75,6 +77,16 @@ def _status(driver):
     return (int(m.group(1)), int(m.group(2))) if m else None
 
 
+def _cpu_s(pid):
+    """User + system CPU seconds of a process so far, None where /proc is not there."""
+    try:
+        with open("/proc/%d/stat" % pid) as f:
+            fields = f.read().rsplit(")", 1)[1].split()
+    except OSError:
+        return None
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
 def _page():
     why = vb.missing()
     if why:
@@ -85,22 +97,26 @@ def _page():
         driver.get(server.url)
         vb.wait_for(lambda: _status(driver), timeout=60)
         time.sleep(2)  # past the first load
-        a, t0 = _status(driver), time.monotonic()
+        a, t0, c0 = _status(driver), time.monotonic(), _cpu_s(server.proc.pid)
         time.sleep(PAGE_S)
-        b, t1 = _status(driver), time.monotonic()
+        b, t1, c1 = _status(driver), time.monotonic(), _cpu_s(server.proc.pid)
         errors = len(vb.page_errors(driver))
     finally:
         driver.quit()
         server.stop()
     if a is None or b is None or b[1] < a[1]:
         return {"failed": "the page reloaded or lost its status during the window"}
-    dt = t1 - t0
-    return {
+    dt, redraws = t1 - t0, b[1] - a[1]
+    out = {
         "seconds": round(dt, 2),
-        "redraws_per_s": round((b[1] - a[1]) / dt, 1),
+        "redraws_per_s": round(redraws / dt, 1),
         "sim_speed": round((b[0] - a[0]) * 0.02 / dt, 3),
         "console_errors": errors,
     }
+    if c0 is not None and c1 is not None:
+        out["server_cpu_share"] = round((c1 - c0) / dt, 3)
+        out["server_cpu_ms_per_redraw"] = round(1000 * (c1 - c0) / max(redraws, 1), 2)
+    return out
 
 
 def bench_view(args=None):

@@ -9,7 +9,6 @@ from nicegui import ui
 from hexapod_host.view import player as player_mod
 from hexapod_host.view.scene import geometry, segment_pose
 
-DRAW_S = 0.04  # each tab redraws 25 times a second
 PLOT_DRAW_S = 0.25
 COLOURS = {
     "body": "#e07b00",
@@ -30,14 +29,24 @@ SENSOR_NAMES = ("front", "left front", "left rear", "right front", "right rear")
 LEGS = ("1 RF", "2 RM", "3 RR", "4 LR", "5 LM", "6 LF")
 
 
+# Scene numbers are sent rounded to 0.1 mm (and rotations to 1e-4): a third of the bytes of a
+# float's 17 digits, and what did not move by 0.1 mm is not sent again (NiceGUI sends a move,
+# rotation or scale only when it changed; unrounded, the links' constant lengths "changed" in
+# their last digits every redraw).
+DIGITS = 4
+
+
 def _m(p):
-    return [v / 1000 for v in p]
+    """mm -> scene metres, rounded."""
+    return [round(v / 1000, DIGITS) for v in p]
 
 
 def _place(obj, start, end):
     """Pose a unit cylinder (or line) along y as the segment start -> end (mm)."""
-    centre, rot, length = segment_pose(_m(start), _m(end))
-    obj.move(*centre).rotate_R(rot).scale(1.0, max(length, 1e-6), 1.0)
+    centre, rot, length = segment_pose([v / 1000 for v in start], [v / 1000 for v in end])
+    obj.move(*(round(v, DIGITS) for v in centre))
+    obj.rotate_R([[round(v, DIGITS) for v in row] for row in rot])
+    obj.scale(1.0, max(round(length, DIGITS), 1e-6), 1.0)
 
 
 class View:
@@ -53,14 +62,31 @@ class View:
             with ui.column():
                 self._controls()
                 self.table = ui.label().style("white-space: pre; font-family: monospace").props("id=readings")
+        self._replay_timeline()
         with ui.row().classes("w-full"):
             self.dist_plot = self._plot("side distance (mm)", ["front", "rear", "set point"])
             self.pid_plot = self._plot("PID", ["error (mm)", "output (deg/s)"])
         self.drawn = 0
-        ui.timer(DRAW_S, self.draw)
+        self._follow_player()
         ui.timer(PLOT_DRAW_S, self.draw_plots)
         self.draw()
         self.draw_plots()
+
+    def _follow_player(self):
+        """Redraw on the player's beat, right after each snapshot it publishes (25 a second), until
+        the tab is gone. Not a ui.timer: its period is the interval plus the wait for the CPU, and
+        on the loaded 2-core machine that wait cut the redraws to 12-15 a second while the
+        player's fixed beat (player.run) held 25."""
+        listeners = self.player.listeners
+        listeners.append(self.draw)
+        ui.context.client.on_delete(lambda: self.draw in listeners and listeners.remove(self.draw))
+
+    def _replay_timeline(self):
+        """A replay's slider (timeline.py), under the scene; nothing for a live source."""
+        if hasattr(self.player.source, "seek"):
+            from hexapod_host.view.timeline import Timeline
+
+            self.timeline = Timeline(self.player)
 
     def _scene(self, d):
         xs = [v for w in d.get("walls", []) for v in (w[0], w[2])] or [0.0]
@@ -119,7 +145,7 @@ class View:
         snap, p = self.player.snap, self.player
         g = geometry(p.described, snap)
         b = g["body"]
-        self.body.move(*_m(b["centre"])).rotate(0, 0, b["yaw"])
+        self.body.move(*_m(b["centre"])).rotate(0, 0, round(b["yaw"], DIGITS))
         for obj, (start, end) in zip(self.links + self.brackets, g["links"] + g["brackets"], strict=True):
             _place(obj, start, end)
         for obj, foot, down in zip(self.feet, g["feet"], g["stance"], strict=True):
@@ -133,7 +159,7 @@ class View:
         if self.follow_cam.value:
             cx, cy, _ = _m(b["centre"])
             dx, dy, dz = CAMERA_BACK
-            self.scene.move_camera(cx + dx, cy + dy, dz, cx, cy, 0.0, duration=0)
+            self.scene.move_camera(round(cx + dx, DIGITS), round(cy + dy, DIGITS), dz, cx, cy, 0.0, duration=0)
 
     def _status(self, s):
         f, x = s["follow"], s.get("extra", {})

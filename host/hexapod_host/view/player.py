@@ -2,7 +2,9 @@
 the pages to draw; the page's buttons call start, pause, step and set_speed."""
 
 import asyncio
+import sys
 import time
+import traceback
 from collections import deque
 
 UPDATE_S = 0.04  # the background task publishes a snapshot this often: 25 updates a second
@@ -15,8 +17,10 @@ TRAIL_MM = 5.0  # a new trail point once the body is this far from the last one
 class Player:
     """One source, stepped by run() (an asyncio task) at `speed` while running."""
 
-    def __init__(self, source, speed=1.0, running=True):
+    def __init__(self, source, speed=1.0, running=True, recorder=None):
         self.source = source
+        self.recorder = recorder  # record.Recorder: every snapshot published goes into it
+        self.listeners = []  # called after each snapshot published (the tabs' redraws)
         self.described = source.describe()
         self.speed = self._checked(speed)
         self.running = running
@@ -58,6 +62,13 @@ class Player:
     def done(self):
         return self.source.done()
 
+    def seek(self, seconds):
+        """Jump to `seconds` into a source that can (a replay); the trail and plots start over."""
+        self.source.seek(seconds)
+        self.trail, self._due = [], 0.0
+        self.history.clear()
+        self.publish()
+
     def _frame(self):
         self.source.step()
         self.frames += 1
@@ -76,6 +87,9 @@ class Player:
     def publish(self):
         self.snap = s = self.source.snapshot()
         self.updates += 1
+        if self.recorder is not None:
+            self.recorder.write(s)
+        self._tell()
         b = s["body"]
         if not self.trail or abs(b["x"] - self.trail[-1][0]) + abs(b["y"] - self.trail[-1][1]) > TRAIL_MM:
             self.trail.append((b["x"], b["y"]))
@@ -92,6 +106,16 @@ class Player:
             )
         )
 
+    def _tell(self):
+        """Each listener once; one that raises is dropped (a broken tab must not stop the source)."""
+        for fn in list(self.listeners):
+            try:
+                fn()
+            except Exception:
+                traceback.print_exc()
+                sys.stderr.write("hexapod view: a page stopped following the player after the error above\n")
+                self.listeners.remove(fn)
+
     async def run(self):
         """The background task: advance by the real time elapsed, UPDATE_S apart, until stop()."""
         last = due = time.monotonic()
@@ -105,4 +129,8 @@ class Player:
 
     def stop(self):
         self._stopped = True
-        self.source.close()
+        try:
+            self.source.close()
+        finally:
+            if self.recorder is not None:
+                self.recorder.close()
