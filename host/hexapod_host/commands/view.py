@@ -1,5 +1,5 @@
-"""`hexapod view --sim [--world W] [--listen HOST:PORT] [--no-browser]`: the live 3-D page
-(hexapod_host.view, docs/view.md)."""
+"""`hexapod view --sim [--world W] | --virtual [--virtual-port PTY] [--listen HOST:PORT]
+[--no-browser]`: the live 3-D page (hexapod_host.view, docs/view.md)."""
 
 import sys
 
@@ -9,14 +9,16 @@ from hexapod_host.view import player as player_mod
 from hexapod_host.wall.world import DEFAULT, WorldError, load, shipped
 
 LISTEN = "127.0.0.1:8080"
-LATER = {"virtual": "--virtual", "pico": "--pico", "port": "--port"}
+LATER = {"pico": "--pico", "port": "--port"}
 
 
 def register(sub):
     p = sub.add_parser("view", help="the live 3-D view of the robot in a web page (docs/view.md)")
     src = p.add_mutually_exclusive_group(required=True)
     src.add_argument("--sim", action="store_true", help="the wall simulator's room, trial after trial")
-    src.add_argument("--virtual", action="store_true", help="the virtual board (not yet)")
+    src.add_argument(
+        "--virtual", action="store_true", help="the virtual board (hexapod virtual-board), driven from the page"
+    )
     src.add_argument("--pico", action="store_true", help="the emulated Pico (not yet)")
     src.add_argument("--port", metavar="PORT", help="a real board on a serial port (not yet)")
     p.add_argument(
@@ -27,6 +29,11 @@ def register(sub):
     )
     p.add_argument(
         "--seed", default="0", metavar="S", help="with --sim: the run's seed, as hexapod sim wall's (default 0)"
+    )
+    p.add_argument(
+        "--virtual-port",
+        metavar="PTY",
+        help="with --virtual: attach to a virtual board already running on this pty (default: start one)",
     )
     p.add_argument("--speed", default="1", metavar="X", help="simulated seconds per second: %s (default 1)" % _speeds())
     p.add_argument(
@@ -70,7 +77,11 @@ def parse(args):
     """Checked options: (source, speed, host, port)."""
     for key, flag in LATER.items():
         if getattr(args, key):
-            raise UsageError("%s: not built yet; today's source is --sim (docs/view.md says what comes next)" % flag)
+            raise UsageError(
+                "%s: not built yet; today's sources are --sim and --virtual (docs/view.md says what comes next)" % flag
+            )
+    if args.virtual_port and not args.virtual:
+        raise UsageError("--virtual-port: only with --virtual")
     try:
         world = load(args.world)
     except WorldError as err:
@@ -86,6 +97,8 @@ def parse(args):
     why = check_free(host, port)
     if why:
         raise UsageError("--listen %s: cannot listen there (%s)" % (args.listen, why))
+    if args.virtual:
+        return virtual_source(args.virtual_port), 1.0, host, port
     from hexapod_host.view.sim import SimSource
 
     try:
@@ -95,16 +108,51 @@ def parse(args):
     return source, speed, host, port
 
 
+def virtual_source(pty=None):
+    """A BoardSource on the virtual board: the one on pty, else one started here (stopped when the
+    source closes, its temporary calibration directory removed)."""
+    import os
+    import tempfile
+
+    from hexapod_host.serial.link import Link, LinkError
+    from hexapod_host.view.board import BoardSource
+    from hexapod_host.view.board_link import BoardLink
+
+    proc = tmp = None
+    if pty is None:
+        from hexapod_host.commands.console import start_virtual_board
+
+        tmp = tempfile.TemporaryDirectory(prefix="hexapod-cal-")
+        proc, pty, master, slave = start_virtual_board("pico", "default", tmp.name)
+    try:
+        port = Link.open(pty).port  # pyserial, exclusive: nobody else types on the robot's line meanwhile
+    except LinkError as e:
+        raise UsageError("--virtual-port: %s" % e) from None
+
+    def stop_board():
+        if proc is not None:
+            proc.terminate()
+            proc.wait(10)
+            os.close(master)
+            os.close(slave)
+            tmp.cleanup()
+
+    link = BoardLink(port, pty).start()
+    if link.request("help", timeout=30) is None:  # the VM takes a few seconds to start
+        link.close()
+        stop_board()
+        raise UsageError("--virtual: no answer from the virtual board on %s within 30 s" % pty)
+    return BoardSource(link, "pico", "virtual", on_close=stop_board)
+
+
 def run(args):
     source, speed, host, port = parse(args)
     from hexapod_host.view.player import Player
     from hexapod_host.view.server import is_loopback, serve
 
     shown = "[%s]" % host if ":" in host else host
-    print(
-        "hexapod view: http://%s:%d  (source %s, world %s); Ctrl-C stops"
-        % (shown, port, source.name, source.world.name)
-    )
+    where = ("world %s" % source.world.name) if hasattr(source, "world") else source.stream_reply
+    print("hexapod view: http://%s:%d  (source %s, %s); Ctrl-C stops" % (shown, port, source.name, where))
     if not is_loopback(host):
         sys.stderr.write(
             "hexapod view: listening on %s: anyone who can reach this machine can open the page and press its buttons\n"

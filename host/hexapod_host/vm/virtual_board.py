@@ -1,7 +1,8 @@
 # Runs inside the MicroPython VM: the board's loop (main.build on the stub machine with the
 # PCA9685 and HC-SR04 models) with the serial console on stdin/stdout, paced to real time.
 # `hexapod virtual-board` starts it on a pseudo-terminal. Arguments: board name, robot name,
-# calibration directory ('' = no calibration file), frames to run (-1 = for ever).
+# calibration directory ('' = no calibration file), frames to run (-1 = for ever), trace file
+# ('' = none; see Trace below).
 #
 # Virtual time drives the models (sonar echoes, the PCA9685's clock); after each frame the
 # script sleeps until the real clock has caught up with the virtual one, so a client sees a
@@ -27,6 +28,7 @@ BOARD = sys.argv[1] if len(sys.argv) > 1 else "pico"
 ROBOT = sys.argv[2] if len(sys.argv) > 2 else "default"
 CAL_DIR = sys.argv[3] if len(sys.argv) > 3 else ""
 FRAMES = int(sys.argv[4]) if len(sys.argv) > 4 else -1
+TRACE = sys.argv[5] if len(sys.argv) > 5 else ""
 
 board = stub_board.reset(BOARD)
 bus, models = stub_board.pca9685_models(board)
@@ -86,6 +88,52 @@ def fault(args):
 
 con._table["model"] = model
 con._table["fault"] = fault
+
+
+class Trace:
+    """What the board saw, in its own frames, for tests and benches that must not count in wall
+    time (`hexapod view`'s drive tests, `hexapod bench view`). One line per event, flushed:
+
+        L FRAME T_NS WORDS...      a console line arrived (its words, the tag included)
+        P FRAME T_NS               the PCA9685 models' pulse widths differ from the last frame's
+        M FRAME T_NS MODE VX VY WZ the robot's mode or the walk it was asked for changed
+                                   (tick.MODE_NAMES index; 0.1 mm/s, 0.1 mm/s, cdeg/s)
+        F FRAME T_NS               every 50th frame: a reader waiting for frames to pass sees them
+
+    FRAME is runner.frames when it happened (a line is read after the frame's step: the walk it
+    asks for moves the servos from the next frame on); T_NS the host's clock (time.time_ns())."""
+
+    def __init__(self, path):
+        self.f = open(path, "w")  # noqa: SIM115 (open for the VM's life: closed with it)
+        self.pulses = None
+        self.state = None
+        dispatch = con._dispatch
+
+        def traced(words, tag):
+            self.say("L", " ".join(words))
+            return dispatch(words, tag)
+
+        con._dispatch = traced  # an instance attribute: the console's own calls come here first
+
+    def say(self, kind, text=""):
+        self.f.write("%s %d %d %s\n" % (kind, r.frames, time.time_ns(), text))
+        self.f.flush()
+
+    def frame(self):
+        pulses = [m.pulse_us(ch) for m in chips for ch in range(16)]
+        if self.pulses is not None and pulses != self.pulses:
+            self.say("P")
+        self.pulses = pulses
+        rb = r.robot
+        state = (rb.mode, rb.asked_vx, rb.asked_vy, rb.asked_yaw)
+        if state != self.state:
+            self.say("M", "%d %d %d %d" % state)
+        self.state = state
+        if r.frames % 50 == 0:
+            self.say("F")
+
+
+trace = Trace(TRACE) if TRACE else None
 print("virtual board %s (robot %s) ready: 50 Hz, console on this line; 'help' lists commands" % (BOARD, ROBOT))
 
 
@@ -98,6 +146,8 @@ def serve(frames):
         while frames < 0 or n < frames:
             r.step()
             con.poll()
+            if trace is not None:
+                trace.frame()
             r.wait()
             n += 1
             ahead = clock.ticks_diff(clock.ticks_ms(), v0) - time.ticks_diff(time.ticks_ms(), t0)
