@@ -192,7 +192,9 @@ def test_a_speed_not_offered_is_refused():
 @pytest.mark.parametrize(
     "args, message",
     [
-        (["--virtual"], "--virtual: not built yet; today's source is --sim"),
+        (["--pico"], "--pico: not built yet; today's sources are --sim and --virtual"),
+        (["--sim", "--virtual-port", "/dev/pts/1"], "--virtual-port: only with --virtual"),
+        (["--virtual", "--virtual-port", "/dev/no-such-pty"], "--virtual-port /dev/no-such-pty: no such port"),
         (["--port", "/dev/ttyACM0"], "--port: not built yet"),
         (["--sim", "--listen", ":8080"], "no host; say 127.0.0.1:8080 (this machine) or 0.0.0.0:8080"),
         (["--sim", "--listen", "127.0.0.1:http"], "the port 'http' is not a whole number"),

@@ -1,6 +1,7 @@
 """`hexapod view --sim [--world W] | --virtual [--virtual-port PTY] [--listen HOST:PORT]
 [--no-browser]`: the live 3-D page (hexapod_host.view, docs/view.md)."""
 
+import os
 import sys
 
 from hexapod_host.commands.cli import UsageError
@@ -82,6 +83,10 @@ def parse(args):
             )
     if args.virtual_port and not args.virtual:
         raise UsageError("--virtual-port: only with --virtual")
+    if args.virtual_port and not os.path.exists(args.virtual_port):
+        raise UsageError(
+            "--virtual-port %s: no such port (hexapod virtual-board prints its pty's path first)" % args.virtual_port
+        )
     try:
         world = load(args.world)
     except WorldError as err:
@@ -111,7 +116,6 @@ def parse(args):
 def virtual_source(pty=None):
     """A BoardSource on the virtual board: the one on pty, else one started here (stopped when the
     source closes, its temporary calibration directory removed)."""
-    import os
     import tempfile
 
     from hexapod_host.serial.link import Link, LinkError
