@@ -50,6 +50,8 @@ class DrivePanel:
             self.stick = ui.joystick(
                 color="#e07b00",
                 size=100,
+                mode="static",  # nipple.js's default draws the stick only once touched: an empty box
+                position={"left": "50%", "top": "50%"},
                 on_move=lambda e: self._do(driver.stick_move, e.x, e.y),
                 on_end=lambda e: self._do(driver.stick_move, None, None),
             ).classes("w-40 h-40")
