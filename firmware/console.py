@@ -27,7 +27,7 @@ WALK_TIMEOUT_MS = const(1000)
 JOINTS = ("coxa", "femur", "tibia")
 COMMANDS = (
     "help status stand sit relax foot nudge joint pulse get walk stop gait sonar wall pid "
-    "cal trim dir range save load defaults echo selftest faults"
+    "cal trim dir range save load defaults echo selftest faults stream"
 )
 TAG_DIGITS = const(9)  # a request tag: '#' and 1..9 digits (docs/console.md, "Request tags")
 # Commands that may take longer than a frame (a gait's servo speed guard: 1.5-1.8 s on a Pico; a
@@ -147,6 +147,7 @@ class Console:
         self._job_tag = None  # its request's tag: each of its lines carries it
         self._gait_reply = -1  # a gait being checked over frames (Robot.set_gait wait=False): its reply waits
         self._gait_tag = None  # that request's tag: its late reply carries it
+        self.telemetry = None  # stream.Stream once `stream on` made one (tests hand theirs in)
         # The robot file's calibration (robots/<robot>_cal.py): (centre_us, direction, min_us,
         # max_us) per servo; centre_us is the pulse at the servo's reference angle (ref_cdeg).
         self.base = tuple((s.centre_us, s.direction, s.min_us, s.max_us) for s in self.robot.servos)
@@ -179,13 +180,17 @@ class Console:
             "echo": self._echo,
             "selftest": self._selftest,
             "faults": self._faults,
+            "stream": self._stream,
         }
 
     # -- the frame's part ---------------------------------------------------------------
 
     def poll(self):
         """Once per frame: announce a held frame once, take waiting bytes, run a complete line,
-        expire a stale walk."""
+        expire a stale walk. A telemetry line first: it shows the frame just done."""
+        t = self.telemetry
+        if t is not None:
+            t.frame(self.runner)
         if self.robot.reason:
             if not self._held:
                 self._held = True
@@ -839,6 +844,11 @@ class Console:
             log.clear()
             return "ok faults cleared"
         return "ok faults " + fault_text(log, self.runner.bank)
+
+    def _stream(self, args):
+        import stream  # only now: a board that never streams keeps its heap and names
+
+        return stream.command(self, args)
 
     # -- multi-line replies (selftest) ------------------------------------------------------
 

@@ -1,7 +1,8 @@
 """Issue 24, part 2: a refused command changes nothing, and "nothing" is all the console's state:
 pulses and angles, the PCA9685 models' outputs, calibration rows and trims, the calibration source,
 PID gains, the wall follower's mode, side and set point, the walk command and its deadline, mode,
-gait and echo. Every command with bad arguments (and the ones the robot's state refuses) in five
+gait, echo and the telemetry (rate, countdown, counts). Every command with bad arguments (and the
+ones the robot's state refuses) in five
 states: relaxed, jogged, standing, walking and following a wall; on both runtimes.
 
 The console here has a calibration file on a stub filesystem (tests/scenarios/calstore.py): a
@@ -40,6 +41,16 @@ FS = FlakyFS()
 con = console.start(r, reader, FS, opener=FS.open, out=REPLIES.append)
 
 
+class Sink:  # the telemetry's output: every line taken (a refused `stream` must not start it)
+    def write(self, buf, n):
+        return n
+
+
+import stream
+
+con.telemetry = stream.Stream(Sink())
+
+
 def full_state():
     f = r.follower
     p = f.pid
@@ -49,6 +60,7 @@ def full_state():
         [(s.centre_us, s.direction, s.min_us, s.max_us) for s in SERVOS], list(con.trims), con.cal_source,
         (p.kp, p.ki, p.kd), (f.mode, f.side, f.setpoint, f.speed),
         (rb.asked_vx, rb.asked_vy, rb.asked_yaw, con._walking, con._deadline), con.echo,
+        (con.telemetry.hz, con.telemetry.every, con.telemetry.due, con.telemetry.sent, con.telemetry.dropped),
         channels(), FS.files.get(calstore.FILE),  # (a cut save may leave a broken temp file: load skips it)
     )
 
@@ -145,6 +157,12 @@ BAD = [
     "echo sideways",
     "echo on",  # this console has no raw output
     "selftest 1 2 3",
+    "stream on 0",
+    "stream on 26",
+    "stream on x",
+    "stream on 5 6",
+    "stream off 3",
+    "stream sideways",
     "jump",
 ]
 # Refused by the state rather than by the words (each state answers some of them with ok).
@@ -175,6 +193,9 @@ def test_a_refused_command_changes_nothing_in_any_state(rt, state):
             assert "internal" not in reply, (state, line, reply)
     # hand-checked replies and refusals that must hold in every state
     assert by["pid 30 -1 0"][0] == "err pid: ki -1 is outside 0.000..100.000 "
+    assert by["stream on 26"][0] == "err stream: HZ '26': allowed a whole number 1..25 (lines a second)"
+    assert by["stream on 5 6"][0] == "err stream: need on [HZ], off or nothing (ask), got 'on 5 6'"
+    assert by["stream off 3"][0] == "err stream: need on [HZ], off or nothing (ask), got 'off 3'"
     # a short write that reports success: only the read-back notices; the file and source are kept
     # (the OSError's text differs: CPython "[Errno 28] ...", MicroPython "(28, '...')")
     short = by["<short>"][0]

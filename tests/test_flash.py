@@ -32,11 +32,12 @@ CP_DRIVERS += ["drivers/cp_clock.py", "drivers/cp_hcsr04_pulsein.py", "drivers/c
 
 
 def expected(board, entry, drivers):
-    # main.py and code.py import console (the serial console), which imports calstore, and selftest
-    # inside its `selftest` command (loaded only while that runs, but on the board all the same).
-    # CircuitPython has no viper emitter: the viper modules stay off its drive.
+    # main.py and code.py import console (the serial console), which imports calstore, selftest
+    # inside its `selftest` command and stream inside `stream` (loaded only when asked for, but on
+    # the board all the same). CircuitPython has no viper emitter: the viper modules stay off its drive.
     core = [p for p in CORE if entry == "main.py" or p not in flash.VIPER]
     files = core + drivers + ["runner.py", "console.py", "calstore.py", "selftest.py", "boards/__init__.py"]
+    files += ["stream.py"] + (["_stream_viper.py"] if entry == "main.py" else [])
     files.append("boards/%s.py" % board)
     if entry == "code.py":
         files.append("boot.py")  # CircuitPython: gives code.py the flash for `save`

@@ -120,3 +120,23 @@ def test_main_py_with_a_calibration_file_boots_relaxed_too(tmp_path):
     assert status == 0 and "Traceback" not in out, out
     assert "boot: relaxed, no pulse until `stand` (the board file's boot setting)" in out, out
     assert len(bursts) > 100 and {c for _, counts in bursts for c in counts} == {-1}
+
+
+def test_stream_on_25_writes_parseable_lines_and_allocates_nothing(fs):
+    # The default scenario with the console's telemetry at 25 Hz (`stream on 25`, through
+    # select.poll on the board's USB CDC): a line every second frame, none dropped, each one a
+    # valid line; the same bursts as the stub machine's; still 0 bytes a frame.
+    from hexapod_host.serial import telemetry
+
+    status, lines, bursts, _ = pico_loop.board(FRAMES, fs, "stream")
+    assert status == 0, "\n".join(lines)
+    assert "ok stream 25" in lines
+    _, host_bursts = pico_loop.host(FRAMES, "stream")
+    assert bursts == host_bursts
+    got = [telemetry.parse(line) for line in lines if telemetry.is_telemetry(line)]
+    assert [t["frame"] for t in got] == list(range(2, FRAMES + 1, 2))
+    assert got[-1]["mode"] == 4 and got[-1]["vx"] == 1200  # tripod walking forward from frame 60
+    assert all(p for p in got[-1]["pulses"])
+    s = pico_loop.summary(lines)
+    assert s["stream_sent_dropped"] == [FRAMES // 2, 0]
+    assert s["heap_bytes_per_frame"] == 0

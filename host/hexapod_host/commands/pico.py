@@ -167,6 +167,13 @@ def bench_frame(args, fs, tmp):
         # to main.py's first frame (bench boot) goes with it: both are what a driver waits for.
         result["boot_to_first_frame_ms"] = _boot(fs)["first_burst_ms"]
         return result
+    if scenario == "stream":
+        from hexapod_host.serial import telemetry
+
+        # Every line the board wrote parses (ValueError naming the field otherwise); the parts
+        # are the default scenario's.
+        result["telemetry_lines"] = len([telemetry.parse(line) for line in lines if telemetry.is_telemetry(line)])
+        return result
     parts, _ = _board([_write(tmp, "parts.py", PARTS)], fs, devices=pico.devices(distances=list(pico_loop.DISTANCES)))
     result["parts"] = parts[-1]
     return result
@@ -230,9 +237,10 @@ def register(sub):
     b.add_argument("--frames", type=int, help="frame: 20 ms frames of the whole loop, 2..2000 (default 500: 10 s)")
     b.add_argument(
         "--scenario",
-        choices=("default", "drive"),
-        help="frame: default (stand, walk, turn, crab, back, stop) or drive (walk commands 5 times a second, "
-        "gait changes while walking, height and pose changes; adds boot_to_first_frame_ms)",
+        choices=("default", "drive", "stream"),
+        help="frame: default (stand, walk, turn, crab, back, stop), drive (walk commands 5 times a second, "
+        "gait changes while walking, height and pose changes; adds boot_to_first_frame_ms) or stream (the "
+        "default with the console's telemetry at 25 Hz; adds telemetry_lines, each parsed)",
     )
     b.set_defaults(func=run_bench)
     s = what.add_parser("serial", help="the emulated Pico as a serial port (a pty; prints its path first)")

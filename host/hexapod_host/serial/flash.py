@@ -37,7 +37,7 @@ RP2_ONLY = ("drivers/_i2c_rp2.py",)
 
 def _twins():
     """The viper twins by their rule (docs/viper.md): MODULE's is _MODULE_viper.py, beside it."""
-    found = glob.glob(os.path.join(FIRMWARE, "*", "_*_viper.py"))
+    found = glob.glob(os.path.join(FIRMWARE, "_*_viper.py")) + glob.glob(os.path.join(FIRMWARE, "*", "_*_viper.py"))
     return tuple(sorted(os.path.relpath(p, FIRMWARE).replace(os.sep, "/") for p in found))
 
 

@@ -17,7 +17,8 @@ second word is the command itself (`ok selftest 15 checks, 0 failed`, `err selft
 request() returns that end line and keeps the lines before it in `link.body`.
 
 Lines from the board that are no reply to this request (boot text, a calibration notice, a
-traceback, the reply to a half-typed line) are kept in `link.other` and skipped. The port is opened
+traceback, the reply to a half-typed line) are kept in `link.other` and skipped; telemetry lines
+(`~`, a board under `stream on`: docs/console.md) are skipped and not kept. The port is opened
 exclusively (an advisory lock, as miniterm and picocom take): a second program gets PortBusy.
 Errors are LinkError with a sentence a person can act on: no such port, a port in use or that
 cannot be opened, no answer within the timeout (firmware not running, or a REPL prompt), a
@@ -30,6 +31,8 @@ import time
 
 import serial
 from serial.tools import list_ports
+
+from hexapod_host.serial.telemetry import PREFIX as TELEMETRY
 
 # Commands whose reply is several lines, ended by the line `ok|err <command>...` (docs/console.md).
 MULTI_LINE = ("selftest",)
@@ -190,6 +193,8 @@ class Link:
             if buf.endswith(b"\n"):
                 text = buf.decode("ascii", "replace").strip()
                 buf = b""
+                if text.startswith(TELEMETRY):
+                    continue  # a streaming board's telemetry (`stream on`): never a reply, never kept
                 head, _, rest = text.partition(" ")
                 if head.startswith("#") and head[1:].isdigit():
                     if head != tag:

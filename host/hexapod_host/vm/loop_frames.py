@@ -13,7 +13,11 @@
 # pose changes while standing, all asked as the console asks them (wait=False: checked over the
 # frames' slack); its frame time counts the commands made in that frame, and it also reports each
 # configure's frames (asked to done) and codes.
-# Arguments: [frames (default 500)] [scenario: default or drive].
+# The "stream" scenario is the default one with the console's telemetry on at 25 Hz (`stream on 25`,
+# docs/console.md): Console.poll after each step writes a line every second frame, counted in the
+# frame's time; on the board through select.poll on its USB CDC (stream.PollWriter), on the host
+# straight to stdout.
+# Arguments: [frames (default 500)] [scenario: default, drive or stream].
 import gc
 import json
 import sys
@@ -29,6 +33,11 @@ import runner
 
 FRAMES = int(sys.argv[1]) if len(sys.argv) > 1 else 500
 SCENARIO = sys.argv[2] if len(sys.argv) > 2 else "default"
+if SCENARIO == "stream":
+    # The console's modules before the loop is built, while the heap has blocks big enough for
+    # their code (imported after main.build they found none on the emulated Pico: MemoryError).
+    import console
+    import stream
 # (frame, vx 0.1 mm/s, vy, yaw cdeg/s); None: stop. Frame 0 stands up.
 COMMANDS = ((60, 1200, 0, 0), (160, 0, 0, 3000), (230, 600, 600, 0), (300, -800, 0, 0), (400, None, 0, 0))
 BUSY = array("i", [0] * FRAMES)  # us from a frame's start to the end of its step
@@ -79,7 +88,25 @@ def drive(robot, n, pending):
             pending[1] = n
 
 
-def loop(r, frames):
+def streaming(r):
+    """The stream scenario's console (no reader) streaming at 25 Hz; its reply printed. The
+    boot-only modules go first, as main.main lets them go before its console comes."""
+    runner.release(*runner.BOOT_ONLY, "robots." + main.ROBOT, "robots.%s_cal" % main.ROBOT)
+    gc.collect()
+    con = console.start(r, None, None, write=sys.stdout.write)
+    if sys.implementation.name == "cpython":  # the host has no MicroPython stream.write(buf, n)
+
+        class Out:
+            def write(self, buf, n):
+                sys.stdout.write(bytes(buf[:n]).decode())
+                return n
+
+        con.telemetry = stream.Stream(Out())
+    print(con.do("stream on 25"))
+    return con
+
+
+def loop(r, frames, con=None):
     bg = getattr(r.bank, "_sender", None)
     k = 0
     pending = PENDING
@@ -92,6 +119,8 @@ def loop(r, frames):
         if bg is not None and bg._st[3] and n and clock.ticks_diff(t0, t_first) - START[n - 1] >= 19990:
             LATE[0] += 1
         r.step()
+        if con is not None:
+            con.poll()  # the telemetry line, when this frame is due one
         if driving:
             drive(r.robot, n, pending)
         BUSY[n] = clock.ticks_diff(clock.ticks_us(), t0)
@@ -128,7 +157,7 @@ def _sorted(a):
     return a
 
 
-def summary(r, free_after_boot, heap, bg=None):
+def summary(r, free_after_boot, heap, bg=None, con=None):
     worst_at = 0
     for n in range(FRAMES):
         if BUSY[n] > BUSY[worst_at]:
@@ -163,12 +192,14 @@ def summary(r, free_after_boot, heap, bg=None):
         "configure_frames": JOB[0],
         "configure_frame_max_us": JOB[1],
         "overruns": r.robot.overruns,
+        "stream_sent_dropped": [con.telemetry.sent, con.telemetry.dropped] if con is not None else None,
     }
 
 
 r = main.build(clock=clock)
 r.robot.set_gait(0)
 r.robot.stand_up()
+con = streaming(r) if SCENARIO == "stream" else None
 gc.collect()
 free = gc.mem_free() if hasattr(gc, "mem_free") else 0
 # The collector stays off: a collection inside a frame would count as the frame's time, and any
@@ -177,9 +208,9 @@ free = gc.mem_free() if hasattr(gc, "mem_free") else 0
 weigh = hasattr(gc, "mem_alloc")
 gc.disable()
 before = gc.mem_alloc() if weigh else 0
-loop(r, FRAMES)
+loop(r, FRAMES, con)
 heap = (gc.mem_alloc() - before) / FRAMES if weigh else -1
 gc.enable()
 gc.collect()  # the summary's sorted copies need the heap the loop's commands left behind
 print(runner.status_line(r))
-print(json.dumps(summary(r, free, heap, getattr(r.bank, "_sender", None))))
+print(json.dumps(summary(r, free, heap, getattr(r.bank, "_sender", None), con)))
