@@ -109,7 +109,9 @@ def test_the_page_loads_without_console_errors(drive):
     frames_pass(board, 50)
     assert vb.page_errors(driver) == []
     assert driver.execute_script("return document.querySelector('#popup').getAttribute('aria-hidden')") == "true"
-    assert "stream" in text(driver, "drive-board")  # the board's line: what `stream on 25` answered
+    # The board streams: the page shows `stream on 25`'s reply and counts telemetry lines.
+    assert vb.wait_for(lambda: "(ok stream 25)" in text(driver, "drive-board"), timeout=30), text(driver, "drive-board")
+    assert vb.wait_for(lambda: "telemetry lines 0 " not in text(driver, "drive-board"), timeout=30)
 
 
 def test_the_stand_button_stands_it(drive):
@@ -119,6 +121,8 @@ def test_the_stand_button_stands_it(drive):
     standing = next(m[0] for m in modes(ev, f0) if m[1] == STANDING)
     assert standing - f0 <= STAND_FRAMES
     assert pulse_frames(ev, f0)[0] <= f0 + PULSE_FRAMES  # the servos moved from the next frame on
+    # and the page, drawn from the board's telemetry, says so
+    assert vb.wait_for(lambda: "robot standing" in text(driver, "status"), timeout=30), text(driver, "status")
     assert vb.page_errors(driver) == []
 
 
@@ -131,6 +135,9 @@ def test_w_walks_while_held_and_letting_go_stops_it(drive):
     first = vb.commands(board.trace(), "walk")[n0]
     assert first[2] == ["walk", "80", "0", "0"]
     fw = first[0]
+    # The page, from the telemetry: walking, the walk in force.
+    assert vb.wait_for(lambda: "robot walking" in text(driver, "status"), timeout=30), text(driver, "status")
+    assert vb.wait_for(lambda: "walk 80 0 0," in text(driver, "drive-board"), timeout=30), text(driver, "drive-board")
     frames_pass(board, 120)  # held for 2.4 s of the board's time: more than twice the walk's 1000 ms timeout
     keys(driver, up="w")
     assert vb.wait_for(lambda: [c for c in vb.commands(board.trace(), "stop") if c[0] > fw], timeout=30), (

@@ -134,7 +134,7 @@ def test_replies_pair_with_their_tags_among_telemetry_lines():
     assert link.reply("#7") == "ok late"  # another request's: kept under its own tag
     assert link.reply("#42") is None
     assert link.telemetry["frame"] == 1236 and link.telemetry_lines == 2
-    assert link.malformed == 1 and "3 fields, the format has 44" in link.last_error
+    assert link.malformed == 1 and "telemetry field 4 (phase): missing (3 of 44 fields)" in link.last_error
     assert list(link.notices) == ["held: leg 2: too far"]
 
 

@@ -20,8 +20,8 @@ import threading
 import time
 from collections import OrderedDict, deque
 
+from hexapod_host.serial import telemetry
 from hexapod_host.serial.link import PORT_ERRORS, TAG_MAX, check_line
-from hexapod_host.view import telemetry_min
 
 REPLIES_KEPT = 200  # the page asks for a reply within seconds; older ones go
 
@@ -29,7 +29,7 @@ REPLIES_KEPT = 200  # the page asks for a reply within seconds; older ones go
 class BoardLink:
     """Replies and telemetry from one serial-like port (readline with a timeout, write)."""
 
-    def __init__(self, port, name="?", parse=telemetry_min.parse, first_tag=None):
+    def __init__(self, port, name="?", parse=telemetry.parse, first_tag=None):
         self.port = port
         self.name = name
         self.parse = parse
@@ -91,7 +91,7 @@ class BoardLink:
         text = text.strip()
         if not text:
             return
-        if text.startswith(telemetry_min.PREFIX):
+        if telemetry.is_telemetry(text):
             try:
                 t = self.parse(text)
             except ValueError as e:
