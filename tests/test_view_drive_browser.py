@@ -6,6 +6,7 @@ changed, the robot's mode and walk), never in wall-clock time. Skips without Chr
 without the MicroPython VM); under CI a missing browser fails."""
 
 import os
+import re
 
 import pytest
 
@@ -34,6 +35,12 @@ def drive(tmp_path_factory):
     board = vb.VirtualBoard(tmp_path_factory.mktemp("drive") / "trace.txt")
     server = driver = None
     try:
+        from hexapod_host.serial.link import Link
+
+        # The front sonar hears nothing from the start (the virtual board's own fault command,
+        # sent before the page takes the line): its beam must be drawn red.
+        with Link.open(board.path, timeout=30) as link:
+            assert link.request("fault no_echo 0") == "ok fault no_echo 0"
         server = vb.Server(("--virtual", "--virtual-port", board.path), timeout=90)
         driver = vb.open_browser()
         driver.get(server.url)
@@ -112,6 +119,37 @@ def test_the_page_loads_without_console_errors(drive):
     # The board streams: the page shows `stream on 25`'s reply and counts telemetry lines.
     assert vb.wait_for(lambda: "(ok stream 25)" in text(driver, "drive-board"), timeout=30), text(driver, "drive-board")
     assert vb.wait_for(lambda: "telemetry lines 0 " not in text(driver, "drive-board"), timeout=30)
+
+
+def red_pixels(driver):
+    """Pixels of the faulted beam's red (#d62728 at 0.8 opacity on the light floor: about
+    (205, 77, 78)) in the 3-D canvas: green and blue alike and well under red. The robot's
+    oranges have far less blue than green, the floor and the grey beams all three alike."""
+    import io
+
+    from PIL import Image
+    from selenium.webdriver.common.by import By
+
+    png = driver.find_element(By.CSS_SELECTOR, ".nicegui-scene canvas").screenshot_as_png
+    img = Image.open(io.BytesIO(png)).convert("RGB")
+    w, h = img.size
+    px = img.load()
+    return sum(
+        1
+        for x in range(w)
+        for y in range(h)
+        for r, g, b in (px[x, y],)
+        if r >= 150 and g <= 0.45 * r and abs(g - b) <= 0.1 * r
+    )
+
+
+def test_a_sonar_fault_turns_its_beam_red(drive):
+    driver, _, _ = drive
+    assert vb.wait_for(lambda: re.search(r"front\s+-\s+no_echo", text(driver, "readings")), timeout=30), text(
+        driver, "readings"
+    )
+    assert red_pixels(driver) > 20  # the 150 mm beam, 8 mm thick: about 40-60 pixels here
+    assert re.search(r"left front\s+400\.\d\s+ok", text(driver, "readings"))  # the others read their walls
 
 
 def test_the_stand_button_stands_it(drive):
