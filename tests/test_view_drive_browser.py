@@ -102,9 +102,10 @@ def pulse_frames(events, after=-1):
 
 
 def stand(driver, board):
+    n = len(vb.commands(board.trace(), "stand"))  # an earlier test's stand is not this one's
     click(driver, "drive-stand")
-    assert vb.wait_for(lambda: vb.commands(board.trace(), "stand"), timeout=30), "no stand reached the board"
-    f0 = vb.commands(board.trace(), "stand")[-1][0]
+    assert vb.wait_for(lambda: len(vb.commands(board.trace(), "stand")) > n, timeout=30), "no stand reached the board"
+    f0 = vb.commands(board.trace(), "stand")[n][0]
     assert vb.wait_for(lambda: any(m[1] == STANDING for m in modes(board.trace(), f0)), timeout=60), (
         "the board did not reach standing"
     )
