@@ -208,6 +208,21 @@ def test_w_walks_while_held_and_letting_go_stops_it(drive):
     assert vb.page_errors(driver) == []
 
 
+def test_the_window_losing_focus_stops_a_held_walk(drive):
+    driver, board, _ = drive
+    stand(driver, board)
+    n0, s0 = len(vb.commands(board.trace(), "walk")), len(vb.commands(board.trace(), "stop"))
+    keys(driver, down="w")
+    assert vb.wait_for(lambda: len(vb.commands(board.trace(), "walk")) > n0, timeout=30), "W sent no walk"
+    driver.execute_script("window.dispatchEvent(new Event('blur'))")  # as when another window takes the focus
+    assert vb.wait_for(lambda: len(vb.commands(board.trace(), "stop")) > s0, timeout=30), "losing focus sent no stop"
+    fs = vb.commands(board.trace(), "stop")[s0][0]
+    frames_pass(board, 60)
+    keys(driver, up="w")  # its keyup, late: nothing more to stop
+    assert not [c for c in vb.commands(board.trace(), "walk") if c[0] > fs], "the walk was renewed after the blur"
+    assert vb.page_errors(driver) == []
+
+
 def test_a_second_tab_is_view_only(drive):
     from selenium.webdriver.common.by import By
 

@@ -202,6 +202,19 @@ def test_space_stops_at_once_and_the_stick_turns():
     assert src.lines == ["walk 0 -80 0", "stop", "walk 80 0 -10", "walk -80 0 0", "stop"]
 
 
+def test_losing_the_keyboard_lets_go_of_the_keys():
+    src = Recorder()
+    d = Driver(src)
+    d.claim("tab1")
+    d.key("tab1", "w", True)
+    d.key("tab1", "q", True)
+    d.let_go("tab1")  # the window lost focus: no keyup will come for W or Q
+    d.renew()
+    d.let_go("tab1")  # nothing held: nothing more sent
+    assert src.lines == ["walk 80 0 0", "walk 80 0 20", "stop"]
+    assert d.owner == "tab1"  # still this tab's to drive
+
+
 def test_only_the_owning_tab_drives_and_its_going_stops_the_robot():
     src = Recorder()
     d = Driver(src)

@@ -5,7 +5,8 @@ which tab may drive (docs/view.md, "Driving").
   space stops. The stick: up/down forward/back, left/right turns.
 - Deadman: the console's `walk` expires on its own (the board file's walk_timeout_ms, 1000 ms by
   default: the loop stops the robot). While a key or the stick is held the page renews the walk
-  every RENEW_S; when the last one is let go, or the tab goes away, `stop` goes out at once.
+  every RENEW_S; when the last one is let go, the window loses focus (no keyup would come) or
+  the tab goes away, `stop` goes out at once.
 - One driver: the first tab that opens the page owns the drive; every other tab is view-only
   (its drive widgets disabled, and its events refused here too: a disabled widget is only a
   picture). The owner's tab closing or losing its connection frees the drive (and stops the
@@ -115,6 +116,12 @@ class Driver:
         self._check(client)
         self.stick = None if x is None else (max(-1.0, min(1.0, x)), max(-1.0, min(1.0, y)))
         self._update()
+
+    def let_go(self, client):
+        """The page lost the keyboard (its window lost focus): a key held then sends no keyup, so
+        everything held is let go (stop when walking)."""
+        self._check(client)
+        self._let_go()
 
     def renew(self):
         """The page's timer, every RENEW_S: the walk again while something is held."""

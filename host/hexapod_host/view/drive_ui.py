@@ -59,6 +59,9 @@ class DrivePanel:
             self.log.props("id=drive-log")
         # Keys drive whatever is focused but a text field (a clicked button is blurred, _do).
         ui.keyboard(on_key=self._key, repeating=False, ignore=["input", "select", "textarea"])
+        # A key held while the window loses focus never sends its keyup: let go of it then.
+        ui.add_body_html('<script>window.addEventListener("blur", () => emitEvent("hexapod_blur"));</script>')
+        ui.on("hexapod_blur", lambda: self.driver.owner == client.id and self._do(driver.let_go))
         ui.timer(RENEW_S, self._renew)
         ui.timer(REFRESH_S, self.refresh)
         client.on_disconnect(lambda: driver.release(client.id))
