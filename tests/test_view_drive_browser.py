@@ -223,6 +223,23 @@ def test_the_window_losing_focus_stops_a_held_walk(drive):
     assert vb.page_errors(driver) == []
 
 
+def test_the_stick_pushed_up_walks_and_let_go_stops(drive):
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.by import By
+
+    driver, board, _ = drive
+    stand(driver, board)
+    n0, s0 = len(vb.commands(board.trace(), "walk")), len(vb.commands(board.trace(), "stop"))
+    stick = driver.find_element(By.ID, "drive-stick")
+    ActionChains(driver).move_to_element(stick).click_and_hold().move_by_offset(0, -60).perform()  # up, to the rim
+    assert vb.wait_for(lambda: len(vb.commands(board.trace(), "walk")) > n0, timeout=30), "the stick sent no walk"
+    words = vb.commands(board.trace(), "walk")[-1][2]
+    assert float(words[1]) > 60 and abs(float(words[3])) < 5, words  # forward, hardly turning
+    ActionChains(driver).release().perform()
+    assert vb.wait_for(lambda: len(vb.commands(board.trace(), "stop")) > s0, timeout=30), "letting go sent no stop"
+    assert vb.page_errors(driver) == []
+
+
 def test_a_second_tab_is_view_only(drive):
     from selenium.webdriver.common.by import By
 

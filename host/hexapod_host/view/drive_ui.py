@@ -47,14 +47,18 @@ class DrivePanel:
                 off = ui.button("wall off", on_click=lambda: self._do(driver.wall, None, None))
                 self.widgets += [self.side, self.cm, on.props("id=drive-wall"), off.props("id=drive-wall-off")]
             ui.label("keys: W/S forward/back, A/D strafe, Q/E turn, space stops; or the stick").classes("text-xs")
-            self.stick = ui.joystick(
-                color="#e07b00",
-                size=100,
-                mode="static",  # nipple.js's default draws the stick only once touched: an empty box
-                position={"left": "50%", "top": "50%"},
-                on_move=lambda e: self._do(driver.stick_move, e.x, e.y),
-                on_end=lambda e: self._do(driver.stick_move, None, None),
-            ).classes("w-40 h-40")
+            self.stick = (
+                ui.joystick(
+                    color="#e07b00",
+                    size=100,
+                    mode="static",  # nipple.js's default draws the stick only once touched: an empty box
+                    position={"left": "50%", "top": "50%"},
+                    on_move=lambda e: self._do(driver.stick_move, e.x, e.y),
+                    on_end=lambda e: self._do(driver.stick_move, None, None),
+                )
+                .classes("w-40 h-40")
+                .props("id=drive-stick")
+            )
             self.log = ui.label().style("white-space: pre; font-family: monospace; font-size: 11px")
             self.log.props("id=drive-log")
         # Keys drive whatever is focused but a text field (a clicked button is blurred, _do).
