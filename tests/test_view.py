@@ -30,7 +30,7 @@ def hand_snapshot():
     snap.update(
         body={"x": 1000.0, "y": 500.0, "z": 50.5, "yaw": math.pi / 2},
         distances=[None, 123.4, 120.0, None, None],
-        sonar_status=["no echo", "ok", "ok", "out of range", "wait"],
+        sonar_status=["no_echo", "ok", "ok", "out_of_range", "wait"],  # hexapod.sensors.STATUS_NAMES
     )
     return snap
 
@@ -79,6 +79,14 @@ def test_beams_from_the_sonars_with_their_readings():
     # right front: out of range (nothing heard): grey, 150 mm toward +x
     assert beams[3]["state"] == "none" and close(beams[3]["end"], [1210 + 150, 600, 50.5])
     assert beams[4]["state"] == "none"  # waiting for its turn is no fault
+
+
+def test_every_sonar_status_a_source_gives_has_its_beam_colour():
+    from hexapod import sensors
+    from hexapod_host.view.scene import beam_state
+
+    assert sensors.STATUS_NAMES == ("ok", "out_of_range", "no_echo", "stuck", "too_close", "wait", "pending")
+    assert [beam_state(n) for n in sensors.STATUS_NAMES] == ["ok", "none", "fault", "fault", "fault", "none", "none"]
 
 
 def test_a_segment_as_a_unit_cylinder():
@@ -192,7 +200,9 @@ def test_a_speed_not_offered_is_refused():
 @pytest.mark.parametrize(
     "args, message",
     [
-        (["--virtual"], "--virtual: not built yet; today's source is --sim"),
+        (["--pico"], "--pico: not built yet; today's sources are --sim and --virtual"),
+        (["--sim", "--virtual-port", "/dev/pts/1"], "--virtual-port: only with --virtual"),
+        (["--virtual", "--virtual-port", "/dev/no-such-pty"], "--virtual-port /dev/no-such-pty: no such port"),
         (["--port", "/dev/ttyACM0"], "--port: not built yet"),
         (["--sim", "--listen", ":8080"], "no host; say 127.0.0.1:8080 (this machine) or 0.0.0.0:8080"),
         (["--sim", "--listen", "127.0.0.1:http"], "the port 'http' is not a whole number"),

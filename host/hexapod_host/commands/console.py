@@ -117,10 +117,11 @@ def _die_with_parent(parent):
     return arm if sys.platform.startswith("linux") else None
 
 
-def start_virtual_board(board="pico", robot="default", cal_dir="", frames=-1, *, world=None):
+def start_virtual_board(board="pico", robot="default", cal_dir="", frames=-1, trace="", *, world=None):
     """(process, pty path, master fd, slave fd): the VM running the loop on the master side of a
     new pseudo-terminal; clients open the path. The caller stops the process and closes the fds.
 
+    trace: a file the VM writes what it saw, frame by frame (virtual_board.py's Trace), or ''.
     world: a hexapod_host.wall.world.World (or a shipped world's name or a file) whose room the
     sonars read, the robot at its start (hexapod_host.wall.board_room); process.room is that
     Room (None without a world: the sonars answer fixed distances). A world that cannot be run
@@ -133,7 +134,7 @@ def start_virtual_board(board="pico", robot="default", cal_dir="", frames=-1, *,
     tty.setraw(slave)  # no echo, no line editing, no \n -> \r\n: a USB serial line's bytes
     path = os.ttyname(slave)
     search = mpvm.search_path()
-    args = [exe, "-X", "heapsize=4m", VM_SCRIPT, board, robot, cal_dir, str(frames)]
+    args = [exe, "-X", "heapsize=4m", VM_SCRIPT, board, robot, cal_dir, str(frames), trace]
     if room is not None:
         vm_in, to_vm = os.pipe()  # distances in (the VM reads vm_in)
         from_vm, vm_out = os.pipe()  # pulses out (the VM writes vm_out)

@@ -1,6 +1,8 @@
-"""`hexapod view --sim [--world W] [--record FILE.mcap] [--listen HOST:PORT] [--no-browser]`, or
-`hexapod view --replay FILE.mcap`: the live 3-D page (hexapod_host.view, docs/view.md)."""
+"""`hexapod view --sim [--world W] | --virtual [--virtual-port PTY] | --replay FILE.mcap
+[--record FILE.mcap] [--listen HOST:PORT] [--no-browser]`: the live 3-D page (hexapod_host.view,
+docs/view.md)."""
 
+import os
 import sys
 
 from hexapod_host.commands.cli import UsageError
@@ -9,14 +11,16 @@ from hexapod_host.view import player as player_mod
 from hexapod_host.wall.world import DEFAULT, WorldError, load, shipped
 
 LISTEN = "127.0.0.1:8080"
-LATER = {"virtual": "--virtual", "pico": "--pico", "port": "--port"}
+LATER = {"pico": "--pico", "port": "--port"}
 
 
 def register(sub):
     p = sub.add_parser("view", help="the live 3-D view of the robot in a web page (docs/view.md)")
     src = p.add_mutually_exclusive_group(required=True)
     src.add_argument("--sim", action="store_true", help="the wall simulator's room, trial after trial")
-    src.add_argument("--virtual", action="store_true", help="the virtual board (not yet)")
+    src.add_argument(
+        "--virtual", action="store_true", help="the virtual board (hexapod virtual-board), driven from the page"
+    )
     src.add_argument("--pico", action="store_true", help="the emulated Pico (not yet)")
     src.add_argument("--port", metavar="PORT", help="a real board on a serial port (not yet)")
     src.add_argument("--replay", metavar="FILE", help="play a recording made with --record (an .mcap file)")
@@ -28,6 +32,11 @@ def register(sub):
     )
     p.add_argument(
         "--seed", default="0", metavar="S", help="with --sim: the run's seed, as hexapod sim wall's (default 0)"
+    )
+    p.add_argument(
+        "--virtual-port",
+        metavar="PTY",
+        help="with --virtual: attach to a virtual board already running on this pty (default: start one)",
     )
     p.add_argument("--speed", default="1", metavar="X", help="simulated seconds per second: %s (default 1)" % _speeds())
     p.add_argument(
@@ -75,14 +84,23 @@ def parse(args):
     written or opened for writing: a refused command leaves no file behind."""
     for key, flag in LATER.items():
         if getattr(args, key):
-            raise UsageError("%s: not built yet; today's source is --sim (docs/view.md says what comes next)" % flag)
+            raise UsageError(
+                "%s: not built yet; today's sources are --sim, --virtual and --replay (docs/view.md says what"
+                " comes next)" % flag
+            )
+    if args.virtual_port and not args.virtual:
+        raise UsageError("--virtual-port: only with --virtual")
+    if args.virtual_port and not os.path.exists(args.virtual_port):
+        raise UsageError(
+            "--virtual-port %s: no such port (hexapod virtual-board prints its pty's path first)" % args.virtual_port
+        )
     if args.record is not None:
         if args.replay is not None:
             raise UsageError("--record: not with --replay (the recording is there already)")
         from hexapod_host.commands import checks
 
         checks.out_file("--record", args.record, suffix=".mcap")
-    if args.replay is None:
+    if args.replay is None and not args.virtual:
         try:
             world = load(args.world)
         except WorldError as err:
@@ -105,6 +123,8 @@ def parse(args):
             return ReplaySource(args.replay), speed, host, port, None
         except ReplayError as err:
             raise UsageError("--replay %s" % err) from None
+    if args.virtual:
+        return virtual_source(args.virtual_port), 1.0, host, port, args.record
     from hexapod_host.view.sim import SimSource
 
     try:
@@ -114,6 +134,43 @@ def parse(args):
     return source, speed, host, port, args.record
 
 
+def virtual_source(pty=None):
+    """A BoardSource on the virtual board: the one on pty, else one started here (stopped when the
+    source closes, its temporary calibration directory removed)."""
+    import tempfile
+
+    from hexapod_host.serial.link import Link, LinkError
+    from hexapod_host.view.board import BoardSource
+    from hexapod_host.view.board_link import BoardLink
+
+    proc = tmp = None
+    if pty is None:
+        from hexapod_host.commands.console import CAL_PREFIX, remove_stale_cal_dirs, start_virtual_board
+
+        remove_stale_cal_dirs()
+        tmp = tempfile.TemporaryDirectory(prefix=CAL_PREFIX % os.getpid())
+        proc, pty, master, slave = start_virtual_board("pico", "default", tmp.name)
+    try:
+        port = Link.open(pty).port  # pyserial, exclusive: nobody else types on the robot's line meanwhile
+    except LinkError as e:
+        raise UsageError("--virtual-port: %s" % e) from None
+
+    def stop_board():
+        if proc is not None:
+            proc.terminate()
+            proc.wait(10)
+            os.close(master)
+            os.close(slave)
+            tmp.cleanup()
+
+    link = BoardLink(port, pty).start()
+    if link.request("help", timeout=30) is None:  # the VM takes a few seconds to start
+        link.close()
+        stop_board()
+        raise UsageError("--virtual: no answer from the virtual board on %s within 30 s" % pty)
+    return BoardSource(link, "pico", "virtual", on_close=stop_board)
+
+
 def run(args):
     source, speed, host, port, record_path = parse(args)
     from hexapod_host.view.player import Player
@@ -121,9 +178,10 @@ def run(args):
 
     shown = "[%s]" % host if ":" in host else host
     d = source.describe()
+    where = ("world %s" % d["world"]) if d.get("world") else getattr(source, "stream_reply", "-")
     print(
-        "hexapod view: http://%s:%d  (source %s, world %s%s); Ctrl-C stops"
-        % (shown, port, d["source"], d.get("world", "-"), ", recording to %s" % record_path if record_path else "")
+        "hexapod view: http://%s:%d  (source %s, %s%s); Ctrl-C stops"
+        % (shown, port, d["source"], where, ", recording to %s" % record_path if record_path else "")
     )
     if not is_loopback(host):
         sys.stderr.write(

@@ -8,6 +8,13 @@
   simulated seconds per real second, and the server's CPU time over the window (Linux's
   /proc) per redraw and as a share of one core: the figure that least follows the machine's
   load. Skipped, saying why, without Chromium.
+- drive: `hexapod view --virtual` on a virtual board with its trace, W pressed DRIVE_TRIES times
+  in headless Chromium: the time from the key (just before WebDriver sends it) to the first
+  frame in which the board's PCA9685 models' pulses changed (the trace's host clock), median
+  and worst; the same in the board's frames from the walk's arrival; key -> walk line arrival;
+  and the page's own keydown (the event's time in the browser) -> walk line arrival, which
+  leaves out WebDriver's way into a busy browser. Skipped, saying why, without Chromium or the
+  MicroPython VM.
 
 The machine's load average is reported beside them: on a shared 2-core machine the figures
 follow it.
@@ -27,6 +34,7 @@ from hexapod_host.wall.world import load
 FRAMES = 500
 PLAYER_S = 5.0
 PAGE_S = 10.0
+DRIVE_TRIES = 10
 
 
 def _cost():
@@ -119,7 +127,80 @@ def _page():
     return out
 
 
+def _events_after(board, kind, t_ns):
+    return [e for e in board.trace() if e[0] == kind and e[2] > t_ns]
+
+
+def _drive():
+    from hexapod_host.testing.runtimes import micropython_missing
+
+    why = vb.missing() or micropython_missing()
+    if why:
+        return {"skipped": why}
+    import statistics
+    import tempfile
+
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.by import By
+
+    tmp = tempfile.TemporaryDirectory(prefix="hexapod-bench-drive-")
+    board = vb.VirtualBoard(os.path.join(tmp.name, "trace.txt"))
+    server = driver = None
+    key_ms, walk_ms, walk_frames, page_ms = [], [], [], []
+    try:
+        server = vb.Server(("--virtual", "--virtual-port", board.path), timeout=90)
+        driver = vb.open_browser()
+        driver.get(server.url)
+        vb.wait_for(lambda: "you drive" in driver.find_element(By.ID, "drive-who").text, timeout=60)
+        # The keydown's own time in the page, on the host's clock (epoch ms).
+        driver.execute_script(
+            "document.addEventListener('keydown', e => { window.hexapodKeyMs = performance.timeOrigin + e.timeStamp; })"
+        )
+        t = time.time_ns()
+        driver.find_element(By.ID, "drive-stand").click()
+        vb.wait_for(lambda: [m for m in _events_after(board, "M", t) if m[3][0] == "3"], timeout=60)
+        for _ in range(DRIVE_TRIES):
+            time.sleep(0.5)  # standing still: no pulse changes before the key
+            t0 = time.time_ns()
+            ActionChains(driver).key_down("w").perform()
+            first = vb.wait_for(lambda t0=t0: _events_after(board, "P", t0), timeout=30)
+            walk = [c for c in vb.commands(board.trace(), "walk") if c[1] > t0]
+            ActionChains(driver).key_up("w").perform()
+            t1 = time.time_ns()
+            vb.wait_for(lambda t1=t1: [m for m in _events_after(board, "M", t1) if m[3][0] == "3"], timeout=30)
+            if first and walk:
+                key_ms.append((first[0][2] - t0) / 1e6)
+                walk_ms.append((walk[0][1] - t0) / 1e6)
+                walk_frames.append(first[0][1] - walk[0][0])
+                page_key = driver.execute_script("return window.hexapodKeyMs")
+                if page_key and page_key * 1e6 > t0:
+                    page_ms.append(walk[0][1] / 1e6 - page_key)
+        errors = len(vb.page_errors(driver))
+    finally:
+        if driver is not None:
+            driver.quit()
+        if server is not None:
+            server.stop()
+        board.stop()
+        tmp.cleanup()
+    if not key_ms:
+        return {"failed": "no key press moved the board"}
+    return {
+        "tries": DRIVE_TRIES,
+        "moved": len(key_ms),
+        "key_to_pulse_ms_median": round(statistics.median(key_ms), 1),
+        "key_to_pulse_ms_worst": round(max(key_ms), 1),
+        "key_to_walk_line_ms_median": round(statistics.median(walk_ms), 1),
+        "key_to_walk_line_ms_worst": round(max(walk_ms), 1),
+        "page_keydown_to_walk_line_ms_median": round(statistics.median(page_ms), 1) if page_ms else None,
+        "page_keydown_to_walk_line_ms_worst": round(max(page_ms), 1) if page_ms else None,
+        "walk_line_to_pulse_frames": sorted(set(walk_frames)),
+        "console_errors": errors,
+    }
+
+
 def bench_view(args=None):
     out = {"load_average_1min": round(os.getloadavg()[0], 2), "cost": _cost(), "player": _player(), "page": _page()}
+    out["drive"] = _drive()
     out["load_average_1min_after"] = round(os.getloadavg()[0], 2)
     return out

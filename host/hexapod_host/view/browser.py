@@ -116,3 +116,47 @@ def wait_for(predicate, timeout=30, every=0.1):
         if v or time.monotonic() > end:
             return v
         time.sleep(every)
+
+
+class VirtualBoard:
+    """`hexapod virtual-board` (pico, default robot) with its trace file (virtual_board.py's Trace):
+    what the board saw, counted in its own frames. stop() ends it."""
+
+    def __init__(self, trace_path, cal_dir=""):
+        from hexapod_host.commands.console import start_virtual_board
+
+        self.trace_path = str(trace_path)
+        self.proc, self.path, self._master, self._slave = start_virtual_board(
+            "pico", "default", cal_dir, trace=self.trace_path
+        )
+
+    def trace(self):
+        """The trace so far: (kind, frame, t_ns, words) per event, oldest first."""
+        events = []
+        try:
+            with open(self.trace_path) as f:
+                for line in f:
+                    if line.endswith("\n"):  # a line being written is read next time
+                        kind, frame, t_ns, *words = line.split()
+                        events.append((kind, int(frame), int(t_ns), words))
+        except FileNotFoundError:
+            pass
+        return events
+
+    def stop(self):
+        if self.proc.poll() is None:
+            self.proc.terminate()
+            self.proc.wait(10)
+        os.close(self._master)
+        os.close(self._slave)
+
+
+def commands(events, word):
+    """The console lines whose command is word (the tag skipped): [(frame, t_ns, words)]."""
+    out = []
+    for kind, frame, t_ns, words in events:
+        if kind == "L":
+            w = words[1:] if words and words[0].startswith("#") else words
+            if w[:1] == [word]:
+                out.append((frame, t_ns, w))
+    return out

@@ -7,6 +7,8 @@ import math
 from nicegui import ui
 
 from hexapod_host.view import player as player_mod
+from hexapod_host.view.drive import Driver
+from hexapod_host.view.drive_ui import DrivePanel
 from hexapod_host.view.scene import geometry, segment_pose
 
 PLOT_DRAW_S = 0.25
@@ -52,7 +54,7 @@ def _place(obj, start, end):
 class View:
     """One tab's elements and how they follow the player."""
 
-    def __init__(self, player):
+    def __init__(self, player, driver):
         self.player = player
         d = player.described
         ui.label("hexapod view: %s, world %s" % (d["source"], d.get("world", "-"))).classes("text-lg")
@@ -61,6 +63,7 @@ class View:
             self._scene(d)
             with ui.column():
                 self._controls()
+                self.drive = DrivePanel(driver, lambda: self.player.snap)
                 self.table = ui.label().style("white-space: pre; font-family: monospace").props("id=readings")
         self._replay_timeline()
         with ui.row().classes("w-full"):
@@ -203,8 +206,9 @@ class View:
 
 
 def build(player):
-    """Register the page for this player's source."""
+    """Register the page for this player's source; one Driver for every tab (one of them drives)."""
+    driver = Driver(player.source)
 
     @ui.page("/")
     def index():
-        View(player)
+        View(player, driver)

@@ -4,7 +4,9 @@ it can be checked by hand. World frame: the room's x, y (mm), z up from the grou
 import math
 
 NO_ECHO_MM = 150.0  # a beam with no reading is drawn this long, grey
-FAULTS = ("no echo", "echo stuck high", "too close")  # drivers.hcsr04 statuses drawn red
+# hexapod.sensors.STATUS_NAMES drawn red: the names every source's snapshot carries (these were
+# drivers.hcsr04's prose names, which no snapshot holds: no beam was ever drawn red).
+FAULTS = ("no_echo", "stuck", "too_close")
 
 
 def to_world(body, p):

@@ -1,8 +1,8 @@
 # Runs inside the MicroPython VM: the board's loop (main.build on the stub machine with the
 # PCA9685 and HC-SR04 models) with the serial console on stdin/stdout, paced to real time.
 # `hexapod virtual-board` starts it on a pseudo-terminal. Arguments: board name, robot name,
-# calibration directory ('' = no calibration file), frames to run (-1 = for ever), and the room's
-# pipes ('R,W': file descriptors; absent = no room).
+# calibration directory ('' = no calibration file), frames to run (-1 = for ever), trace file
+# ('' = none; see Trace below), and the room's pipes ('R,W': file descriptors; absent or '' = no room).
 #
 # The room (`--world`, hexapod_host.wall.board_room on the host): before each frame the sonar
 # models take their five distances from pipe R (0.1 mm, 0 = nothing heard; the wall simulator's
@@ -34,7 +34,8 @@ BOARD = sys.argv[1] if len(sys.argv) > 1 else "pico"
 ROBOT = sys.argv[2] if len(sys.argv) > 2 else "default"
 CAL_DIR = sys.argv[3] if len(sys.argv) > 3 else ""
 FRAMES = int(sys.argv[4]) if len(sys.argv) > 4 else -1
-ROOM = sys.argv[5] if len(sys.argv) > 5 else ""
+TRACE = sys.argv[5] if len(sys.argv) > 5 else ""
+ROOM = sys.argv[6] if len(sys.argv) > 6 else ""
 
 board = stub_board.reset(BOARD)
 bus, models = stub_board.pca9685_models(board)
@@ -104,6 +105,52 @@ def fault(args):
 
 con._table["model"] = model
 con._table["fault"] = fault
+
+
+class Trace:
+    """What the board saw, in its own frames, for tests and benches that must not count in wall
+    time (`hexapod view`'s drive tests, `hexapod bench view`). One line per event, flushed:
+
+        L FRAME T_NS WORDS...      a console line arrived (its words, the tag included)
+        P FRAME T_NS               the PCA9685 models' pulse widths differ from the last frame's
+        M FRAME T_NS MODE VX VY WZ the robot's mode or the walk it was asked for changed
+                                   (tick.MODE_NAMES index; 0.1 mm/s, 0.1 mm/s, cdeg/s)
+        F FRAME T_NS               every 50th frame: a reader waiting for frames to pass sees them
+
+    FRAME is runner.frames when it happened (a line is read after the frame's step: the walk it
+    asks for moves the servos from the next frame on); T_NS the host's clock (time.time_ns())."""
+
+    def __init__(self, path):
+        self.f = open(path, "w")  # noqa: SIM115 (open for the VM's life: closed with it)
+        self.pulses = None
+        self.state = None
+        dispatch = con._dispatch
+
+        def traced(words, tag):
+            self.say("L", " ".join(words))
+            return dispatch(words, tag)
+
+        con._dispatch = traced  # an instance attribute: the console's own calls come here first
+
+    def say(self, kind, text=""):
+        self.f.write("%s %d %d %s\n" % (kind, r.frames, time.time_ns(), text))
+        self.f.flush()
+
+    def frame(self):
+        pulses = [m.pulse_us(ch) for m in chips for ch in range(16)]
+        if self.pulses is not None and pulses != self.pulses:
+            self.say("P")
+        self.pulses = pulses
+        rb = r.robot
+        state = (rb.mode, rb.asked_vx, rb.asked_vy, rb.asked_yaw)
+        if state != self.state:
+            self.say("M", "%d %d %d %d" % state)
+        self.state = state
+        if r.frames % 50 == 0:
+            self.say("F")
+
+
+trace = Trace(TRACE) if TRACE else None
 print("virtual board %s (robot %s) ready: 50 Hz, console on this line; 'help' lists commands" % (BOARD, ROBOT))
 
 
@@ -121,6 +168,8 @@ def serve(frames):
                 rig.set_distances(sonars, [int(v) for v in line.split()])
             r.step()
             con.poll()
+            if trace is not None:
+                trace.frame()
             r.wait()
             if room_out is not None:
                 room_out.write(" ".join([str(p) for p in tee.pulses]) + "\n")

@@ -1,0 +1,152 @@
+"""A board on a console line as a view source: `hexapod view --virtual` (the virtual board),
+later `--pico` and `--port`. The board streams its telemetry (`stream on 25`: a `~T` line every
+other frame, /work/notes/telemetry-spec.md) and the source turns the newest line into the
+snapshot every source gives (source.py): the pulses through the board's servo maps inverted and
+the robot file's FK (source.pose, the wall simulator's path), the sonars, the follower, the
+counters. It can be driven: command(line) sends a console line tagged, reply(tag) is its answer.
+
+There is no room: the body stays at the origin (x, y, yaw 0); its height is the coxa plane's
+above the lowest foot."""
+
+from hexapod import follow, gait, sensors, tick
+from hexapod_host.view.source import Source, pose
+from hexapod_host.wall.room import BODY_HALF, Body, grounded
+
+STREAM_HZ = 25  # the most the stream gives: a line every other frame
+FRAME_S = 0.02
+# A limp servo sends no pulse: its joint is drawn at its reference angle (cdeg; coxa and femur 0,
+# tibia -90: docs/console.md's `cal`), the leg hanging straight down from the knee.
+REST_CDEG = (0, 0, -9000)
+SIDES = (None, "left", "right")  # telemetry's follow_side 0, 1, 2
+
+
+def _mm(v):
+    """0.1 mm (hexapod.sensors' raw unit) -> mm; None stays None."""
+    return None if v is None else v / 10
+
+
+class BoardSource(Source):
+    """The newest telemetry of a board behind a BoardLink (started). on_close: called by close()
+    after the link is closed (the virtual board's process to stop)."""
+
+    name = "virtual"
+    drivable = True
+
+    def __init__(self, link, board="pico", name=None, on_close=None, hz=STREAM_HZ):
+        self.link = link
+        self.body = Body(board)
+        self.board = board
+        if name:
+            self.name = name
+        self.on_close = on_close
+        self.setpoint_mm = None
+        self._wall_tags = []
+        self._rest = self._rest_pose()
+        self.stream_reply = link.request("stream on %d" % hz) or "no reply to 'stream on %d'" % hz
+
+    def _rest_pose(self):
+        angles = list(REST_CDEG) * 6
+        legs = self.body.leg_points(angles)
+        return {
+            "pulses": [0] * 18,
+            "angles": angles,
+            "legs": [[list(p) for p in leg] for leg in legs],
+            "stance": grounded([leg[3] for leg in legs]),
+        }
+
+    def describe(self):
+        b = self.body
+        return {
+            "source": self.name,
+            "board": self.board,
+            "sensors": [[x, y, h] for x, y, h in b.sensors],
+            "body_half": list(BODY_HALF),
+            "brackets": [list(seg) for seg in b.outline[4:]],
+            "frame_s": FRAME_S,
+        }
+
+    def step(self):
+        """Nothing to do: the link's thread takes lines in as they arrive."""
+
+    def command(self, line):
+        """Send one console line to the board now; its tag, for reply(tag)."""
+        tag = self.link.send(line)
+        if line.split()[:1] == ["wall"]:
+            self._wall_tags.append(tag)
+        return tag
+
+    def reply(self, tag):
+        return self.link.reply(tag)
+
+    def _setpoint(self):
+        """The set point of the last `wall` command the board took (telemetry does not carry it)."""
+        for tag in list(self._wall_tags):
+            r = self.link.reply(tag)
+            if r is None or r == "working":
+                continue
+            self._wall_tags.remove(tag)
+            words = r.split()
+            if words[:2] == ["ok", "wall"]:
+                self.setpoint_mm = float(words[4]) * 10 if len(words) >= 5 and words[3] == "setpoint" else None
+        return self.setpoint_mm
+
+    def snapshot(self):
+        t = self.link.telemetry
+        setpoint = self._setpoint()
+        extra = {
+            "stream": self.stream_reply,
+            "telemetry_lines": self.link.telemetry_lines,
+            "malformed": self.link.malformed,
+            "lost": self.link.lost,
+            "notice": self.link.notices[-1] if self.link.notices else "",
+        }
+        if t is None:
+            return {
+                "frame": 0,
+                "time_s": 0.0,
+                **self._rest,
+                "body": {"x": 0.0, "y": 0.0, "z": -min(leg[3][2] for leg in self._rest["legs"]), "yaw": 0.0},
+                "distances": [None] * 5,
+                "sonar_status": ["wait"] * 5,
+                "mode": "-",
+                "follow": {"mode": "off", "side": None, "setpoint_mm": setpoint, "error_mm": 0.0, "output_dps": 0.0},
+                "counters": {},
+                "extra": {**extra, "gait": "-", "phase": 0, "walk": [0, 0, 0], "battery_mv": None},
+            }
+        legs = pose(self.body, t["pulses"]) or self._rest
+        side = SIDES[t["follow_side"]]
+        return {
+            "frame": t["frame"],
+            "time_s": round(t["frame"] * FRAME_S, 3),
+            **legs,
+            "body": {"x": 0.0, "y": 0.0, "z": -min(leg[3][2] for leg in legs["legs"]), "yaw": 0.0},
+            "distances": [_mm(v) for v in t["distances"]],
+            "sonar_status": [sensors.STATUS_NAMES[s] for s in t["sonar_status"]],
+            "mode": tick.MODE_NAMES[t["mode"]],
+            "follow": {
+                "mode": follow.MODE_NAMES[t["follow_mode"]],
+                "side": side,
+                "setpoint_mm": setpoint if side else None,
+                "error_mm": t["wall_error"] / 10,  # the follower's 0.1 mm
+                "output_dps": t["wall_out"] / 100,  # its cdeg/s
+            },
+            "counters": {
+                "frames": t["frame"],
+                "held": t["held"],
+                "overruns": t["overruns"],
+                "bus_failed": t["bus_failed"],
+                "sonar_faults": t["sonar_faults"],
+            },
+            "extra": {
+                **extra,
+                "gait": gait.NAMES[t["gait"]],
+                "phase": t["phase"],
+                "walk": [t["vx"] / 10, t["vy"] / 10, t["yaw"] / 100],  # mm/s, mm/s, deg/s
+                "battery_mv": t["battery_mv"],
+            },
+        }
+
+    def close(self):
+        self.link.close()
+        if self.on_close is not None:
+            self.on_close()

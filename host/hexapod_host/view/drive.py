@@ -1,0 +1,163 @@
+"""Driving from the page: the keys, the stick and the buttons as console lines, the deadman, and
+which tab may drive (docs/view.md, "Driving").
+
+- Keys: W/S forward/back, A/D strafe left/right, Q/E turn left/right, held together they add up;
+  space stops. The stick: up/down forward/back, left/right turns.
+- Deadman: the console's `walk` expires on its own (the board file's walk_timeout_ms, 1000 ms by
+  default: the loop stops the robot). While a key or the stick is held the page renews the walk
+  every RENEW_S; when the last one is let go, the window loses focus (no keyup would come) or
+  the tab goes away, `stop` goes out at once.
+- One driver: the first tab that opens the page owns the drive; every other tab is view-only
+  (its drive widgets disabled, and its events refused here too: a disabled widget is only a
+  picture). The owner's tab closing or losing its connection frees the drive (and stops the
+  robot); the next tab to open or reconnect takes it.
+
+Driver is plain Python (no UI): the page calls it with the NiceGUI client's id; tests call it
+with any id. The source must have `drivable` true and command(line) -> tag, reply(tag).
+"""
+
+SPEED_MM_S = 80.0  # a key's walking speed: two thirds of the tripod's 120 mm/s
+TURN_DPS = 20.0  # a key's turn rate, deg/s
+RENEW_S = 0.25  # the walk is renewed this often while held: 4 times within the board's 1000 ms
+KEYS = {  # key -> (vx, vy, wz) as fractions of SPEED_MM_S, SPEED_MM_S, TURN_DPS
+    "w": (1, 0, 0),
+    "s": (-1, 0, 0),
+    "a": (0, 1, 0),
+    "d": (0, -1, 0),
+    "q": (0, 0, 1),
+    "e": (0, 0, -1),
+}
+BUTTONS = ("stand", "sit", "relax", "stop", "wall off")
+WALL_CM = (4.0, 50.0)  # the console's set point range
+
+
+class NotOwner(Exception):
+    """A tab that does not own the drive tried to drive."""
+
+
+class Driver:
+    def __init__(self, source):
+        self.source = source
+        self.drivable = bool(getattr(source, "drivable", False))
+        self.owner = None  # the client id that may drive
+        self.keys = set()  # keys held
+        self.stick = None  # (x, y) in -1..1 while the stick is held
+        self.walk = None  # the walk line in force (renewed while held)
+        self.sent = []  # (tag, line), newest last: the page shows the last few with their replies
+
+    # -- who drives ----------------------------------------------------------------------
+
+    def claim(self, client):
+        """Take the drive for client if it is free; True when client owns it."""
+        if self.drivable and self.owner is None:
+            self.owner = client
+        return self.owner == client
+
+    def release(self, client):
+        """The client's tab went away: if it drove, let go of everything (stop) and free the drive."""
+        if client == self.owner:
+            self.owner = None
+            self._let_go()
+
+    def _check(self, client):
+        if not self.drivable:
+            raise NotOwner("this source cannot be driven")
+        if client != self.owner:
+            raise NotOwner("another tab drives; this one is view-only")
+
+    # -- commands ------------------------------------------------------------------------
+
+    def _send(self, line):
+        tag = self.source.command(line)
+        self.sent.append((tag, line))
+        del self.sent[:-20]
+        return tag
+
+    def command(self, client, line):
+        """A button's line (stand, sit, relax, gait NAME, wall SIDE CM, wall off, stop)."""
+        self._check(client)
+        if line.split()[0] in ("stop", "relax", "sit", "stand"):
+            self.keys.clear()
+            self.stick = None
+            self.walk = None
+        return self._send(line)
+
+    def wall(self, client, side, cm):
+        """Wall following on (side 'left'/'right', set point cm) or off (side None)."""
+        self._check(client)
+        if side is None:
+            return self._send("wall off")
+        if side not in ("left", "right"):
+            raise ValueError("side %r: allowed left, right" % (side,))
+        if cm is None or not WALL_CM[0] <= cm <= WALL_CM[1]:
+            raise ValueError("set point %r cm: allowed %g..%g" % (cm, *WALL_CM))
+        return self._send("wall %s %.2f" % (side, cm))
+
+    def key(self, client, name, down):
+        """A key went down or up (W A S D Q E, space); repeats of a held key change nothing."""
+        self._check(client)
+        name = name.lower()
+        if name == " ":
+            if down:
+                self.keys.clear()
+                self.stick = None
+                self._stop()
+            return
+        if name not in KEYS:
+            return
+        if down:
+            self.keys.add(name)
+        else:
+            self.keys.discard(name)
+        self._update()
+
+    def stick_move(self, client, x, y):
+        """The stick at (x, y), each -1..1 (x right, y up); None: let go."""
+        self._check(client)
+        self.stick = None if x is None else (max(-1.0, min(1.0, x)), max(-1.0, min(1.0, y)))
+        self._update()
+
+    def let_go(self, client):
+        """The page lost the keyboard (its window lost focus): a key held then sends no keyup, so
+        everything held is let go (stop when walking)."""
+        self._check(client)
+        self._let_go()
+
+    def renew(self):
+        """The page's timer, every RENEW_S: the walk again while something is held."""
+        if self.walk is not None and self.held():
+            self._send(self.walk)
+
+    def held(self):
+        return bool(self.keys) or self.stick is not None
+
+    def velocity(self):
+        """(vx mm/s, vy mm/s, wz deg/s) of what is held: the keys' sum plus the stick."""
+        vx = vy = wz = 0.0
+        for k in self.keys:
+            fx, fy, fw = KEYS[k]
+            vx, vy, wz = vx + fx * SPEED_MM_S, vy + fy * SPEED_MM_S, wz + fw * TURN_DPS
+        if self.stick is not None:
+            x, y = self.stick
+            vx, wz = vx + y * SPEED_MM_S, wz - x * TURN_DPS  # right on the stick turns right (wz < 0)
+        return round(vx, 1), round(vy, 1), round(wz, 2)
+
+    def _update(self):
+        v = self.velocity()
+        if not self.held():
+            self._let_go()
+            return
+        line = "walk %g %g %g" % v
+        if line != self.walk:
+            self.walk = line
+            self._send(line)
+
+    def _let_go(self):
+        self.keys.clear()
+        self.stick = None
+        if self.walk is not None:
+            self._stop()
+
+    def _stop(self):
+        self.walk = None
+        self._send("stop")
