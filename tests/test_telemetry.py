@@ -142,13 +142,15 @@ def test_send_and_doctor_get_their_replies_from_a_board_streaming_at_25_hz(virtu
 
     path, link = virtual_board("")
     assert link.request("stream on 25") == "ok stream 25"
-    # the board's own lines: ~T ... every second frame (25 a second), each parses
-    end = time.monotonic() + 0.6
+    # the board's own lines: ~T ... every second frame (25 a second), each parses; read until five
+    # came (the deadline only stops a hang: the host's timing is not what is tested)
+    end = time.monotonic() + 60
     raw = b""
-    while time.monotonic() < end:
+    lines = []
+    while len(lines) < 5:
+        assert time.monotonic() < end, raw[:300]
         raw += link.port.read(4096)
-    lines = [x for x in raw.split(b"\n")[1:-1] if x.startswith(b"~")]
-    assert len(lines) >= 5, raw[:300]
+        lines = [x for x in raw.split(b"\n")[1:-1] if x.startswith(b"~")]
     for x in lines:
         t = telemetry.parse(x)
         assert t["mode"] == 0 and t["pulses"] == [0] * 18
@@ -163,4 +165,4 @@ def test_send_and_doctor_get_their_replies_from_a_board_streaming_at_25_hz(virtu
     assert "~" not in json.dumps(report)
     with Link.open(path, timeout=10) as again:
         words = again.request("stream").split()
-        assert words[:3] == ["ok", "stream", "25"] and int(words[4]) > 25, words
+        assert words[:3] == ["ok", "stream", "25"] and int(words[4]) >= len(lines), words  # counted as sent

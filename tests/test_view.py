@@ -200,7 +200,7 @@ def test_a_speed_not_offered_is_refused():
 @pytest.mark.parametrize(
     "args, message",
     [
-        (["--pico"], "--pico: not built yet; today's sources are --sim and --virtual"),
+        (["--pico"], "--pico: not built yet; today's sources are --sim, --virtual and --replay"),
         (["--sim", "--virtual-port", "/dev/pts/1"], "--virtual-port: only with --virtual"),
         (["--virtual", "--virtual-port", "/dev/no-such-pty"], "--virtual-port /dev/no-such-pty: no such port"),
         (["--port", "/dev/ttyACM0"], "--port: not built yet"),

@@ -91,6 +91,10 @@ def test_the_page_loads_without_console_errors(page):
 
 def test_the_robot_is_drawn_where_it_stands(page, tmp_path):
     driver, _ = page
+    # The scene's objects reach the canvas after the first frame's text does (a busy machine shows
+    # the gap): wait until anything robot-coloured is drawn, then look where it is.
+    drawn = vb.wait_for(lambda: orange_pixels(canvas(driver), (0, 0, 820, 540)), timeout=60)
+    assert drawn, "no robot-coloured pixel in the canvas after 60 s"
     img = canvas(driver)
     w, h = img.size
     assert (w, h) == (820, 540)
