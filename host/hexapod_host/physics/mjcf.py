@@ -29,6 +29,9 @@ PHYSICS_FIELDS = (
 )
 TIMESTEP_S = 0.002
 JOINTS = ("coxa", "femur", "tibia")
+# The directional light's shadow box, half-width as a share of the extent (0.6 x 714 mm: the
+# default robot's 357 mm reach fits inside, and no far floor does).
+SHADOW_CLIP = 0.6
 JOINT_AXES = ("0 0 1", "0 -1 0", "0 -1 0")
 
 
@@ -89,11 +92,19 @@ def build(geometry, servo, physics, *, flip=None):
     # Coxa servos sit in the body; femur servos ride the coxa link, tibia servos the femur.
     body_mass = physics["body_g"] / 1000.0 + 6 * sm["mass"]
     z0 = geometry.body_height * m + foot_r
+    # The robot's span with its legs stretched out level: what the render's scale should fit.
+    extent = 2 * (max(math.hypot(x, y) for x, y in zip(xs, ys, strict=True)) * m + coxa + femur + tibia)
     out = [
         '<mujoco model="hexapod-%s">' % geometry.name,
         '  <compiler angle="radian" autolimits="true"/>',
         '  <option timestep="%s" integrator="implicitfast"/>' % _f(TIMESTEP_S),
-        '  <visual><global offwidth="640" offheight="480"/></visual>',
+        # Render settings only (the solver never reads them). MuJoCo scales its clip planes and
+        # the directional light's shadow box by stat.extent, which the 20 m floor alone set to
+        # 4 m: the floor then shadowed itself in black shards on the far floor inside that 8 m
+        # box. The robot's size as the extent and a box ~0.9 m across that follows the robot
+        # (trackcom) keep every floor pixel that box covers near the camera; docs/physics.md.
+        '  <visual><global offwidth="640" offheight="480"/><map shadowclip="%s"/></visual>' % _f(SHADOW_CLIP),
+        '  <statistic extent="%s"/>' % _f(extent),
         "  <asset>",
         '    <texture type="skybox" builtin="gradient" rgb1=".95 .96 .98" rgb2=".75 .8 .88" width="32" height="32"/>',
         '    <texture name="grid" type="2d" builtin="checker" rgb1=".82 .84 .86" rgb2=".70 .72 .75" '
@@ -106,7 +117,7 @@ def build(geometry, servo, physics, *, flip=None):
         '    <geom contype="0" conaffinity="0" rgba=".25 .45 .75 1"/>',
         "  </default>",
         "  <worldbody>",
-        '    <light pos="0 0 3" dir="0 0 -1" directional="true"/>',
+        '    <light pos="0 0 3" dir="0 0 -1" directional="true" mode="trackcom"/>',
         '    <geom name="floor" type="plane" size="20 20 0.1" material="grid" rgba="1 1 1 1" '
         'contype="1" conaffinity="1" friction="%s 0.005 0.0001"/>' % _f(mu),
         '    <body name="body" pos="0 0 %s">' % _f(z0),

@@ -350,6 +350,21 @@ def _progress(inner):
     return on_tick
 
 
+_RENDER_MISSING = []
+
+
+def render_missing():
+    """None if MuJoCo can render offscreen here, else why not (for a test's skip reason)."""
+    if not _RENDER_MISSING:
+        try:
+            mj = mjcf.import_mujoco()
+            mj.Renderer(mj.MjModel.from_xml_string("<mujoco/>"), 8, 8).close()
+            _RENDER_MISSING.append(None)
+        except Exception as exc:  # each GL backend fails its own way, at import or at context creation
+            _RENDER_MISSING.append("no offscreen rendering (MUJOCO_GL=%s): %s" % (os.environ.get("MUJOCO_GL"), exc))
+    return _RENDER_MISSING[0]
+
+
 class Recorder:
     """PNG frames (every other tick: 25 per second) and an animated GIF of a run, offscreen."""
 
