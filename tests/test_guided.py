@@ -10,7 +10,6 @@ file must hold are worked out by hand below, not by the code under test.
 """
 
 import json
-import os
 
 import pytest
 
@@ -286,7 +285,7 @@ def test_all_18_servos_on_the_virtual_board(tmp_path):
     """The same maker through pyserial to the firmware loop in the MicroPython VM (hexapod
     virtual-board), the saved file read back from its folder."""
     from hexapod_host import mpvm
-    from hexapod_host.commands.console import start_virtual_board
+    from hexapod_host.commands.console import start_virtual_board, stop_virtual_board
     from hexapod_host.serial.jog import fields
     from hexapod_host.serial.link import Link, LinkError
 
@@ -312,10 +311,7 @@ def test_all_18_servos_on_the_virtual_board(tmp_path):
         assert rows == want
         link.close()
     finally:
-        proc.terminate()
-        proc.wait()
-        os.close(master)
-        os.close(slave)
+        stop_virtual_board(proc, master, slave)
 
 
 def test_no_save_before_the_robot_has_stood(tmp_path):

@@ -272,7 +272,7 @@ def test_jog_end_to_end_through_the_virtual_board(tmp_path):
     """The command layer over pyserial to the firmware loop in the MicroPython VM (hexapod virtual-board):
     leg 2's three channels in the PCA9685 model follow the foot, every other channel stays limp."""
     from hexapod_host import mpvm
-    from hexapod_host.commands.console import start_virtual_board
+    from hexapod_host.commands.console import start_virtual_board, stop_virtual_board
     from hexapod_host.serial.link import Link, LinkError
 
     if mpvm.executable() is None:
@@ -306,17 +306,14 @@ def test_jog_end_to_end_through_the_virtual_board(tmp_path):
         assert "\n2 femur 10 1 600 2400\n" in saved and "\n2 tibia 0 1 600 2400\n" in saved
         link.close()
     finally:
-        proc.terminate()
-        proc.wait()
-        os.close(master)
-        os.close(slave)
+        stop_virtual_board(proc, master, slave)
 
 
 @NEEDS_TMUX
 def test_jog_in_a_terminal_on_the_virtual_board(tmp_path):
     """The same by hand on the firmware loop in the VM: a typed foot command, two keys, the screen and the chip."""
     from hexapod_host import mpvm
-    from hexapod_host.commands.console import start_virtual_board
+    from hexapod_host.commands.console import start_virtual_board, stop_virtual_board
     from hexapod_host.serial.link import Link
 
     if mpvm.executable() is None:
@@ -346,10 +343,7 @@ def test_jog_in_a_terminal_on_the_virtual_board(tmp_path):
         assert all(abs(g - int(p)) <= 2.5 for g, p in zip(got[16:19], pulses[2:7:2], strict=True)), (got, pulses)
     finally:
         tmux("kill-server")
-        proc.terminate()
-        proc.wait()
-        os.close(master)
-        os.close(slave)
+        stop_virtual_board(proc, master, slave)
 
 
 # -- issue 21 item 1: the ':' prompt never sends a control byte ----------------------------------

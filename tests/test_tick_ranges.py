@@ -6,6 +6,7 @@ steps, lifts, cycle times and poses, random commands over the full range) runs o
 """
 
 import ast
+import contextlib
 import importlib.abc
 import importlib.util
 import os
@@ -46,23 +47,31 @@ class InstrumentedCore(importlib.abc.MetaPathFinder, importlib.abc.Loader):
         exec(compile(tree, module.__spec__.origin, "exec"), module.__dict__)
 
 
-def test_every_intermediate_of_the_tick_fits_a_small_int():
-    checker = Checker()
+@contextlib.contextmanager
+def instrumented_core(checker):
+    """The hexapod package imported afresh through InstrumentedCore(checker) while the block runs;
+    the modules that were loaded before are put back after it."""
     saved = {k: v for k, v in sys.modules.items() if k == "hexapod" or k.startswith("hexapod.")}
     finder = InstrumentedCore(checker)
     for k in saved:
         del sys.modules[k]
     sys.meta_path.insert(0, finder)
     try:
-        out = []
-        ns = {"CASES": CASES, "COMMANDS": 8, "print": out.append}
-        exec(compile(SWEEP, "<sweep>", "exec"), ns)
-        assert sys.modules["hexapod.tick"].__dict__.get("_chk_") is checker  # the rewritten core ran
+        yield
     finally:
         sys.meta_path.remove(finder)
         for k in [k for k in sys.modules if k == "hexapod" or k.startswith("hexapod.")]:
             del sys.modules[k]
         sys.modules.update(saved)
+
+
+def test_every_intermediate_of_the_tick_fits_a_small_int():
+    checker = Checker()
+    out = []
+    with instrumented_core(checker):
+        ns = {"CASES": CASES, "COMMANDS": 8, "print": out.append}
+        exec(compile(SWEEP, "<sweep>", "exec"), ns)
+        assert sys.modules["hexapod.tick"].__dict__.get("_chk_") is checker  # the rewritten core ran
     assert len(out) == len(CASES)
     ticks = sum(row[2] for row in out)
     assert ticks > 1000

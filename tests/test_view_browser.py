@@ -4,7 +4,6 @@ the simulator runs, and pause/step hold and advance it. Skips, saying why, witho
 its driver (`make test` installs them as root); under CI a missing browser fails."""
 
 import io
-import os
 import re
 import time
 
@@ -12,17 +11,11 @@ import pytest
 
 from hexapod_host.view import browser as vb
 
-ON_CI = os.environ.get("CI") not in (None, "", "false")
-
 
 @pytest.fixture(scope="module")
 def page():
     """(driver, server) with the page loaded and its first frames drawn."""
-    why = vb.missing()
-    if why:
-        if ON_CI:
-            pytest.fail("CI runs the browser tests: " + why)
-        pytest.skip(why)
+    vb.require()
     from selenium.webdriver.common.by import By
 
     server = vb.Server(("--sim", "--speed", "0.5"))  # a trial lasts 90 s: fewer races with its end
@@ -181,11 +174,7 @@ def settled(driver):
 
 @pytest.fixture(scope="module")
 def replay_page(tmp_path_factory):
-    why = vb.missing()
-    if why:
-        if ON_CI:
-            pytest.fail("CI runs the browser tests: " + why)
-        pytest.skip(why)
+    vb.require()
     from hexapod_host.view.player import Player
     from hexapod_host.view.record import Recorder
     from hexapod_host.view.sim import SimSource

@@ -10,7 +10,7 @@ import os
 import sys
 
 from tests.test_leg_ranges import SMALL, Checker
-from tests.test_tick_ranges import InstrumentedCore
+from tests.test_tick_ranges import instrumented_core
 
 SCRIPT = """
 from hexapod import follow, limits, pid, tick
@@ -139,21 +139,11 @@ class PerFile(Checker):
 
 def test_every_intermediate_of_pid_and_follower_fits_a_small_int():
     checker = PerFile()
-    saved = {k: v for k, v in sys.modules.items() if k == "hexapod" or k.startswith("hexapod.")}
-    finder = InstrumentedCore(checker)
-    for k in saved:
-        del sys.modules[k]
-    sys.meta_path.insert(0, finder)
     rows = []
-    try:
+    with instrumented_core(checker):
         exec(compile(SCRIPT, "<wall ranges>", "exec"), {"out": rows.append})
         assert sys.modules["hexapod.follow"].__dict__.get("_chk_") is checker  # the rewritten core ran
         assert sys.modules["hexapod.pid"].__dict__.get("_chk_") is checker
-    finally:
-        sys.meta_path.remove(finder)
-        for k in [k for k in sys.modules if k == "hexapod" or k.startswith("hexapod.")]:
-            del sys.modules[k]
-        sys.modules.update(saved)
     assert len(rows) == 10, rows
     assert all(abs(u) == 9000 for u in rows[:3])  # the PID was driven to its clamps
     assert all(r[1] > 80 for r in rows[3:9]), rows  # the follower steered through the phases

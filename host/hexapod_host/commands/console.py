@@ -173,6 +173,19 @@ def _room(world):
     return board_room.Room(worlds.load(world) if isinstance(world, str) else world)
 
 
+def stop_virtual_board(proc, master, slave):
+    """Stop what start_virtual_board started: the VM (SIGTERM, then SIGKILL after 5 s) and its pty."""
+    if proc.poll() is None:
+        proc.terminate()
+        try:
+            proc.wait(5)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
+    os.close(master)
+    os.close(slave)
+
+
 def _robot_ok(name):
     """A robot file in robots/, checked here: the VM would only exit 1 with an ImportError."""
     have = robots()
@@ -257,14 +270,6 @@ def virtual_board(args):
         for sig, handler in old.items():
             signal.signal(sig, handler)
         if proc is not None:
-            if proc.poll() is None:
-                proc.terminate()
-                try:
-                    proc.wait(5)
-                except subprocess.TimeoutExpired:
-                    proc.kill()
-                    proc.wait()
-            os.close(master)
-            os.close(slave)
+            stop_virtual_board(proc, master, slave)
         if tmp is not None:
             tmp.cleanup()

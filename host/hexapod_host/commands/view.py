@@ -145,7 +145,12 @@ def virtual_source(pty=None):
 
     proc = tmp = None
     if pty is None:
-        from hexapod_host.commands.console import CAL_PREFIX, remove_stale_cal_dirs, start_virtual_board
+        from hexapod_host.commands.console import (
+            CAL_PREFIX,
+            remove_stale_cal_dirs,
+            start_virtual_board,
+            stop_virtual_board,
+        )
 
         remove_stale_cal_dirs()
         tmp = tempfile.TemporaryDirectory(prefix=CAL_PREFIX % os.getpid())
@@ -157,10 +162,7 @@ def virtual_source(pty=None):
 
     def stop_board():
         if proc is not None:
-            proc.terminate()
-            proc.wait(10)
-            os.close(master)
-            os.close(slave)
+            stop_virtual_board(proc, master, slave)
             tmp.cleanup()
 
     link = BoardLink(port, pty).start()

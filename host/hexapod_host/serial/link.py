@@ -67,6 +67,20 @@ class PortBusy(LinkError):
     """Another program holds the port (a terminal, mpremote, another hexapod command)."""
 
 
+def send_tagged(port, last, line):
+    """Write line (checked by the caller: check_line) to port as the request after number last,
+    wrapping at TAG_MAX: (its number, its tag '#N', None), or with the port's error (PORT_ERRORS)
+    in place of None when it could not be written."""
+    n = last + 1 if last < TAG_MAX else 1
+    tag = "#%d" % n
+    try:
+        port.write(("%s %s\n" % (tag, line)).encode("ascii"))
+        port.flush()
+    except PORT_ERRORS as e:
+        return n, tag, e
+    return n, tag, None
+
+
 def check_line(line):
     """Why line cannot be sent as one request ('' when it can): empty, a line break, a control or
     non-ASCII character (Ctrl-C would stop the board's loop), too long for the board's line."""
@@ -168,13 +182,9 @@ class Link:
         why = check_line(line)
         if why:
             raise LinkError(why)
-        self._tag = self._tag + 1 if self._tag < TAG_MAX else 1
-        tag = "#%d" % self._tag
-        try:
-            self.port.write(("%s %s\n" % (tag, line)).encode("ascii"))
-            self.port.flush()
-        except PORT_ERRORS as e:
-            raise LinkError("lost the board on %s while sending (%s): unplugged?" % (self.name, e)) from None
+        self._tag, tag, error = send_tagged(self.port, self._tag, line)
+        if error is not None:
+            raise LinkError("lost the board on %s while sending (%s): unplugged?" % (self.name, error))
         return tag
 
     def read_reply(self, line="", timeout=None, tag=None):

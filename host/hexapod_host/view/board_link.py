@@ -21,7 +21,7 @@ import time
 from collections import OrderedDict, deque
 
 from hexapod_host.serial import telemetry
-from hexapod_host.serial.link import PORT_ERRORS, TAG_MAX, check_line
+from hexapod_host.serial.link import PORT_ERRORS, TAG_MAX, check_line, send_tagged
 
 REPLIES_KEPT = 200  # the page asks for a reply within seconds; older ones go
 
@@ -59,13 +59,9 @@ class BoardLink:
         if why:
             raise ValueError(why)
         with self._write:
-            self._tag = self._tag + 1 if self._tag < TAG_MAX else 1
-            tag = "#%d" % self._tag
-            try:
-                self.port.write(("%s %s\n" % (tag, line)).encode("ascii"))
-                self.port.flush()
-            except PORT_ERRORS as e:
-                self.lost = "lost the board on %s while sending (%s)" % (self.name, e)
+            self._tag, tag, error = send_tagged(self.port, self._tag, line)
+            if error is not None:
+                self.lost = "lost the board on %s while sending (%s)" % (self.name, error)
         return tag
 
     def reply(self, tag):

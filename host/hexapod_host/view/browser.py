@@ -35,6 +35,18 @@ def missing():
     return None
 
 
+def require():
+    """For a test: skip it, saying why, when no browser test can run here; under CI (CI set and
+    not "false") fail it instead, since CI runs the browser tests."""
+    import pytest
+
+    why = missing()
+    if why:
+        if os.environ.get("CI") not in (None, "", "false"):
+            pytest.fail("CI runs the browser tests: " + why)
+        pytest.skip(why)
+
+
 def free_port():
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
