@@ -313,8 +313,9 @@ class Runner:
 
 
 # What main.main and code.py's main release once the runner is built, with the robot's two files:
-# the board file's validator, the robot file's and the calibration file's checks, their helpers.
-BOOT_ONLY = ("hexapod.board", "hexapod.robotfile", "hexapod.robotcal", "hexapod.check")
+# the board file's validator, the robot file's and the calibration file's checks, their helpers,
+# and what builds from the files as flashed without them (hexapod.wiring).
+BOOT_ONLY = ("hexapod.board", "hexapod.robotfile", "hexapod.robotcal", "hexapod.check", "hexapod.wiring")
 
 
 def release(*names):

@@ -139,8 +139,10 @@ def test_tables_come_out_in_leg_joint_and_driver_order(rt):
 
 
 # What a board file's checks need: the checks' helpers, the command limits (the "follow"
-# setting) and the sensor contract (the sonars' names). Never the walker and what it stands on.
+# setting), the sensor contract (the sonars' names) and the helpers the loop takes the checked
+# files through (hexapod.wiring, with hexapod.servo's ServoMap). Never the walker and what it stands on.
 BOARD_IMPORTS = {"hexapod", "hexapod.board", "hexapod.check", "hexapod.limits", "hexapod.sensors"}
+BOARD_IMPORTS |= {"hexapod.wiring", "hexapod.servo"}
 IMPORTS = """
 import sys
 before = set(sys.modules)

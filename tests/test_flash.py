@@ -5,9 +5,11 @@ booting in the MicroPython VM with the stub machine."""
 import os
 import shlex
 import subprocess
+import zlib
 
 import pytest
 
+from hexapod import wiring
 from hexapod_host import FIRMWARE, ROOT, STUBS, mpvm
 from hexapod_host.commands import cli
 from hexapod_host.serial import flash
@@ -41,6 +43,9 @@ def expected(board, entry, drivers):
     files.append("boards/%s.py" % board)
     if entry == "code.py":
         files.append("boot.py")  # CircuitPython: gives code.py the flash for `save`
+    else:  # main.py's body, compiled (MicroPython compiles main.py itself at every boot), and the
+        # list of the board and robot files flash checked (hexapod.wiring: built unchecked)
+        files += ["startup.py", wiring.MARKER]
     # the robot's build, its calibration file (servo rows, sonar mounts: hexapod.robotcal) and its
     # servo guard table (hexapod.reach.find_table)
     return sorted(
@@ -49,7 +54,7 @@ def expected(board, entry, drivers):
 
 
 def as_mpy(paths):
-    return sorted(p if p == "main.py" else p[:-3] + ".mpy" for p in paths)
+    return sorted(p if p in ("main.py", wiring.MARKER) else p[:-3] + ".mpy" for p in paths)
 
 
 def hexapod(argv, capsys):
@@ -94,7 +99,7 @@ def test_dry_run_plan_for_a_fresh_micropython_board(board, arch, tmp_path, capsy
     want = [
         [flash.tool("mpy-cross"), "-march=" + arch, "-s", p, "-o", os.path.join(stage, p[:-3] + ".mpy"), src]
         for p in files
-        if p != "main.py"
+        if p not in ("main.py", wiring.MARKER)
         for src in [os.path.join(ROOT if p.startswith(("boards/", "robots/")) else FIRMWARE, p)]
     ]
     assert sorted(compiles) == sorted(want)
@@ -112,6 +117,10 @@ def test_dry_run_plan_for_a_fresh_micropython_board(board, arch, tmp_path, capsy
     assert on_disk == sorted(as_mpy(files) + ["hexapod.manifest"])
     main = (tmp_path / "stage" / "main.py").read_text()
     assert 'BOARD = "%s"\n' % board in main and 'ROBOT = "default"\n' in main
+    # The three files flash checked, each with the CRC32 of its staged bytes (zlib's, the board's binascii's).
+    listed = ("boards/%s.mpy" % board, "robots/default.mpy", "robots/default_cal.mpy")
+    crc = ["%08x %s\n" % (zlib.crc32((tmp_path / "stage" / p).read_bytes()), p) for p in listed]
+    assert (tmp_path / "stage" / wiring.MARKER).read_text() == "".join(crc)
     rename = mp[3][4]
     for p in as_mpy(files):
         assert '"%s"' % p in rename
@@ -495,6 +504,21 @@ def test_the_board_file_names_its_arch_and_what_it_refuses_is_never_staged(tmp_p
     monkeypatch.setattr(flash, "board_data", lambda board: dict(good, servos=()))
     with pytest.raises(flash.FlashError, match="board 'pico': servos: moved: .*; nothing was staged"):
         flash.stage("pico", "default", str(out))
+    monkeypatch.setattr(flash, "board_data", lambda board: good)
+    # The robot's build and its calibration against its limits, as the board checks them at boot
+    # (the board builds the staged files without its checks: hexapod.wiring).
+    import robots.default
+    import robots.default_cal
+
+    monkeypatch.setattr(robots.default, "BODY_HEIGHT", 1200)
+    why = r"robot 'default': BODY_HEIGHT: 1200 is outside the allowed 600\.\.1000; nothing"
+    with pytest.raises(flash.FlashError, match=why):
+        flash.stage("pico", "default", str(out))
+    monkeypatch.undo()
+    monkeypatch.setattr(robots.default_cal, "REFERENCE", (0, 0, 900))
+    why = "robot 'default': REFERENCE tibia: 900 is outside the robot's tibia limits -18000..0 cdeg; nothing"
+    with pytest.raises(flash.FlashError, match=why):
+        flash.stage("pico", "default", str(out))
     assert not out.exists()
 
 
@@ -528,7 +552,7 @@ def test_a_real_flash_prints_its_steps_and_verbose_every_command(tmp_path, fake_
     assert status == 0
     assert out.splitlines()[:-1] == [
         "# flash pico (MicroPython, armv6m), robot default, staged in %s" % (tmp_path / "stage"),
-        "# compiled %d files with mpy-cross (--verbose prints every command)" % (n - 1),  # main.py stays source
+        "# compiled %d files with mpy-cross (--verbose prints every command)" % (n - 2),  # main.py: source; the list
         "board manifest: 0 files; copying %d, removing 0" % n,
         "# make directories",
         "# copy under temporary names",

@@ -103,18 +103,21 @@ def test_run_streams_output_and_returns_the_boards_status(tmp_path):
     assert proc.stdout.splitlines() == ["rp2 42", "before"]
     assert "ValueError: from the board" in proc.stderr
     staged = sorted(os.listdir(image))
-    # what `hexapod flash --board pico` lands: main.py the entry, the rest compiled, the manifest
+    # what `hexapod flash --board pico` lands: main.py the entry, the rest compiled (its body
+    # startup.py too), the list of the files flash checked (hexapod.wiring), the manifest
     assert staged == [
         "boards",
         "calstore.mpy",
         "console.mpy",
         "drivers",
         "hexapod",
+        "hexapod.checked",
         "hexapod.manifest",
         "main.py",
         "robots",
         "runner.mpy",
         "selftest.mpy",
+        "startup.mpy",
     ]
     assert os.path.getsize(str(image) + ".img") == pico.FS_BLOCKS * pico.FS_BLOCK_SIZE
 

@@ -97,10 +97,10 @@ def test_boot_bench_reports_the_first_burst(fs, capsys):
     result = json.loads(capsys.readouterr().out)
     # The first burst after imports (the guard's answers come from the robot's table); then 50 Hz
     # frames. (The trace's clock, the runner's cycle count at 125 MHz, reads the board's 20 ms frames
-    # as 19.8 ms: within 2 %.) A regression guard at today's figure, not issue 22's goal of 1 s:
-    # 0.980 s on the frame branch alone, 1.153 s once merged with the fault log, the tags and
-    # issue 19's split (2026-11-27; the emulated clock is deterministic).
-    assert 0.2 < result["first_burst_s"] <= 1.2 and abs(result["frame_period_ms"] - 20) < 0.4, result
+    # as 19.8 ms: within 2 %.) Issue 22's goal of 1 s: 0.980 s on the frame branch alone, 1.153 s
+    # once merged with the fault log, the tags and issue 19's split, 0.987 s with the flashed files
+    # built unchecked and main.py's body compiled (2026-11-27; the emulated clock is deterministic).
+    assert 0.2 < result["first_burst_s"] <= 1.0 and abs(result["frame_period_ms"] - 20) < 0.4, result
     assert result["frames_in_6s"] > 50, result
 
 

@@ -14,13 +14,12 @@ from micropython import const
 from hexapod.check import Check, is_identifier
 from hexapod.limits import check_request
 from hexapod.sensors import SENSOR_NAMES
+from hexapod.wiring import JOINTS, LEGS, battery_args, servo_table, sonar_pins  # noqa: F401 (this module's names too)
 
-JOINTS = ("coxa", "femur", "tibia")
 RUNTIMES = ("micropython", "circuitpython")
 # mpy-cross -march names in the order of MicroPython's .mpy header (arch number = index + 1).
 ARCHES = ("x86", "x64", "armv6", "armv6m", "armv7m", "armv7em", "armv7emsp", "armv7emdp", "xtensa", "xtensawin")
 ARCHES += ("rv32imc",)
-LEGS = 6
 # The private tables below are const(): folded into the code, no name kept on the board (each
 # module-level name is a qstr, which stays in the heap after runner.release forgets this module).
 
@@ -154,20 +153,6 @@ def _battery(ck, board, runtime, claim):
         ck.fail("battery." + key, msg)
 
 
-def battery_args(setting):
-    """A board file's "battery" dict -> hexapod.battery.Monitor's arguments, defaults filled in:
-    (cells, divider_permille, cell_warn_mv, cell_cutoff_mv, cell_resume_mv)."""
-    from hexapod import battery
-
-    return (
-        setting.get("cells", battery.CELLS),
-        setting["divider_permille"],
-        setting.get("cell_warn_mv", battery.CELL_WARN_MV),
-        setting.get("cell_cutoff_mv", battery.CELL_CUTOFF_MV),
-        setting.get("cell_resume_mv", battery.CELL_RESUME_MV),
-    )
-
-
 def _console(ck, board):
     """The console's settings (docs/console.md): watchdog_ms None or 4000..8000 (machine.WDT fed
     every frame; the rp2 allows at most 8388 ms; a gait, pose or height change runs the servo
@@ -232,18 +217,3 @@ def load(name):
     if board is None:
         raise ValueError("board %r: boards/%s.py defines no BOARD" % (name, name))
     return validate(board)
-
-
-def servo_table(board, servo_maps):
-    """18 (address, channel, ServoMap) in leg/joint order (index (leg - 1) * 3 + joint): the
-    board's channel map joined with the robot's 18 servo maps (hexapod.robotcal.servo_maps)."""
-    ch = board["channels"]
-    return tuple((ch[k // 3][k % 3][0], ch[k // 3][k % 3][1], servo_maps[k]) for k in range(LEGS * 3))
-
-
-def sonar_pins(board):
-    """Five (trigger, echo) pins in hexapod.sensors order: front, left_front, left_rear, ..."""
-    by_name = {}
-    for s in board["sonars"]:
-        by_name[s[0]] = (s[1], s[2])
-    return tuple(by_name[n] for n in SENSOR_NAMES)

@@ -62,8 +62,12 @@ class Geometry:
         return out
 
 
-def load(module):
-    """A checked Geometry from a robots/ module (or any object with the same attributes)."""
+def load(module, check=True):
+    """A checked Geometry from a robots/ module (or any object with the same attributes); check
+    False: unchecked, without importing the checks, for the file `hexapod flash` checked on the
+    host (hexapod.wiring.load)."""
+    if not check:
+        return Geometry(getattr(module, "NAME", None) or module.__name__, module.__dict__)
     from hexapod import robotfile
 
     return robotfile.load(module)

