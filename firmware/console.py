@@ -847,7 +847,7 @@ class Console:
         return "ok faults " + fault_text(log, self.runner.bank)
 
     def _stream(self, args):
-        import stream  # only now: a board that never streams keeps its heap and names
+        from drivers import stream  # only now: a board that never streams keeps its heap and names
 
         return stream.command(self, args)
 

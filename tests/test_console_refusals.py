@@ -46,7 +46,7 @@ class Sink:  # the telemetry's output: every line taken (a refused `stream` must
         return n
 
 
-import stream
+from drivers import stream
 
 con.telemetry = stream.Stream(Sink())
 

@@ -18,7 +18,7 @@ from tests.console_rig import RIG, clean_stubs  # noqa: F401 (autouse fixture)
 # The telemetry's writer in tests: keeps each line; `take` says which lines the output takes
 # (a line not taken is dropped by the console and counted).
 SINK = """
-import stream
+from drivers import stream
 
 
 class Sink:
@@ -269,7 +269,7 @@ def test_the_viper_writer_equals_the_plain_one(mp):
         rows.append(row)
     src = """
 from array import array
-import stream
+from drivers import stream
 rows = %r
 same = 0
 for row in rows:
@@ -301,7 +301,7 @@ def test_a_refused_rate_names_the_range(rt, hz):
 # A port for select.poll in the VM (io.IOBase with ioctl): POLLOUT only while it has room.
 PORT = """
 import io
-import stream
+from drivers import stream
 
 
 class Port(io.IOBase):

@@ -39,7 +39,7 @@ def expected(board, entry, drivers):
     # the board all the same). CircuitPython has no viper emitter: the viper modules stay off its drive.
     core = [p for p in CORE if entry == "main.py" or p not in flash.VIPER]
     files = core + drivers + ["runner.py", "console.py", "calstore.py", "selftest.py", "boards/__init__.py"]
-    files += ["stream.py"] + (["_stream_viper.py"] if entry == "main.py" else [])
+    files += ["drivers/stream.py"] + (["drivers/_stream_viper.py"] if entry == "main.py" else [])
     files.append("boards/%s.py" % board)
     if entry == "code.py":
         files.append("boot.py")  # CircuitPython: gives code.py the flash for `save`

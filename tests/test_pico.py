@@ -139,8 +139,8 @@ def test_every_module_imports_as_mpy_with_the_heap_left(fs):
     assert expected | core <= set(names) and not [n for n in names if ".cp_" in n]
     # The console imports stream at the first `stream` (telemetry, kept while the console lives),
     # selftest for `selftest` (dropped after the command): selftest last, on top of a streaming board.
-    on_demand = ["stream", "selftest"]
-    resident_names = [n for n in names if n not in on_demand and n != "_stream_viper"]  # stream's twin: with it
+    on_demand = ["drivers.stream", "selftest"]
+    resident_names = [n for n in names if n not in on_demand and n != "drivers._stream_viper"]  # stream's twin: with it
     source = """
 import gc
 gc.collect()

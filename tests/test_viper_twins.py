@@ -102,7 +102,13 @@ def test_plain_modules_import_viper_code_in_one_form_at_their_top():
         inside = [n for n in ast.walk(body[k]) if isinstance(n, ast.ImportFrom)]
         assert all(n in inside for n in uses), path  # every import of viper code is in it
         assert _sets_none(body[k - 1]) == _names(inside) - bound, path
-    assert users == ["drivers/pca9685.py", "hexapod/leg.py", "hexapod/tick.py", "hexapod/walk.py", "stream.py"], users
+    assert users == [
+        "drivers/pca9685.py",
+        "drivers/stream.py",
+        "hexapod/leg.py",
+        "hexapod/tick.py",
+        "hexapod/walk.py",
+    ], users
 
 
 def _value(node, names):

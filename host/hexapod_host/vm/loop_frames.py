@@ -37,7 +37,8 @@ if SCENARIO == "stream":
     # The console's modules before the loop is built, while the heap has blocks big enough for
     # their code (imported after main.build they found none on the emulated Pico: MemoryError).
     import console
-    import stream
+
+    from drivers import stream
 # (frame, vx 0.1 mm/s, vy, yaw cdeg/s); None: stop. Frame 0 stands up.
 COMMANDS = ((60, 1200, 0, 0), (160, 0, 0, 3000), (230, 600, 600, 0), (300, -800, 0, 0), (400, None, 0, 0))
 BUSY = array("i", [0] * FRAMES)  # us from a frame's start to the end of its step

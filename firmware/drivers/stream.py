@@ -17,7 +17,7 @@ from hexapod import follow, sensors, tick
 _digits_fast = None
 if sys.implementation.name == "micropython":
     try:
-        from _stream_viper import digits as _digits_fast
+        from drivers._stream_viper import digits as _digits_fast
     except Exception:  # no viper emitter on this build
         _digits_fast = None
 
