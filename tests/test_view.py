@@ -200,10 +200,8 @@ def test_a_speed_not_offered_is_refused():
 @pytest.mark.parametrize(
     "args, message",
     [
-        (["--pico"], "--pico: not built yet; today's sources are --sim, --virtual and --replay"),
         (["--sim", "--virtual-port", "/dev/pts/1"], "--virtual-port: only with --virtual"),
         (["--virtual", "--virtual-port", "/dev/no-such-pty"], "--virtual-port /dev/no-such-pty: no such port"),
-        (["--port", "/dev/ttyACM0"], "--port: not built yet"),
         (["--sim", "--listen", ":8080"], "no host; say 127.0.0.1:8080 (this machine) or 0.0.0.0:8080"),
         (["--sim", "--listen", "127.0.0.1:http"], "the port 'http' is not a whole number"),
         (["--sim", "--listen", "127.0.0.1:70000"], "port 70000 is outside 1..65535"),

@@ -1,6 +1,6 @@
-"""`hexapod view --sim [--world W] | --virtual [--virtual-port PTY] | --replay FILE.mcap
-[--record FILE.mcap] [--listen HOST:PORT] [--no-browser]`: the live 3-D page (hexapod_host.view,
-docs/view.md)."""
+"""`hexapod view --sim [--world W] | --virtual [--virtual-port PTY] | --pico [--sonar-cm CM...] |
+--port PORT | --replay FILE.mcap [--record FILE.mcap] [--listen HOST:PORT] [--no-browser]`: the live
+3-D page (hexapod_host.view, docs/view.md)."""
 
 import os
 import sys
@@ -11,7 +11,10 @@ from hexapod_host.view import player as player_mod
 from hexapod_host.wall.world import DEFAULT, WorldError, load, shipped
 
 LISTEN = "127.0.0.1:8080"
-LATER = {"pico": "--pico", "port": "--port"}
+# Hang guards only, never a pace: the emulated Pico runs 10-20 times slower than real time on a
+# loaded 2-core machine (main.py's ~4 emulated s of boot: one to several minutes of wall time).
+PICO_BOOT_S = 900
+PICO_REPLY_S = 120
 
 
 def register(sub):
@@ -21,8 +24,10 @@ def register(sub):
     src.add_argument(
         "--virtual", action="store_true", help="the virtual board (hexapod virtual-board), driven from the page"
     )
-    src.add_argument("--pico", action="store_true", help="the emulated Pico (not yet)")
-    src.add_argument("--port", metavar="PORT", help="a real board on a serial port (not yet)")
+    src.add_argument(
+        "--pico", action="store_true", help="the emulated Pico with its PCA9685s and HC-SR04s (hexapod pico serial)"
+    )
+    src.add_argument("--port", metavar="PORT", help="a board on this serial port (opened exclusively)")
     src.add_argument("--replay", metavar="FILE", help="play a recording made with --record (an .mcap file)")
     p.add_argument(
         "--world", default=DEFAULT, help="with --sim: a world file or a shipped world: %s" % ", ".join(shipped())
@@ -38,6 +43,9 @@ def register(sub):
         metavar="PTY",
         help="with --virtual: attach to a virtual board already running on this pty (default: start one)",
     )
+    from hexapod_host.commands.pico import _sonar_option
+
+    _sonar_option(p)
     p.add_argument("--speed", default="1", metavar="X", help="simulated seconds per second: %s (default 1)" % _speeds())
     p.add_argument(
         "--listen",
@@ -82,12 +90,6 @@ def parse_listen(text):
 def parse(args):
     """Checked options: (source, speed, host, port, the --record path or None). Nothing is
     written or opened for writing: a refused command leaves no file behind."""
-    for key, flag in LATER.items():
-        if getattr(args, key):
-            raise UsageError(
-                "%s: not built yet; today's sources are --sim, --virtual and --replay (docs/view.md says what"
-                " comes next)" % flag
-            )
     if args.virtual_port and not args.virtual:
         raise UsageError("--virtual-port: only with --virtual")
     if args.virtual_port and not os.path.exists(args.virtual_port):
@@ -100,7 +102,11 @@ def parse(args):
         from hexapod_host.commands import checks
 
         checks.out_file("--record", args.record, suffix=".mcap")
-    if args.replay is None and not args.virtual:
+    if args.sonar_cm is not None and not args.pico:
+        raise UsageError("--sonar-cm: only with --pico (what the emulated HC-SR04s see)")
+    devices = pico_devices(args) if args.pico else None
+    board_source = args.virtual or args.pico or args.port is not None
+    if args.replay is None and not board_source:
         try:
             world = load(args.world)
         except WorldError as err:
@@ -125,6 +131,10 @@ def parse(args):
             raise UsageError("--replay %s" % err) from None
     if args.virtual:
         return virtual_source(args.virtual_port), 1.0, host, port, args.record
+    if args.pico:
+        return pico_source(devices), 1.0, host, port, args.record
+    if args.port is not None:
+        return port_source(args.port), 1.0, host, port, args.record
     from hexapod_host.view.sim import SimSource
 
     try:
@@ -139,12 +149,10 @@ def virtual_source(pty=None):
     source closes, its temporary calibration directory removed)."""
     import tempfile
 
-    from hexapod_host.serial.link import Link, LinkError
-    from hexapod_host.view.board import BoardSource
-    from hexapod_host.view.board_link import BoardLink
-
     proc = tmp = None
+    flag = "--virtual-port"
     if pty is None:
+        flag = "--virtual"
         from hexapod_host.commands.console import (
             CAL_PREFIX,
             remove_stale_cal_dirs,
@@ -155,22 +163,74 @@ def virtual_source(pty=None):
         remove_stale_cal_dirs()
         tmp = tempfile.TemporaryDirectory(prefix=CAL_PREFIX % os.getpid())
         proc, pty, master, slave = start_virtual_board("pico", "default", tmp.name)
-    try:
-        port = Link.open(pty).port  # pyserial, exclusive: nobody else types on the robot's line meanwhile
-    except LinkError as e:
-        raise UsageError("--virtual-port: %s" % e) from None
 
     def stop_board():
         if proc is not None:
             stop_virtual_board(proc, master, slave)
             tmp.cleanup()
 
-    link = BoardLink(port, pty).start()
-    if link.request("help", timeout=30) is None:  # the VM takes a few seconds to start
+    return open_board(pty, flag, "virtual", stop_board, boot_s=30)  # the VM takes a few seconds to start
+
+
+def open_board(path, flag, name, on_close=None, boot_s=0, reply_s=10.0):
+    """A BoardSource on the console line at path, opened exclusively as `hexapod send` opens a port
+    (pyserial's lock: nobody else types on the robot's line meanwhile). boot_s: wait that long for
+    an answer to `help` first (a board still booting), else refuse; 0: serve whatever answers.
+    on_close runs when the source closes, or here when it is refused. UsageError names flag."""
+    from hexapod_host.serial.link import Link, LinkError
+    from hexapod_host.view.board import BoardSource
+    from hexapod_host.view.board_link import BoardLink
+
+    try:
+        port = Link.open(path).port
+    except LinkError as e:
+        if on_close is not None:
+            on_close()
+        raise UsageError("%s: %s" % (flag, e)) from None
+    link = BoardLink(port, path).start()
+    if boot_s and link.request("help", timeout=boot_s) is None:
         link.close()
-        stop_board()
-        raise UsageError("--virtual: no answer from the virtual board on %s within 30 s" % pty)
-    return BoardSource(link, "pico", "virtual", on_close=stop_board)
+        if on_close is not None:
+            on_close()
+        raise UsageError("%s: no answer from the board on %s within %d s" % (flag, path, boot_s))
+    return BoardSource(link, "pico", name, on_close=on_close, reply_s=reply_s)
+
+
+def port_source(path):
+    """A BoardSource on a board at the serial port path: no boot wait (a board that answers nothing,
+    or `err` to `stream`, is served resting with what it said)."""
+    return open_board(path, "--port", "port")
+
+
+def pico_devices(args):
+    """The emulated chips of --pico (its PCA9685s, its HC-SR04s at --sonar-cm), or UsageError when
+    the emulator cannot run here (no Node.js, no firmware image) or a distance is refused."""
+    from hexapod_host.commands import pico as pico_cmd
+    from hexapod_host.pico import emulator
+
+    why = emulator.missing()
+    if why:
+        raise UsageError("--pico: " + why)
+    return pico_cmd._devices(args)
+
+
+def pico_source(devices):
+    """A BoardSource on the emulated Pico: the firmware as `hexapod flash --board pico` lands it,
+    booted by `hexapod pico serial`'s machinery on a pty with devices attached; stopped (and its
+    image removed) when the source closes. Its clock is emulated: telemetry frames and times are
+    the board's, the page's rate is what the emulator gives."""
+    import contextlib
+
+    from hexapod_host.pico import emulator
+
+    stack = contextlib.ExitStack()
+    try:
+        fs = stack.enter_context(emulator.flashed())
+        path = stack.enter_context(emulator.serial(fs, devices=devices))
+    except BaseException:
+        stack.close()
+        raise
+    return open_board(path, "--pico", "pico", stack.close, boot_s=PICO_BOOT_S, reply_s=PICO_REPLY_S)
 
 
 def run(args):

@@ -1,9 +1,10 @@
 """A board on a console line as a view source: `hexapod view --virtual` (the virtual board),
-later `--pico` and `--port`. The board streams its telemetry (`stream on 25`: a `~T` line every
-other frame, /work/notes/telemetry-spec.md) and the source turns the newest line into the
-snapshot every source gives (source.py): the pulses through the board's servo maps inverted and
-the robot file's FK (source.pose, the wall simulator's path), the sonars, the follower, the
-counters. It can be driven: command(line) sends a console line tagged, reply(tag) is its answer.
+`--pico` (the emulated Pico) and `--port` (a board on a serial port). The board streams its
+telemetry (`stream on 25`: a `~T` line every other frame, /work/notes/telemetry-spec.md) and the
+source turns the newest line into the snapshot every source gives (source.py): the pulses
+through the board's servo maps inverted and the robot file's FK (source.pose, the wall
+simulator's path), the sonars, the follower, the counters. It can be driven: command(line)
+sends a console line tagged, reply(tag) is its answer.
 
 There is no room: the body stays at the origin (x, y, yaw 0); its height is the coxa plane's
 above the lowest foot."""
@@ -32,7 +33,7 @@ class BoardSource(Source):
     name = "virtual"
     drivable = True
 
-    def __init__(self, link, board="pico", name=None, on_close=None, hz=STREAM_HZ):
+    def __init__(self, link, board="pico", name=None, on_close=None, hz=STREAM_HZ, reply_s=10.0):
         self.link = link
         self.body = Body(board)
         self.board = board
@@ -42,7 +43,8 @@ class BoardSource(Source):
         self.setpoint_mm = None
         self._wall_tags = []
         self._rest = self._rest_pose()
-        self.stream_reply = link.request("stream on %d" % hz) or "no reply to 'stream on %d'" % hz
+        # reply_s: a hang guard (the emulated Pico answers in wall-clock seconds, not a frame)
+        self.stream_reply = link.request("stream on %d" % hz, reply_s) or "no reply to 'stream on %d'" % hz
 
     def _rest_pose(self):
         angles = list(REST_CDEG) * 6
