@@ -2,6 +2,8 @@
 Runner) on real MicroPython rp2 firmware, talking to emulated PCA9685s over the RP2040's I2C block
 and to emulated HC-SR04s on its GPIOs, gives the very bursts the host's stub machine gives."""
 
+import contextlib
+import io
 import json
 import re
 
@@ -20,6 +22,27 @@ FRAMES = 100  # 2 s: stand up, then tripod walking from frame 60 (10 s: `hexapod
 def fs():
     with pico.flashed() as path:
         yield path
+
+
+@pytest.fixture(scope="module")
+def boot():
+    """`hexapod pico bench boot --json` (6 emulated s of the image's own main.py, no calibration file)
+    and what its boot_main run returned, (status, output, bursts): one boot for the two tests that read it."""
+    from hexapod_host.commands import cli
+
+    runs = []
+
+    def recorded(*args, **kwargs):
+        runs.append(real(*args, **kwargs))
+        return runs[-1]
+
+    real = pico_loop.boot_main
+    out = io.StringIO()
+    with pytest.MonkeyPatch.context() as mp, contextlib.redirect_stdout(out):
+        mp.setattr(pico_loop, "boot_main", recorded)
+        code = cli.main(["pico", "bench", "boot", "--json"])
+    assert len(runs) == 1
+    return code, out.getvalue(), runs[0]
 
 
 def test_stand_up_and_walk_bursts_equal_the_stub_machines(fs):
@@ -54,10 +77,10 @@ def test_stand_up_and_walk_bursts_equal_the_stub_machines(fs):
     print("emulated Pico frame:", s, "status:", status_line)
 
 
-def test_main_py_unmodified_boots_relaxed_and_sends_no_pulse(fs):
+def test_main_py_unmodified_boots_relaxed_and_sends_no_pulse(boot):
     # Power-up with the image's own main.py (no REPL, no script): 6 emulated seconds. No
     # calibration file on the board: it stays relaxed (issue 20), every channel full-off.
-    status, out, bursts = pico_loop.boot_main(6, fs)
+    status, out, bursts = boot[2]
     assert status == 0 and "Traceback" not in out, out
     assert "boot: relaxed, no pulse until `stand`: no valid calibration file" in out, out
     frames = len(bursts) // 2
@@ -90,11 +113,10 @@ print((r.sonar_status, r.distances, r.sonar_faults))
     assert faults == 4  # two out-of-range pings each of the two sensors
 
 
-def test_boot_bench_reports_the_first_burst(fs, capsys):
-    from hexapod_host.commands import cli
-
-    assert cli.main(["pico", "bench", "boot", "--json"]) == 0
-    result = json.loads(capsys.readouterr().out)
+def test_boot_bench_reports_the_first_burst(boot):
+    code, out, _ = boot
+    assert code == 0
+    result = json.loads(out)
     # The first burst after imports (the guard's answers come from the robot's table); then 50 Hz
     # frames. (The trace's clock, the runner's cycle count at 125 MHz, reads the board's 20 ms frames
     # as 19.8 ms: within 2 %.) Issue 22's goal of 1 s: 0.980 s on the frame branch alone, 1.153 s
