@@ -16,16 +16,6 @@ def pytest_sessionstart(session):
             raise pytest.UsageError("CI runs every Pico test, but the emulated Pico cannot start: " + reason)
 
 
-def pytest_collection_modifyitems(items):
-    """A module whose tests share a module-scoped fixture (an emulated-Pico image, a browser, one VM
-    run) runs on one xdist worker (`--dist loadgroup`), so that fixture is set up once, not once per worker."""
-    for item in items:
-        info = getattr(item, "_fixtureinfo", None)
-        defs = info.name2fixturedefs.values() if info else ()
-        if any(d[-1].scope == "module" for d in defs if d):
-            item.add_marker(pytest.mark.xdist_group(item.module.__name__))
-
-
 @pytest.fixture
 def virtual_board():
     """start(cal_dir) -> (pty path, an open Link): `hexapod virtual-board` for pico/default in the
