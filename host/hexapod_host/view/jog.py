@@ -27,6 +27,7 @@ from hexapod_host.serial.guided import centidegrees, degrees
 
 REPLY_S = 10.0  # a reply later than this: the line is taken as lost
 POLL_S = 0.01
+BUSY_S = 30.0  # a step waits this long for the one before (the guide's relax polls, a sweep)
 STEPS_DEG = ("0.5", "1", "2", "5")  # joint nudges, degrees: sent as typed (no float rounds them)
 LEGS = (1, 2, 3, 4, 5, 6)
 
@@ -69,7 +70,7 @@ class Jogger:
         self.link = TabLink(driver)
         self.tool = tool.Jog(self.link, NoReply, progress, pause)
         self.step_deg = 1  # index into STEPS_DEG
-        self.busy = threading.Lock()  # one step on the line at a time
+        self.busy = threading.Lock()  # one step on the line at a time, in the order clicked
 
     @property
     def view(self):
@@ -85,8 +86,9 @@ class Jogger:
         self.driver.check(client)
         if not in_guide and self.guide is not None:
             raise ValueError("the guided calibration runs: quit it first")
-        if not self.busy.acquire(blocking=False):
-            raise ValueError("the last step is still on the line: wait for its reply")
+        # Steps queue behind the one on the line (two quick picks: leg, then joint), not refused.
+        if not self.busy.acquire(timeout=BUSY_S):
+            raise ValueError("the last step is still on the line after %g s: try again" % BUSY_S)
         try:
             self.link.client = client
             self.tool.view.connected = True  # a lost reply is not a lost board: the next step tries again

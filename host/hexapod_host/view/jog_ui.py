@@ -70,7 +70,8 @@ class JogPanel:
         v = self.jog.view
         if self.jog.guide is not None or (self.leg.value, self.joint.value) == (v.leg, JOINTS[v.joint]):
             return  # the guide's redo pick, or the refresh setting the toggles to the shared state
-        await self._do(lambda c: self.jog.pick(c, self.leg.value, self.joint.value))
+        leg, joint = self.leg.value, self.joint.value  # as clicked: a refresh may reset the toggles meanwhile
+        await self._do(lambda c: self.jog.pick(c, leg, joint))
 
     def _guide_buttons(self, phase):
         """The guided step's buttons (guided.ACTIONS), rebuilt when the phase changes."""
