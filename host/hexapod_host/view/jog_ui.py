@@ -49,6 +49,7 @@ class JogPanel:
             self.guide_row = ui.row()
             self.text = ui.label().props("id=jog-text")
             self.text.style("white-space: pre; font-family: monospace; font-size: 11px")
+            self.text.style("overflow-x: auto; max-width: 100%")  # the cal line is wider than the card
         self.phase = None
         ui.timer(REFRESH_S, self.refresh)
         self.refresh()
