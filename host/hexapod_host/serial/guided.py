@@ -38,16 +38,31 @@ def plus(leg, joint):
     return "up: the knee rises" if joint == "femur" else "the knee opens: the foot swings out"
 
 
-# Each phase's keys, a line each (the screen may be 80 columns).
-KEYS = {
-    FIT: ("Enter  the horn is on at the reference angle", "p      send the reference pulse again"),
-    SWEEP: ("y      it went the right way first", "n      the wrong way: flip its direction", "r      sweep again"),
-    TRIM: ("+ -    trim by the step", "< >    step 1 5 10 50 us", "Enter  the horn is at the reference angle"),
+# Each phase's steps: (the keys as the terminal names them, what they do, ((key, a button's
+# label), ...)). The terminal lists the first two (KEYS); the view's page makes the buttons
+# (hexapod_host/view/jog.py): the keys a button sends are the ones Guide.key takes.
+ACTIONS = {
+    FIT: (
+        ("Enter", "the horn is on at the reference angle", (("ENTER", "horn is on"),)),
+        ("p", "send the reference pulse again", (("p", "pulse again"),)),
+    ),
+    SWEEP: (
+        ("y", "it went the right way first", (("y", "right way"),)),
+        ("n", "the wrong way: flip its direction", (("n", "wrong way: flip"),)),
+        ("r", "sweep again", (("r", "sweep again"),)),
+    ),
+    TRIM: (
+        ("+ -", "trim by the step", (("-", "trim -"), ("+", "trim +"))),
+        ("< >", "step 1 5 10 50 us", (("<", "step <"), (">", "step >"))),
+        ("Enter", "the horn is at the reference angle", (("ENTER", "servo done"),)),
+    ),
     STAND: (
-        "y      level, all six feet down: save (a stand that did not finish: stand again)",
-        "n      redo a servo (then its leg 1-6 and c f t)",
+        ("y", "level, all six feet down: save (a stand that did not finish: stand again)", (("y", "level: save"),)),
+        ("n", "redo a servo (then its leg 1-6 and c f t)", ()),  # the page: its own leg and joint picks
     ),
 }
+# Each phase's keys, a line each (the screen may be 80 columns).
+KEYS = {phase: tuple("%-6s %s" % (keys, what) for keys, what, _ in rows) for phase, rows in ACTIONS.items()}
 
 
 def centidegrees(text):

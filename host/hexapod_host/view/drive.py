@@ -59,6 +59,10 @@ class Driver:
             self.owner = None
             self._let_go()
 
+    def check(self, client):
+        """NotOwner unless client may drive: the jog panel asks before it changes anything."""
+        self._check(client)
+
     def _check(self, client):
         if not self.drivable:
             raise NotOwner("this source cannot be driven")

@@ -60,6 +60,7 @@ class DrivePanel:
                 .props("id=drive-stick")
             )
             self.log = ui.label().style("white-space: pre; font-family: monospace; font-size: 11px")
+            self.log.style("overflow-x: auto; max-width: 100%")  # a long reply scrolls in the card
             self.log.props("id=drive-log")
         # Keys drive whatever is focused but a text field (a clicked button is blurred, _do).
         ui.keyboard(on_key=self._key, repeating=False, ignore=["input", "select", "textarea"])

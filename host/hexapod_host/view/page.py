@@ -64,6 +64,7 @@ class View:
             with ui.column():
                 self._controls()
                 self.drive = DrivePanel(driver, lambda: self.player.snap)
+                self.jog = _jog_panel(driver)
                 self.table = ui.label().style("white-space: pre; font-family: monospace").props("id=readings")
         self._replay_timeline()
         with ui.row().classes("w-full"):
@@ -203,6 +204,15 @@ class View:
             # wraps every point in NiceGUI's observable lists, 5-90 ms a redraw here.
             series = [{"data": [[ti, row[c]] for ti, row in zip(t, h, strict=True)]} for c in cols]
             chart.run_chart_method("setOption", {"series": series})
+
+
+def _jog_panel(driver):
+    """The jog and calibrate panel (jog_ui.py) for a source with servos to jog; none for the simulator."""
+    if not driver.drivable:
+        return None
+    from hexapod_host.view.jog_ui import JogPanel
+
+    return JogPanel(driver)
 
 
 def build(player):

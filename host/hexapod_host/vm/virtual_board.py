@@ -112,7 +112,9 @@ class Trace:
     time (`hexapod view`'s drive tests, `hexapod bench view`). One line per event, flushed:
 
         L FRAME T_NS WORDS...      a console line arrived (its words, the tag included)
-        P FRAME T_NS               the PCA9685 models' pulse widths differ from the last frame's
+        P FRAME T_NS K=US...       the PCA9685 models' pulse widths differ from the last frame's:
+                                   each channel K that changed (0x40's 0-15, then 0x41's) and
+                                   its new width (us, the model command's numbers)
         M FRAME T_NS MODE VX VY WZ the robot's mode or the walk it was asked for changed
                                    (tick.MODE_NAMES index; 0.1 mm/s, 0.1 mm/s, cdeg/s)
         F FRAME T_NS               every 50th frame: a reader waiting for frames to pass sees them
@@ -139,7 +141,9 @@ class Trace:
     def frame(self):
         pulses = [m.pulse_us(ch) for m in chips for ch in range(16)]
         if self.pulses is not None and pulses != self.pulses:
-            self.say("P")
+            old = self.pulses
+            changed = ["%d=%d" % (k, p) for k, p in enumerate(pulses) if p != old[k]]
+            self.say("P", " ".join(changed))
         self.pulses = pulses
         rb = r.robot
         state = (rb.mode, rb.asked_vx, rb.asked_vy, rb.asked_yaw)
