@@ -80,7 +80,14 @@ def arrived(board, words):
 
 
 def wait_line(board, words, timeout=30):
-    assert vb.wait_for(lambda: arrived(board, words), timeout=timeout), "%r never reached the board" % words
+    assert vb.wait_for(lambda: arrived(board, words), timeout=timeout), (
+        "%r never reached the board; its %r lines: %r"
+        % (
+            words,
+            words.split()[0],
+            vb.commands(board.trace(), words.split()[0])[-5:],
+        )
+    )
     return arrived(board, words)[-1]
 
 
