@@ -108,3 +108,33 @@ def test_physics_sample_is_a_fresh_run():
     proc = subprocess.run([HEXAPOD, "sim", "physics", "--seconds", "3"], capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout.splitlines() == sample
+
+
+def test_readme_kinematics_answers_are_the_commands():
+    # The README's daily commands show their output (issue 21 item 17): the `ik` lines as run.
+    lines = block_after(read("README.md"), "**Kinematics**")
+    pairs = [(lines[k][2:], lines[k + 1]) for k in range(len(lines)) if lines[k].startswith("$ hexapod ")]
+    assert len(pairs) >= 2, lines
+    for cmd, want in pairs:
+        proc = subprocess.run([HEXAPOD, *shlex.split(cmd)[1:]], capture_output=True, text=True, timeout=60)
+        assert proc.stdout.splitlines() == [want], (cmd, proc.stdout, proc.stderr)
+
+
+def test_readme_doctor_sample_is_a_fresh_virtual_boards(virtual_board, tmp_path, capsys):
+    # The report's lines up to the first failed check, as the README shows them, but the host line
+    # (this machine's Python) and the port (a new pty each time).
+    from hexapod_host.commands import cli
+
+    shown = block_after(read("README.md"), "hexapod doctor --port PORT")
+    path, link = virtual_board(str(tmp_path))
+    link.close()
+    status = cli.main(["doctor", "--port", path])
+    out = capsys.readouterr().out.splitlines()
+    assert status == 1  # a fresh board has no calibration file: one failed check, as the README says
+    want = [ln for ln in shown[1:] if ln != "..."]
+    got = out[: len(want)]
+
+    def same(a, b):
+        return a == b or a.split(":")[0] in ("host", "port") and a.split(":")[0] == b.split(":")[0]
+
+    assert all(same(a, b) for a, b in zip(got, want, strict=True)), (got, want)
