@@ -27,7 +27,6 @@ def drive(tmp_path_factory):
     if micropython_missing():
         pytest.skip(micropython_missing())
     board = vb.VirtualBoard(tmp_path_factory.mktemp("drive") / "trace.txt")
-    server = driver = None
     try:
         from hexapod_host.serial.link import Link
 
@@ -35,27 +34,13 @@ def drive(tmp_path_factory):
         # sent before the page takes the line): its beam must be drawn red.
         with Link.open(board.path, timeout=30) as link:
             assert link.request("fault no_echo 0") == "ok fault no_echo 0"
-        server = vb.Server(("--virtual", "--virtual-port", board.path), timeout=90)
-        driver = vb.open_browser()
-        driver.get(server.url)
-        assert vb.wait_for(lambda: "you drive" in text(driver, "drive-who"), timeout=60), text(driver, "drive-who")
-        yield driver, board, server.url
+        with vb.driving(("--virtual", "--virtual-port", board.path)) as (driver, server):
+            yield driver, board, server.url
     finally:
-        if driver is not None:
-            driver.quit()
-        if server is not None:
-            server.stop()
         board.stop()
 
 
-def text(driver, element_id):
-    from selenium.common.exceptions import NoSuchElementException, StaleElementReferenceException
-    from selenium.webdriver.common.by import By
-
-    try:
-        return driver.find_element(By.ID, element_id).text
-    except (NoSuchElementException, StaleElementReferenceException):
-        return ""
+text = vb.text  # the other browser test modules import it from here
 
 
 def click(driver, element_id):

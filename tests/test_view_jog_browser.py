@@ -42,18 +42,10 @@ def page(tmp_path_factory):
     cal_dir = tmp / "cal"
     cal_dir.mkdir()
     board = vb.VirtualBoard(tmp / "trace.txt", str(cal_dir))
-    server = driver = None
     try:
-        server = vb.Server(("--virtual", "--virtual-port", board.path), timeout=90)
-        driver = vb.open_browser()
-        driver.get(server.url)
-        assert vb.wait_for(lambda: "you drive" in text(driver, "drive-who"), timeout=60), text(driver, "drive-who")
-        yield driver, board, server.url, cal_dir
+        with vb.driving(("--virtual", "--virtual-port", board.path)) as (driver, server):
+            yield driver, board, server.url, cal_dir
     finally:
-        if driver is not None:
-            driver.quit()
-        if server is not None:
-            server.stop()
         board.stop()
 
 

@@ -18,22 +18,6 @@ PICO_SERVE_S = 1200
 PICO_LINES_S = 300
 
 
-def page(args, timeout):
-    """(server, driver): hexapod view ARGS served and open in headless Chromium, this tab driving."""
-    server = vb.Server(args, timeout=timeout)
-    driver = None
-    try:
-        driver = vb.open_browser()
-        driver.get(server.url)
-        assert vb.wait_for(lambda: "you drive" in text(driver, "drive-who"), timeout=60), text(driver, "drive-who")
-    except BaseException:
-        if driver is not None:
-            driver.quit()
-        server.stop()
-        raise
-    return server, driver
-
-
 def test_port_on_a_virtual_boards_pty_loads_and_the_stand_button_stands_it(tmp_path):
     vb.require()
     from hexapod_host.testing.runtimes import micropython_missing
@@ -41,22 +25,17 @@ def test_port_on_a_virtual_boards_pty_loads_and_the_stand_button_stands_it(tmp_p
     if micropython_missing():
         pytest.skip(micropython_missing())
     board = vb.VirtualBoard(tmp_path / "trace.txt")
-    server = driver = None
     try:
-        server, driver = page(("--port", board.path), timeout=90)
-        frames_pass(board, 50)
-        assert vb.wait_for(lambda: "(ok stream 25)" in text(driver, "drive-board"), timeout=30)
-        assert "hexapod view: port" in driver.page_source
-        f0 = stand(driver, board)
-        standing = next(m[0] for m in modes(board.trace(), f0) if m[1] == 3)
-        assert standing - f0 <= STAND_FRAMES
-        assert vb.wait_for(lambda: "robot standing" in text(driver, "status"), timeout=30), text(driver, "status")
-        assert vb.page_errors(driver) == []
+        with vb.driving(("--port", board.path)) as (driver, server):
+            frames_pass(board, 50)
+            assert vb.wait_for(lambda: "(ok stream 25)" in text(driver, "drive-board"), timeout=30)
+            assert "hexapod view: port" in driver.page_source
+            f0 = stand(driver, board)
+            standing = next(m[0] for m in modes(board.trace(), f0) if m[1] == 3)
+            assert standing - f0 <= STAND_FRAMES
+            assert vb.wait_for(lambda: "robot standing" in text(driver, "status"), timeout=30), text(driver, "status")
+            assert vb.page_errors(driver) == []
     finally:
-        if driver is not None:
-            driver.quit()
-        if server is not None:
-            server.stop()
         board.stop()
 
 
@@ -68,8 +47,7 @@ def page_frame(driver):
 @pytest.mark.skipif(emulator.missing() is not None, reason=emulator.missing() or "")
 def test_pico_telemetry_reaches_the_page():
     vb.require()
-    server, driver = page(("--pico",), timeout=PICO_SERVE_S)
-    try:
+    with vb.driving(("--pico",), timeout=PICO_SERVE_S) as (driver, server):
         assert vb.wait_for(lambda: "(ok stream 25)" in text(driver, "drive-board"), timeout=60)
         assert "hexapod view: pico" in driver.page_source
         first = vb.wait_for(lambda: page_frame(driver), timeout=PICO_LINES_S)
@@ -82,7 +60,4 @@ def test_pico_telemetry_reaches_the_page():
             driver, "readings"
         )
         assert vb.page_errors(driver) == []
-    finally:
-        driver.quit()
-        out = server.stop()
-    assert "source pico, ok stream 25" in out
+    assert "source pico, ok stream 25" in server.output

@@ -145,42 +145,35 @@ def _drive():
 
     tmp = tempfile.TemporaryDirectory(prefix="hexapod-bench-drive-")
     board = vb.VirtualBoard(os.path.join(tmp.name, "trace.txt"))
-    server = driver = None
     key_ms, walk_ms, walk_frames, page_ms = [], [], [], []
     try:
-        server = vb.Server(("--virtual", "--virtual-port", board.path), timeout=90)
-        driver = vb.open_browser()
-        driver.get(server.url)
-        vb.wait_for(lambda: "you drive" in driver.find_element(By.ID, "drive-who").text, timeout=60)
-        # The keydown's own time in the page, on the host's clock (epoch ms).
-        driver.execute_script(
-            "document.addEventListener('keydown', e => { window.hexapodKeyMs = performance.timeOrigin + e.timeStamp; })"
-        )
-        t = time.time_ns()
-        driver.find_element(By.ID, "drive-stand").click()
-        vb.wait_for(lambda: [m for m in _events_after(board, "M", t) if m[3][0] == "3"], timeout=60)
-        for _ in range(DRIVE_TRIES):
-            time.sleep(0.5)  # standing still: no pulse changes before the key
-            t0 = time.time_ns()
-            ActionChains(driver).key_down("w").perform()
-            first = vb.wait_for(lambda t0=t0: _events_after(board, "P", t0), timeout=30)
-            walk = [c for c in vb.commands(board.trace(), "walk") if c[1] > t0]
-            ActionChains(driver).key_up("w").perform()
-            t1 = time.time_ns()
-            vb.wait_for(lambda t1=t1: [m for m in _events_after(board, "M", t1) if m[3][0] == "3"], timeout=30)
-            if first and walk:
-                key_ms.append((first[0][2] - t0) / 1e6)
-                walk_ms.append((walk[0][1] - t0) / 1e6)
-                walk_frames.append(first[0][1] - walk[0][0])
-                page_key = driver.execute_script("return window.hexapodKeyMs")
-                if page_key and page_key * 1e6 > t0:
-                    page_ms.append(walk[0][1] / 1e6 - page_key)
-        errors = len(vb.page_errors(driver))
+        with vb.driving(("--virtual", "--virtual-port", board.path)) as (driver, _):
+            # The keydown's own time in the page, on the host's clock (epoch ms).
+            driver.execute_script(
+                "document.addEventListener('keydown',"
+                " e => { window.hexapodKeyMs = performance.timeOrigin + e.timeStamp; })"
+            )
+            t = time.time_ns()
+            driver.find_element(By.ID, "drive-stand").click()
+            vb.wait_for(lambda: [m for m in _events_after(board, "M", t) if m[3][0] == "3"], timeout=60)
+            for _ in range(DRIVE_TRIES):
+                time.sleep(0.5)  # standing still: no pulse changes before the key
+                t0 = time.time_ns()
+                ActionChains(driver).key_down("w").perform()
+                first = vb.wait_for(lambda t0=t0: _events_after(board, "P", t0), timeout=30)
+                walk = [c for c in vb.commands(board.trace(), "walk") if c[1] > t0]
+                ActionChains(driver).key_up("w").perform()
+                t1 = time.time_ns()
+                vb.wait_for(lambda t1=t1: [m for m in _events_after(board, "M", t1) if m[3][0] == "3"], timeout=30)
+                if first and walk:
+                    key_ms.append((first[0][2] - t0) / 1e6)
+                    walk_ms.append((walk[0][1] - t0) / 1e6)
+                    walk_frames.append(first[0][1] - walk[0][0])
+                    page_key = driver.execute_script("return window.hexapodKeyMs")
+                    if page_key and page_key * 1e6 > t0:
+                        page_ms.append(walk[0][1] / 1e6 - page_key)
+            errors = len(vb.page_errors(driver))
     finally:
-        if driver is not None:
-            driver.quit()
-        if server is not None:
-            server.stop()
         board.stop()
         tmp.cleanup()
     if not key_ms:

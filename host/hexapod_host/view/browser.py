@@ -2,6 +2,7 @@
 started in its own process on a free port, the page driven by Selenium through Debian's
 chromium and chromium-driver (`make test` installs them when it can), WebGL by SwiftShader."""
 
+import contextlib
 import os
 import shutil
 import socket
@@ -59,6 +60,7 @@ class Server:
     def __init__(self, args=("--sim",), port=None, timeout=60):
         self.port = port or free_port()
         self.url = "http://127.0.0.1:%d/" % self.port
+        self.output = None  # what the server printed, once stopped
         cmd = [
             sys.executable,
             "-m",
@@ -90,6 +92,7 @@ class Server:
                 time.sleep(0.2)
 
     def stop(self):
+        """Stop the server (again: nothing more); everything it printed."""
         if self.proc.poll() is None:
             self.proc.terminate()
             try:
@@ -97,7 +100,9 @@ class Server:
             except subprocess.TimeoutExpired:
                 self.proc.kill()
                 self.proc.wait(10)
-        return self.proc.stdout.read()
+        if self.output is None:
+            self.output = self.proc.stdout.read()
+        return self.output
 
 
 def open_browser():
@@ -118,6 +123,35 @@ def page_errors(driver):
     """The page's console entries at level SEVERE (errors); the GPU driver's performance
     warnings under SwiftShader are WARNING and are not the page's."""
     return [e for e in driver.get_log("browser") if e["level"] == "SEVERE"]
+
+
+def text(driver, element_id):
+    """The text of the page's element element_id, "" while it is missing or being redrawn."""
+    from selenium.common.exceptions import NoSuchElementException, StaleElementReferenceException
+    from selenium.webdriver.common.by import By
+
+    try:
+        return driver.find_element(By.ID, element_id).text
+    except (NoSuchElementException, StaleElementReferenceException):
+        return ""
+
+
+@contextlib.contextmanager
+def driving(args, timeout=90):
+    """(driver, server): `hexapod view ARGS` served (up within timeout s) and open in headless
+    Chromium, this tab the one that drives; the browser quits and the server stops after."""
+    server = Server(args, timeout=timeout)
+    driver = None
+    try:
+        driver = open_browser()
+        driver.get(server.url)
+        if not wait_for(lambda: "you drive" in text(driver, "drive-who"), timeout=60):
+            raise AssertionError("the page never gave this tab the drive: %r" % text(driver, "drive-who"))
+        yield driver, server
+    finally:
+        if driver is not None:
+            driver.quit()
+        server.stop()
 
 
 def wait_for(predicate, timeout=30, every=0.1):
@@ -156,11 +190,9 @@ class VirtualBoard:
         return events
 
     def stop(self):
-        if self.proc.poll() is None:
-            self.proc.terminate()
-            self.proc.wait(10)
-        os.close(self._master)
-        os.close(self._slave)
+        from hexapod_host.commands.console import stop_virtual_board
+
+        stop_virtual_board(self.proc, self._master, self._slave)
 
 
 def commands(events, word):
