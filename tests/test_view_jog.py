@@ -5,7 +5,6 @@ on the stub machine (tests/console_link.py, standing), and what the panel shows.
 are the default robot's calibration rows worked by hand: centre_us + trim + direction x (angle -
 ref_deg) x 10 us. The page in a real browser: tests/test_view_jog_browser.py."""
 
-import queue
 import re
 
 import pytest
@@ -16,38 +15,26 @@ from hexapod_host.view.drive import Driver, NotOwner
 from hexapod_host.view.jog import Jogger
 from tests.console_link import ConsoleLink
 from tests.console_rig import clean_stubs  # noqa: F401 (autouse fixture)
+from tests.test_view_virtual import FakePort
 
 ME, OTHER = "tab-1", "tab-2"
 
 
-class ConsolePort:
+class ConsolePort(FakePort):
     """A serial line to the console rig: each tagged line is answered by the real console (its own
     tag on the reply); `stream on 25` is answered here (the rig's console would then write
     telemetry into its replies)."""
 
     def __init__(self, rig):
+        super().__init__()
         self.rig = rig
-        self.lines = queue.Queue()
         self.sent = []  # the commands, untagged, in order
 
     def write(self, data):
         tagged = data.decode().strip()
         tag, _, line = tagged.partition(" ")
         self.sent.append(line)
-        reply = "%s ok stream 25" % tag if line == "stream on 25" else self.rig.request(tagged)
-        self.lines.put((reply + "\n").encode())
-
-    def flush(self):
-        pass
-
-    def readline(self):
-        try:
-            return self.lines.get(timeout=0.01)
-        except queue.Empty:
-            return b""
-
-    def close(self):
-        pass
+        self.put("%s ok stream 25" % tag if line == "stream on 25" else self.rig.request(tagged))
 
 
 @pytest.fixture
