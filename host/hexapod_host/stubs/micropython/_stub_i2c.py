@@ -93,12 +93,7 @@ class SoftI2C:
 
     def scan(self):
         """7-bit addresses 0x08..0x77 that acknowledge."""
-        found = []
-        for addr in range(0x08, 0x78):
-            if self._bus.start(addr, False, self._freq) == 0:
-                found.append(addr)
-            self._bus.stop()
-        return found
+        return self._bus.scan(self._freq)
 
     def writeto(self, addr, buf, stop=True):
         """Write buf; returns the number of bytes acknowledged."""
