@@ -61,6 +61,11 @@ def test_pose_signs(rt):
     assert rolled[0] > -800  # right side down: the right foot is higher relative to the body
     assert pitched[1] > -800  # nose down: the front foot is higher relative to the body
     assert raised == [-900, -900]  # body up 10 mm: feet 10 mm further down
+    # By hand, z' = z cos(a) - y sin(a) (roll) or z cos(a) + x sin(a) (pitch), a = 10 degrees:
+    # rolled: -80 cos a + 207.5 sin a = -42.75 mm, -80 cos a + 170 sin a = -49.26 mm;
+    # pitched: -80 cos a = -78.78 mm, -80 cos a + 180 sin a = -47.53 mm. Within 0.1 mm (Q15 sines).
+    for got_z, want_z in zip(rolled + pitched, [-427.5, -492.6, -787.8, -475.3], strict=True):
+        assert abs(got_z - want_z) <= 1, (rolled, pitched)
 
 
 def test_slew_is_bounded_per_tick(rt):

@@ -8,23 +8,15 @@ from fractions import Fraction
 import machine
 import pytest
 from i2c_bus import I2CBus
-from pca9685_model import PCA9685Model
 
 from drivers import cp_pca9685
 from drivers.pca9685 import PCA9685, ServoBank
 from hexapod.servo import ServoMap
+from hexapod_host.bench.i2c import CMAP, OSC, new_bus, servokit_servos
 from hexapod_host.stubs import busio as fakes_busio
 
-OSC = {0x40: 25_750_000, 0x41: 25_000_000}  # chip 0x40 runs 3 % fast; both trimmed
 PULSES = [600, 777, 901, 1000, 1111, 1234, 1333, 1499, 1500, 1501, 1618, 1750, 1801, 1999, 2048, 2222, 2345, 2400]
-CMAP = [(0, k) for k in range(16)] + [(1, 0), (1, 1)]
 WIDE = [ServoMap(min_us=500, max_us=2500) for _ in range(18)]
-
-
-def new_bus():
-    bus = I2CBus()
-    models = {a: bus.attach(PCA9685Model(a, osc_hz=o)) for a, o in OSC.items()}
-    return bus, models
 
 
 def led_counts(models):
@@ -54,19 +46,8 @@ def ours(backend="micropython"):
 
 
 def servokit():
-    import adafruit_servokit
-
     bus, models = new_bus()
-    i2c = fakes_busio.I2C(bus)
-    fakes_busio.ensure_board()
-    with fakes_busio.model_time(bus):
-        kits = [adafruit_servokit.ServoKit(channels=16, i2c=i2c, address=a, reference_clock_speed=OSC[a]) for a in OSC]
-    servos = []
-    for c, ch in CMAP:
-        s = kits[c].servo[ch]
-        s.set_pulse_width_range(500, 2500)
-        s.actuation_range = 2000  # so angle = pulse_us - 500
-        servos.append(s)
+    servos = servokit_servos(bus, fakes_busio.I2C(bus))
     bus.reset_stats()
     for s, p in zip(servos, PULSES, strict=True):
         s.angle = p - 500

@@ -223,10 +223,7 @@ def test_a_second_tab_is_view_only(drive):
     from selenium.webdriver.common.by import By
 
     driver, board, url = drive
-    first = driver.current_window_handle
-    driver.switch_to.new_window("tab")
-    try:
-        driver.get(url)
+    with vb.second_tab(driver, url):
         assert vb.wait_for(lambda: "view-only" in text(driver, "drive-who"), timeout=60), text(driver, "drive-who")
         assert not driver.find_element(By.ID, "drive-stand").is_enabled()
         n0 = len(vb.commands(board.trace(), "walk"))
@@ -239,7 +236,4 @@ def test_a_second_tab_is_view_only(drive):
         frames_pass(board, 50)
         assert len(vb.commands(board.trace(), "walk")) == n0, "a view-only tab made the board walk"
         assert vb.page_errors(driver) == []
-    finally:
-        driver.close()
-        driver.switch_to.window(first)
     assert "you drive" in text(driver, "drive-who")

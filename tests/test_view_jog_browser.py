@@ -185,10 +185,7 @@ def test_a_second_tab_cannot_jog(page):
     from selenium.webdriver.common.by import By
 
     driver, board, url, _ = page
-    first = driver.current_window_handle
-    driver.switch_to.new_window("tab")
-    try:
-        driver.get(url)
+    with vb.second_tab(driver, url):
         assert vb.wait_for(lambda: "view-only: another tab jogs" in text(driver, "jog-text"), timeout=60), text(
             driver, "jog-text"
         )
@@ -199,9 +196,6 @@ def test_a_second_tab_cannot_jog(page):
         frames_pass(board, 50)
         assert len(vb.commands(board.trace(), "trim")) == n, "a view-only tab trimmed a servo"
         assert vb.page_errors(driver) == []
-    finally:
-        driver.close()
-        driver.switch_to.window(first)
     shot = os.environ.get("HEXAPOD_JOG_SCREENSHOT")
     if shot:  # for looking at the panel by eye (docs/view.md)
         driver.find_element(By.ID, "jog-text").location_once_scrolled_into_view  # noqa: B018

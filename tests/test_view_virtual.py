@@ -162,10 +162,16 @@ class Recorder:
         return None
 
 
-def test_keys_walk_add_up_and_the_last_one_let_go_stops():
+def driving_tab1():
+    """(recorder, driver): a Driver on a Recorder, the drive claimed by tab1."""
     src = Recorder()
     d = Driver(src)
     assert d.claim("tab1")
+    return src, d
+
+
+def test_keys_walk_add_up_and_the_last_one_let_go_stops():
+    src, d = driving_tab1()
     d.key("tab1", "w", True)
     d.key("tab1", "a", True)
     d.key("tab1", "w", True)  # a repeat changes nothing
@@ -177,9 +183,7 @@ def test_keys_walk_add_up_and_the_last_one_let_go_stops():
 
 
 def test_held_renews_the_walk_and_let_go_does_not():
-    src = Recorder()
-    d = Driver(src)
-    d.claim("tab1")
+    src, d = driving_tab1()
     d.renew()  # nothing held: nothing sent
     d.key("tab1", "s", True)
     d.renew()
@@ -190,9 +194,7 @@ def test_held_renews_the_walk_and_let_go_does_not():
 
 
 def test_space_stops_at_once_and_the_stick_turns():
-    src = Recorder()
-    d = Driver(src)
-    d.claim("tab1")
+    src, d = driving_tab1()
     d.key("tab1", "d", True)
     d.key("tab1", " ", True)
     d.renew()  # the space let go of D too
@@ -203,9 +205,7 @@ def test_space_stops_at_once_and_the_stick_turns():
 
 
 def test_losing_the_keyboard_lets_go_of_the_keys():
-    src = Recorder()
-    d = Driver(src)
-    d.claim("tab1")
+    src, d = driving_tab1()
     d.key("tab1", "w", True)
     d.key("tab1", "q", True)
     d.let_go("tab1")  # the window lost focus: no keyup will come for W or Q

@@ -22,17 +22,10 @@ def transform(poses, feet):
 
 def pose_signs(poses):
     """[right middle foot's z, right front foot's z] in their leg frames at each pose (feet 80 mm down)."""
-    b = Body(geometry.load(d))
-    out = [0, 0, 0]
-    res = []
-    for pose in poses:
-        b.set_target(list(pose))
-        b.jump()
-        b.to_leg(1, 0, -2075 << 4, -800 << 4, out, 0)  # right middle foot
-        right = out[2]
-        b.to_leg(0, 1800 << 4, -1700 << 4, -800 << 4, out, 0)  # right front foot
-        res.append([right, out[2]])
-    return res
+    rows = transform(poses, [(0, -2075, -800), (1800, -1700, -800)])
+    # transform's 12 rows a pose: leg i's two feet at 2i, 2i + 1. Leg 1 is the right middle one
+    # (its foot the first), leg 0 the right front (its foot the second).
+    return [[rows[12 * p + 2][2], rows[12 * p + 1][2]] for p in range(len(poses))]
 
 
 def slew(target):

@@ -2,6 +2,7 @@
 
 import _stub_i2c
 import machine
+from _stub_cp import BusI2C
 from i2c_bus import I2CBus
 from pca9685_model import PCA9685Model
 
@@ -31,9 +32,12 @@ def err(fn, *a, **kw):
 
 
 def scans():
-    """[scan of a bus with the chip, scan of an empty bus]."""
+    """[scan of a bus with the chip, scan of an empty bus, CircuitPython's busio.I2C scan of the bus
+    with the chip (locked first, as CircuitPython demands)]."""
     bus, _ = _bus()
-    return [machine.I2C(0, bus=bus).scan(), machine.SoftI2C(bus=I2CBus()).scan()]
+    cp = BusI2C(bus)
+    cp.try_lock()
+    return [machine.I2C(0, bus=bus).scan(), machine.SoftI2C(bus=I2CBus()).scan(), cp.scan()]
 
 
 def absent_address(ctor):

@@ -16,7 +16,7 @@ from hexapod_host.stubs import busio as fakes_busio
 
 VM_SCRIPT = os.path.join(VM_DIR, "bench_i2c.py")
 FREQ = 400000
-OSC = {0x40: 25_750_000, 0x41: 25_000_000}
+OSC = {0x40: 25_750_000, 0x41: 25_000_000}  # chip 0x40 runs 3 % fast; both trimmed
 CMAP = [(0, k) for k in range(16)] + [(1, 0), (1, 1)]
 PULSES = [1000 + 50 * k for k in range(18)]
 
@@ -30,24 +30,22 @@ def _figures(stats, frames=1):
     }
 
 
-def _bus():
+def new_bus():
+    """A bus model with the two PCA9685 models of OSC: (bus, {address: model})."""
     # Bare names: the models sit with the MicroPython stubs, where the VM (vm/bench_i2c.py) imports them so.
     from i2c_bus import I2CBus
     from pca9685_model import PCA9685Model
 
     bus = I2CBus()
-    for a, osc in OSC.items():
-        bus.attach(PCA9685Model(a, osc_hz=osc))
-    return bus
+    return bus, {a: bus.attach(PCA9685Model(a, osc_hz=osc)) for a, osc in OSC.items()}
 
 
-def servokit_frame():
-    """Wire figures of one steady-state 18-servo frame written through adafruit_servokit."""
+def servokit_servos(bus, i2c):
+    """The 18 servos, CMAP order, of two adafruit_servokit.ServoKit(channels=16) on i2c (a fake
+    busio.I2C on bus), each set so that angle = pulse_us - 500 (500..2500 us over 2000 degrees)."""
     fakes_busio.ensure_board()
     import adafruit_servokit
 
-    bus = _bus()
-    i2c = fakes_busio.I2C(bus, frequency=FREQ)
     with fakes_busio.model_time(bus):
         kits = [adafruit_servokit.ServoKit(channels=16, i2c=i2c, address=a, reference_clock_speed=OSC[a]) for a in OSC]
     servos = []
@@ -56,6 +54,13 @@ def servokit_frame():
         s.set_pulse_width_range(500, 2500)
         s.actuation_range = 2000
         servos.append(s)
+    return servos
+
+
+def servokit_frame():
+    """Wire figures of one steady-state 18-servo frame written through adafruit_servokit."""
+    bus, _ = new_bus()
+    servos = servokit_servos(bus, fakes_busio.I2C(bus, frequency=FREQ))
     for s, p in zip(servos, PULSES, strict=True):  # first frame: warm-up
         s.angle = p - 500
     bus.reset_stats()
@@ -68,7 +73,7 @@ def physical_minimum():
     """One burst per chip from LED0_OFF_L through the last servo channel's OFF_H."""
     import machine  # the stub machine, by the name the firmware imports it
 
-    bus = _bus()
+    bus, _ = new_bus()
     i2c = machine.I2C(0, FREQ, bus=bus)
     bus.reset_stats()
     for addr, n in ((0x40, 16), (0x41, 2)):

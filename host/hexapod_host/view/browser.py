@@ -154,6 +154,20 @@ def driving(args, timeout=90):
         server.stop()
 
 
+@contextlib.contextmanager
+def second_tab(driver, url):
+    """driver in a new tab on url (the page a second visitor sees); after, that tab is closed and
+    the first one current again, whatever happened in between."""
+    first = driver.current_window_handle
+    driver.switch_to.new_window("tab")
+    try:
+        driver.get(url)
+        yield
+    finally:
+        driver.close()
+        driver.switch_to.window(first)
+
+
 def wait_for(predicate, timeout=30, every=0.1):
     """predicate()'s first true value within timeout seconds, else None."""
     end = time.monotonic() + timeout

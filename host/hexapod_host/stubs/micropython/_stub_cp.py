@@ -114,12 +114,7 @@ class BusI2C:
 
     def scan(self):
         self._need_lock()
-        found = []
-        for addr in range(0x08, 0x78):
-            if self.bus.start(addr, False, self.frequency) == 0:
-                found.append(addr)
-            self.bus.stop()
-        return found
+        return self.bus.scan(self.frequency)
 
     def writeto(self, address, buffer, *, start=0, end=None):
         self._need_lock()

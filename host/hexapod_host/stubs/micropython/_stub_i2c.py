@@ -72,16 +72,19 @@ class SoftI2C:
         if r < 0:
             self._fail(r)
 
-    def _put(self, buf, start, end):
-        """Send buf[start:end]; True when all were acknowledged (raises on hardware ports)."""
+    def _send(self, buf, start, end):
+        """Send buf[start:end]; the bytes acknowledged. A data NACK raises on hardware ports and
+        leaves a short count on SoftI2C; the transfer stays open either way (the caller stops it)."""
         a = self._bus.send(buf, start, end)
         if a == TIMEOUT:
             self._fail(TIMEOUT)
-        if a < end - start:
-            if self._nack_errno:
-                self._fail(_DATA_NACK)
-            return False
-        return True
+        if a < end - start and self._nack_errno:
+            self._fail(_DATA_NACK)
+        return a
+
+    def _put(self, buf, start, end):
+        """Send buf[start:end]; True when all were acknowledged (raises on hardware ports)."""
+        return self._send(buf, start, end) == end - start
 
     def _memaddr(self, memaddr, addrsize):
         if addrsize not in (8, 16, 24, 32):
@@ -93,26 +96,13 @@ class SoftI2C:
 
     def scan(self):
         """7-bit addresses 0x08..0x77 that acknowledge."""
-        found = []
-        for addr in range(0x08, 0x78):
-            if self._bus.start(addr, False, self._freq) == 0:
-                found.append(addr)
-            self._bus.stop()
-        return found
+        return self._bus.scan(self._freq)
 
     def writeto(self, addr, buf, stop=True):
         """Write buf; returns the number of bytes acknowledged."""
         self._begin(addr, False)
-        n = len(buf)
-        a = self._bus.send(buf, 0, n)
-        if a == TIMEOUT:
-            self._fail(TIMEOUT)
-        if a < n:
-            if self._nack_errno:
-                self._fail(_DATA_NACK)
-            self._bus.stop()
-            return a
-        if stop:
+        a = self._send(buf, 0, len(buf))
+        if stop or a < len(buf):  # a short write ends the transfer whatever stop says
             self._bus.stop()
         return a
 
@@ -121,14 +111,9 @@ class SoftI2C:
         self._begin(addr, False)
         total = 0
         for buf in vector:
-            n = len(buf)
-            a = self._bus.send(buf, 0, n)
-            if a == TIMEOUT:
-                self._fail(TIMEOUT)
+            a = self._send(buf, 0, len(buf))
             total += a
-            if a < n:
-                if self._nack_errno:
-                    self._fail(_DATA_NACK)
+            if a < len(buf):
                 self._bus.stop()
                 return total
         if stop:

@@ -200,6 +200,16 @@ class I2CBus:
                 self._selected[i].on_start(read)
         return 0
 
+    def scan(self, freq):
+        """7-bit addresses 0x08..0x77 that acknowledge (an address byte and a STOP each, at freq):
+        what machine.I2C.scan and busio.I2C.scan both do on the wire."""
+        found = []
+        for addr in range(0x08, 0x78):
+            if self.start(addr, False, freq) == 0:
+                found.append(addr)
+            self.stop()
+        return found
+
     def _next_byte_times_out(self, before):
         """Count the next byte; True (timeout counted, wire time since before booked) if a timeout strikes it."""
         self._byte_no += 1
