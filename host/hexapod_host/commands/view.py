@@ -1,6 +1,6 @@
 """`hexapod view --sim [--world W] | --virtual [--virtual-port PTY] | --pico [--sonar-cm CM...] |
---port PORT | --replay FILE.mcap [--record FILE.mcap] [--listen HOST:PORT] [--no-browser]`: the live
-3-D page (hexapod_host.view, docs/view.md)."""
+--port PORT | --replay FILE.mcap [--world W] [--record FILE.mcap] [--listen HOST:PORT] [--no-browser]`:
+the live 3-D page (hexapod_host.view, docs/view.md)."""
 
 import os
 import sys
@@ -30,14 +30,12 @@ def register(sub):
     src.add_argument("--port", metavar="PORT", help="a board on this serial port (opened exclusively)")
     src.add_argument("--replay", metavar="FILE", help="play a recording made with --record (an .mcap file)")
     p.add_argument(
-        "--world", default=DEFAULT, help="with --sim: a world file or a shipped world: %s" % ", ".join(shipped())
+        "--world",
+        help="with --sim (default %s), or --replay of a board's recording (its room): a world file or a shipped "
+        "world: %s" % (DEFAULT, ", ".join(shipped())),
     )
-    p.add_argument(
-        "--setpoint", default="12", metavar="CM", help="with --sim: the side sonar reading to hold (default 12)"
-    )
-    p.add_argument(
-        "--seed", default="0", metavar="S", help="with --sim: the run's seed, as hexapod sim wall's (default 0)"
-    )
+    p.add_argument("--setpoint", metavar="CM", help="with --sim: the side sonar reading to hold (default 12)")
+    p.add_argument("--seed", metavar="S", help="with --sim: the run's seed, as hexapod sim wall's (default 0)")
     p.add_argument(
         "--virtual-port",
         metavar="PTY",
@@ -104,15 +102,24 @@ def parse(args):
         checks.out_file("--record", args.record, suffix=".mcap")
     if args.sonar_cm is not None and not args.pico:
         raise UsageError("--sonar-cm: only with --pico (what the emulated HC-SR04s see)")
+    for flag, value in (("--setpoint", args.setpoint), ("--seed", args.seed)):
+        if value is not None and not args.sim:
+            raise UsageError("%s: only with --sim (the simulator's trials)" % flag)
+    if args.world is not None and not (args.sim or args.replay is not None):
+        raise UsageError(
+            "--world: only with --sim or --replay (a board's room is the real one: a recording of it can be "
+            "replayed in a world with --replay FILE --world W)"
+        )
     devices = pico_devices(args) if args.pico else None
-    board_source = args.virtual or args.pico or args.port is not None
-    if args.replay is None and not board_source:
+    world = None
+    if args.sim or args.world is not None:
         try:
-            world = load(args.world)
+            world = load(args.world or DEFAULT)
         except WorldError as err:
-            raise UsageError(str(err)) from None
-        setpoint = _number(args.setpoint, "--setpoint", 4, 50, "cm (the side sonar's reading)")
-        seed = _whole(args.seed, "--seed", 0, 2**62)
+            raise UsageError("--world: %s" % err) from None
+    if args.sim:
+        setpoint = _number(args.setpoint or "12", "--setpoint", 4, 50, "cm (the side sonar's reading)")
+        seed = _whole(args.seed or "0", "--seed", 0, 2**62)
     speed = _number(args.speed, "--speed", 0, 100, "simulated seconds per second")
     if speed not in player_mod.SPEEDS:
         raise UsageError("--speed: %s, allowed %s" % (args.speed, _speeds()))
@@ -126,7 +133,7 @@ def parse(args):
         from hexapod_host.view.replay import ReplayError, ReplaySource
 
         try:
-            return ReplaySource(args.replay), speed, host, port, None
+            return ReplaySource(args.replay, world), speed, host, port, None
         except ReplayError as err:
             raise UsageError("--replay %s" % err) from None
     if args.virtual:

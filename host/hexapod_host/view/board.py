@@ -6,10 +6,13 @@ through the board's servo maps inverted and the robot file's FK (source.pose, th
 simulator's path), the sonars, the follower, the counters. It can be driven: command(line)
 sends a console line tagged, reply(tag) is its answer.
 
-There is no room: the body stays at the origin (x, y, yaw 0); its height is the coxa plane's
-above the lowest foot."""
+The servo maps are the board's own (boardcal.py: its `cal` lines read when the page connects and
+followed after every calibration command), so a trimmed or flipped servo is drawn at the angle
+the board drove it to. There is no room: the body stays at the origin (x, y, yaw 0); its height
+is the coxa plane's above the lowest foot."""
 
 from hexapod import follow, gait, sensors, tick
+from hexapod_host.view.boardcal import BoardCal
 from hexapod_host.view.source import Source, pose
 from hexapod_host.wall.room import BODY_HALF, Body, grounded
 
@@ -44,7 +47,13 @@ class BoardSource(Source):
         self._wall_tags = []
         self._rest = self._rest_pose()
         # reply_s: a hang guard (the emulated Pico answers in wall-clock seconds, not a frame)
-        self.stream_reply = link.request("stream on %d" % hz, reply_s) or "no reply to 'stream on %d'" % hz
+        stream = link.request("stream on %d" % hz, reply_s)
+        self.stream_reply = stream or "no reply to 'stream on %d'" % hz
+        self.cal = BoardCal(link, self.body)
+        if stream is None:
+            self.cal.why = "the board answered nothing"  # not 18 more hang guards long
+        else:
+            self.cal.read_all(reply_s)
 
     def _rest_pose(self):
         angles = list(REST_CDEG) * 6
@@ -73,6 +82,7 @@ class BoardSource(Source):
     def command(self, line):
         """Send one console line to the board now; its tag, for reply(tag)."""
         tag = self.link.send(line)
+        self.cal.watch(line, tag)
         if line.split()[:1] == ["wall"]:
             self._wall_tags.append(tag)
         return tag
@@ -95,8 +105,10 @@ class BoardSource(Source):
     def snapshot(self):
         t = self.link.telemetry
         setpoint = self._setpoint()
+        self.cal.follow()
         extra = {
             "stream": self.stream_reply,
+            "servo_maps": self.cal.source,
             "telemetry_lines": self.link.telemetry_lines,
             "malformed": self.link.malformed,
             "lost": self.link.lost,

@@ -11,6 +11,14 @@ from hexapod_host.view.drive import NotOwner
 from hexapod_host.view.jog import LEGS, STEPS_DEG, jogger_for
 
 REFRESH_S = 0.25
+# The guided step buttons' id attributes: guide-<key>, but for the keys NiceGUI's props parser
+# drops an id with (`id=guide-<` leaves the button with no id at all).
+GUIDE_IDS = {"<": "step-down", ">": "step-up", "+": "plus", "-": "minus"}
+
+
+def guide_id(key):
+    """The id attribute of the guided step's button for key (guided.ACTIONS' keys)."""
+    return "guide-" + GUIDE_IDS.get(key, key.lower())
 
 
 class JogPanel:
@@ -88,7 +96,7 @@ class JogPanel:
                     b = ui.button(label, on_click=lambda key=key: self._do(lambda c: j.guided(c, key)))
                     # the title attribute, not ui.tooltip: a tooltip in a row cleared on the next
                     # phase logs "Anchor: target not found" errors in the page's console
-                    b.props('id=guide-%s dense no-caps title="%s"' % (key.lower(), what))
+                    b.props('id=%s dense no-caps title="%s"' % (guide_id(key), what))
                     self.guide_widgets.append(b)
             if phase == "stand":
                 b = ui.button("redo leg/joint picked", on_click=lambda: self._do(self._redo))

@@ -3,6 +3,8 @@ record.py file played on their own clock, paused, stepped, scrubbed and sped up 
 
 The whole file is read and checked when it is opened (every message against the schema, the
 file's CRCs, its end): a bad file is a ReplayError naming what is wrong before the page starts.
+With a world (`--world W`), a recording without a room is replayed in that world's room: its
+walls drawn, the body moved by its recorded feet (inroom.py).
 """
 
 import bisect
@@ -12,7 +14,7 @@ import struct
 from mcap.exceptions import McapError
 from mcap.reader import NonSeekingReader
 
-from hexapod_host.view import record
+from hexapod_host.view import inroom, record
 from hexapod_host.view.source import Source
 
 WHAT = "an MCAP file written by hexapod view --record"
@@ -94,17 +96,29 @@ class ReplaySource(Source):
     name = "replay"
     steppable = True
 
-    def __init__(self, path):
+    def __init__(self, path, world=None):
         self.path = path
         described, self.times, self.data = load(path)
         self.recorded = described
+        self.world = world
+        self.poses = None  # with a world: the body's (x, y, yaw) in it per snapshot
+        if world is not None:
+            try:
+                inroom.check(described, world)
+            except inroom.NotPlaceable as err:
+                raise ReplayError("%s: %s" % (path, err)) from None
+            self.poses = inroom.poses([json.loads(d) for d in self.data], world, described.get("board", "pico"))
         self.duration_s = (self.times[-1] - self.times[0]) / 1e9
         self.clock_s = 0.0
         self.index = 0
         self._cached = (None, None)
 
     def describe(self):
-        return {**self.recorded, "source": "replay of %s" % self.recorded["source"]}
+        d = {**self.recorded, "source": "replay of %s" % self.recorded["source"]}
+        w = self.world
+        if w is not None:
+            d.update(world=w.name, walls=[list(x) for x in w.walls], finish=list(w.finish))
+        return d
 
     def seek(self, seconds):
         """Show the recording at `seconds` from its start (clamped to the recording)."""
@@ -127,5 +141,8 @@ class ReplaySource(Source):
         i, snap = self._cached
         if i != self.index:
             snap = json.loads(self.data[self.index])
+            if self.poses is not None:
+                x, y, yaw = self.poses[self.index]
+                snap["body"].update(x=x, y=y, yaw=yaw)
             self._cached = (self.index, snap)
         return snap
