@@ -38,7 +38,7 @@ from hexapod.turns import sweep_command
 from hexapod.walk import SERVO_SPEED, SPEED_MAX, STEP_MAX, STOPPED, YAW_RATE_MAX, Walker
 
 # The viper twins (docs/viper.md): the frame and the pose check compiled by the viper emitter where
-# MicroPython has one (hexapod/_tick_viper.py and _body_viper.py, proven equal to the plain _output_plain
+# MicroPython has one (hexapod/_tick_viper.py and _body_viper.py, proven equal to _output_plain
 # and Body.settled by tests/test_tick_viper.py); CPython and CircuitPython run the plain code.
 _output_fast = _settled_fast = None
 if sys.implementation.name == "micropython":
