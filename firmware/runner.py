@@ -16,9 +16,22 @@ State for a reply or the status line: runner.follower.mode_name, .used, .distanc
 .distance, .angle, .error, .output, .front, .faults, .fault_total, .reason_name.
 """
 
+from micropython import const
+
 from hexapod import battery as batteries
 from hexapod import faultlog as faultlogs
 from hexapod import follow, limits, sensors, tick
+
+# The names step() reads every frame, copied as private constants: folded into the code, where an
+# imported module's name is two dictionary lookups a frame (tests/test_viper_twins.py checks each
+# copy against its source).
+_SONAR_OK = const(0)  # hexapod.sensors.OK
+_SONAR_WAIT = const(5)  # hexapod.sensors.WAIT
+_SONAR_FAULT = const(3)  # hexapod.faultlog.SONAR
+_SAMPLE_FRAMES = const(10)  # hexapod.battery.SAMPLE_FRAMES
+_CUTOFF = const(2)  # hexapod.battery.CUTOFF
+_RELAXED = const(0)  # hexapod.tick.RELAXED
+_STANDING = const(3)  # hexapod.tick.STANDING
 
 FRAME_MS = 20
 FRAME_US = 20000
@@ -166,31 +179,36 @@ class Runner:
         b = self.battery
         if b is not None:
             self._battery_n += 1
-            if self._battery_n >= batteries.SAMPLE_FRAMES:
+            if self._battery_n >= _SAMPLE_FRAMES:
                 self._battery_n = 0
                 self._battery_changed(b.update(self.adc.read_u16()))
-            if b.state == batteries.CUTOFF and self.robot.mode != tick.RELAXED:
+            if b.state == _CUTOFF and self.robot.mode != _RELAXED:
                 self._shut_down()
         i = self.sonars.frame(now)
         if i >= 0:  # the fault log takes a sonar's fault when it starts (after an OK reading)
             st = self.sonar_status[i]
-            if st == sensors.OK:
+            if st == _SONAR_OK:
                 self._sonar_bad[i] = False
-            elif st != sensors.WAIT and not self._sonar_bad[i]:
+            elif st != _SONAR_WAIT and not self._sonar_bad[i]:
                 self._sonar_bad[i] = True
-                self.faultlog.record(faultlogs.SONAR, i, self.frames)
+                self.faultlog.record(_SONAR_FAULT, i, self.frames)
         others = self.others
         if others:  # none on the shipped boards: the frame pays one test for the hook
             for k in range(len(others)):
                 others[k].frame(now)
+        robot = self.robot
         if self.follower.mode:
             self.follower.update(now, i, self.distances, self.sonar_status)
-        elif self._start is not None and self.robot.mode == tick.STANDING:
+        elif self._start is not None and robot.mode == _STANDING:
             s = self._start
             self._start = None
             self.follow(s["side"], s["setpoint"], s.get("speed"), s.get("form", "yaw"))
-        code = self.robot.tick(now)
-        self._watch_bank()
+        code = robot.tick(now)
+        bank = self.bank
+        # The bank's counters asked here, the log's bookkeeping called only when one moved or the
+        # bus was bad last frame (a call a frame cost ~60 us on the emulated Pico).
+        if bank.failed_frames != self._bus_failed or self._bus_bad or bank.reinits != self._reinits:
+            self._watch_bank()
         self.frames += 1
         if code:
             self.held += 1
@@ -291,6 +309,10 @@ class Runner:
     def run(self, frames=-1, status_every=0):
         """Run frames (forever when -1), each on its 20 ms boundary; print status_line every
         status_every frames (0: never)."""
+        # The frames count from now, not from when the runner was built: else the first wait finds
+        # itself a whole period late and the second frame starts at once, while the first frame's
+        # bursts are still on the bus (it then waited ~1.4 ms for them on the emulated Pico).
+        self.next_us = self.clock.ticks_us()
         n = 0
         while frames < 0 or n < frames:
             self.step()

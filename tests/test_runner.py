@@ -43,3 +43,11 @@ def test_a_steady_frame_allocates_nothing(mp):
 def test_esp32_board_builds_and_runs(rt):
     # standing after the stand-up move
     assert rt.with_heapsize("4m").call("scenarios.runner:board_runs", "esp32_devkit", 120) == (120, 0, 0, 0, [], 3)
+
+
+def test_run_counts_its_frames_from_its_own_start(both_runtimes):
+    # Built, then 100 ms of boot before run(): the frames still start 20 ms apart from run's call.
+    # (Counted from the build, the first wait found itself late and the second frame came at
+    # once, while the first frame's bursts were still on the bus.)
+    starts = run_both(both_runtimes, "scenarios.runner:run_frame_starts", 100, 4)
+    assert starts == [0, 20000, 40000, 60000], starts

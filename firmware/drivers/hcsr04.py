@@ -135,18 +135,16 @@ class MedianRanger:
     def _record(self, s, dist, status, i):
         if s == _WAIT:
             return s
+        status[i] = s
         win = self._win
+        if len(win) == 1:  # one sample is its own median: no window to keep (~25 us a ping on a Pico)
+            dist[i] = self.distance if s == _OK else _NO_DISTANCE
+            return s
         win[self._head] = self.distance if s == _OK else _NO_DISTANCE
         self._head += 1
         if self._head == len(win):
             self._head = 0
-        status[i] = s
-        if s != _OK:
-            dist[i] = _NO_DISTANCE
-        elif len(win) == 1:
-            dist[i] = self.distance  # one sample: its own median (a call less: 0.15 ms on a Pico)
-        else:
-            dist[i] = self._median()
+        dist[i] = self._median() if s == _OK else _NO_DISTANCE
         return s
 
     def _median(self):
@@ -211,29 +209,28 @@ class HCSR04(MedianRanger):
         # (time_pulse_us blocks that long; with the IRQ the next tick collects it: it must fit a tick)
         return 2 + TRIGGER_US + 2 * self.timeout_us
 
-    def _fire(self):
+    def fire(self):
+        """Trigger a ping and return at once: PENDING (the IRQ listens), or WAIT / STUCK, which
+        collect_into() reports (irq=True; ping() fires through it too)."""
         clock = self._clock
         now = clock.ticks_us()
         if self._fired and clock.ticks_diff(now, self._last) < MIN_CYCLE_US:
-            return _WAIT
-        self._edges[0] = 0
-        if self._echo.value():
-            return _STUCK
-        t = self._trigger
-        t.value(0)
-        clock.sleep_us(2)
-        t.value(1)
-        clock.sleep_us(TRIGGER_US)
-        t.value(0)
-        self._last = now
-        self._fired = True
-        return _PENDING
-
-    def fire(self):
-        """Trigger a ping and return at once: PENDING (the IRQ listens), or WAIT / STUCK, which
-        collect_into() reports (irq=True only)."""
-        s = self._fire()
-        self._t0 = self._clock.ticks_us()
+            s = _WAIT
+        else:
+            self._edges[0] = 0
+            if self._echo.value():
+                s = _STUCK
+            else:
+                t = self._trigger
+                t.value(0)
+                clock.sleep_us(2)
+                t.value(1)
+                clock.sleep_us(TRIGGER_US)
+                t.value(0)
+                self._last = now
+                self._fired = True
+                s = _PENDING
+        self._t0 = clock.ticks_us()  # the rise timeout counts from the trigger's fall
         self._state = s
         return s
 
@@ -257,7 +254,7 @@ class HCSR04(MedianRanger):
         us = clock.ticks_diff(e[2], e[1])
         if us >= to:
             return _OUT_OF_RANGE
-        return self.accept(self.to_distance(us))
+        return self.accept((us * self._k + _HALF) >> _SHIFT)  # to_distance(us), a call less
 
     def _wait_result(self):
         s = self.result()
@@ -270,15 +267,18 @@ class HCSR04(MedianRanger):
     def collect_into(self, dist, status, i):
         """The ping fire() sent, into status[i] and dist[i] as measure_into(); waits for the rest
         of the echo only when called sooner than max_block_us after fire(). Returns the status."""
-        return self._record(self._wait_result(), dist, status, i)
+        s = self.result()
+        if s == _PENDING:  # only when asked early: _wait_result's wait (a call less in the loop's frame)
+            s = self._wait_result()
+        self._state = _WAIT  # reported once
+        return self._record(s, dist, status, i)
 
     def ping(self):
         """Fire one ping and wait for it; return a status code, and with OK the distance in
         self.distance (0.1 mm)."""
+        s = self.fire()
         if self.split:
-            self.fire()
             return self._wait_result()
-        s = self._fire()
         if s != _PENDING:
             return s
         us = self._pulse(self._echo, 1, self.timeout_us)

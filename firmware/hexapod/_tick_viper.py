@@ -1,4 +1,4 @@
-"""hexapod.tick.Robot._output's frame (body pose -> six leg IKs -> joint limits -> 18 servo pulses)
+"""hexapod.tick.Robot._output_plain's frame (body pose -> six leg IKs -> joint limits -> 18 servo pulses)
 compiled by MicroPython's viper emitter: the same integer steps as the plain code, as machine code
 (docs/viper.md lists every viper twin). Imported by tick.py only on MicroPython, and only if the
 port has viper (CircuitPython has not).
@@ -26,7 +26,7 @@ _G_T3 = const(12)  # hexapod.leg.G_T3
 
 @micropython.viper
 def output(robot) -> int:
-    """The frame's angles and pulses, as Robot._output makes them: 0 when sent to robot.angles and
+    """The frame's angles and pulses, as Robot._output_plain makes them: 0 when sent to robot.angles and
     robot.pulses, 1 when something was refused (nothing copied: the caller runs the plain code)."""
     # ptr32 loads are unsigned on a 64-bit VM: (v ^ sb) - sb sign-extends there, and is v on a board.
     sb = 1

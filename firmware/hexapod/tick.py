@@ -38,7 +38,7 @@ from hexapod.turns import sweep_command
 from hexapod.walk import SERVO_SPEED, SPEED_MAX, STEP_MAX, STOPPED, YAW_RATE_MAX, Walker
 
 # The viper twins (docs/viper.md): the frame and the pose check compiled by the viper emitter where
-# MicroPython has one (hexapod/_tick_viper.py and _body_viper.py, proven equal to the plain _output
+# MicroPython has one (hexapod/_tick_viper.py and _body_viper.py, proven equal to _output_plain
 # and Body.settled by tests/test_tick_viper.py); CPython and CircuitPython run the plain code.
 _output_fast = _settled_fast = None
 if sys.implementation.name == "micropython":
@@ -233,20 +233,8 @@ class Robot:
     def tick(self, now_ms):
         """One 20 ms frame at loop time now_ms; returns OK or the reason the frame was held.
         A configure under way (wait=False) then takes JOB_STEPS of its IK solves."""
-        code = self._frame(now_ms)
-        if self._job is not None:
-            self._work(JOB_STEPS)
-        return code
-
-    def _work(self, n):
-        job = self._job
-        for _ in range(n):
-            next(job)
-            self.job_steps += 1
-            if self._job is None:
-                return
-
-    def _frame(self, now_ms):
+        # One function for the frame on purpose: each call a tick makes costs ~15-25 us on a
+        # Pico (the frame split in three calls took ~60 us of it: hexapod pico bench frame).
         if self._timed:
             d = (now_ms - self._last_ms) & _WRAP
             if d > TICK_MS:
@@ -262,31 +250,40 @@ class Robot:
             for k in range(18):
                 p[k] = 0
             self.frame.write_frame(p)
-            self.reason = OK
-            return OK
-        if m == JOG:
+            code = self.reason = OK
+        elif m == JOG:
             self.frame.write_frame(self.pulses)
-            self.reason = OK
-            return OK
-        if m == MOVING:
-            if self.wake < WAKE_FRAMES:
-                self.wake += 1  # the first pose held while the leg groups come on
-            elif not self.posture.step(self.walker):
-                self.mode = self.after
-        elif m == STANDING or m == WALKING:  # noqa: SIM109 (a tuple test may allocate)
-            # A settled pose makes slew() a no-op (its frame is a heap one).
-            if not _settled(self.body):
-                self.body.slew()
-            if m == WALKING and self.walker.update() == STOPPED:
-                self.mode = STANDING
-        return self._output()
+            code = self.reason = OK
+        else:
+            if m == MOVING:
+                if self.wake < WAKE_FRAMES:
+                    self.wake += 1  # the first pose held while the leg groups come on
+                elif not self.posture.step(self.walker):
+                    self.mode = self.after
+            elif m == STANDING or m == WALKING:  # noqa: SIM109 (a tuple test may allocate)
+                # A settled pose makes slew() a no-op (its frame is a heap one).
+                if not _settled(self.body):
+                    self.body.slew()
+                if m == WALKING and self.walker.update() == STOPPED:
+                    self.mode = STANDING
+            if _output_fast is not None and not _output_fast(self):
+                if self.wake < WAKE_FRAMES:
+                    self._asleep()
+                self.frame.write_frame(self.pulses)
+                code = self.reason = OK
+            else:
+                code = self._output_plain()
+        if self._job is not None:
+            self._work(JOB_STEPS)
+        return code
 
-    def _output(self):
-        if _output_fast is not None and not _output_fast(self):
-            self._send()
-            self.reason = OK
-            return OK
-        return self._output_plain()
+    def _work(self, n):
+        job = self._job
+        for _ in range(n):
+            next(job)
+            self.job_steps += 1
+            if self._job is None:
+                return
 
     def _output_plain(self):
         w = self.walker
@@ -307,18 +304,18 @@ class Robot:
         for k in range(18):
             self.angles[k] = a[k]
             self.pulses[k] = p[k]
-        self._send()
+        if self.wake < WAKE_FRAMES:
+            self._asleep()
+        self.frame.write_frame(self.pulses)
         self.reason = OK
         return OK
 
-    def _send(self):
-        """The frame to the sink; while waking, the leg groups not yet on get no pulse."""
-        if self.wake < WAKE_FRAMES:
-            p = self.pulses
-            for k in range(18):
-                if WAKE_GROUP[k // 3] * WAKE_STAGGER >= self.wake:
-                    p[k] = 0
-        self.frame.write_frame(self.pulses)
+    def _asleep(self):
+        """While waking (the soft start), the leg groups not yet on get no pulse."""
+        p = self.pulses
+        for k in range(18):
+            if WAKE_GROUP[k // 3] * WAKE_STAGGER >= self.wake:
+                p[k] = 0
 
     def _fault(self, reason, leg, code, excess):
         self.faults += 1

@@ -18,16 +18,17 @@ class Solves:
         self.on = True
         for leg in robot.geometry.legs:
             leg.ik = self._counted(leg.ik)
-        frame = robot._frame
+        frame = robot._output_plain
 
-        def quiet(now_ms):
-            # The frame's own six solves (CPython's plain output calls leg.ik) are not the configure's.
+        def quiet():
+            # The frame's own six solves (the plain output calls leg.ik; the viper one solves apart)
+            # are not the configure's.
             self.on = False
-            code = frame(now_ms)
+            code = frame()
             self.on = True
             return code
 
-        robot._frame = quiet
+        robot._output_plain = quiet
 
     def _counted(self, inner):
         def ik(x, y, z, out, i=0):

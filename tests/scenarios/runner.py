@@ -172,3 +172,23 @@ def irq_sonar(frames):
         blocked = max(blocked, clock.now_us() - t0)
         r.wait()
     return (r.sonars.ring.split, blocked, r.distances)
+
+
+def run_frame_starts(idle_ms, frames):
+    """Runner.run(frames) idle_ms after main.build (a boot's remaining work): each frame's start
+    (us on the virtual clock, from run's call) and each frame's bursts' time, as the chips saw them."""
+    loop = Loop()
+    loop.plug(0x40, 0x41)
+    r = loop.build()
+    clock.advance_us(idle_ms * 1000)
+    starts = []
+    step = r.step
+
+    def timed_step():
+        starts.append(clock.now_us())
+        return step()
+
+    r.step = timed_step
+    t0 = clock.now_us()
+    r.run(frames)
+    return [t - t0 for t in starts]

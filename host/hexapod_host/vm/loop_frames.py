@@ -113,6 +113,7 @@ def loop(r, frames, con=None):
     pending = PENDING
     t_first = clock.ticks_us()
     driving = SCENARIO == "drive"
+    r.next_us = t_first  # as Runner.run: the frames count from the loop's start
     for n in range(frames):
         busy = r.robot._job is not None  # (read before the frame's clock starts: not the frame's time)
         t0 = clock.ticks_us()
