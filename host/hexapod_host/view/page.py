@@ -29,6 +29,17 @@ COLOURS = {
 # support.NEAR_MM of an edge, outside, fewer than three feet down.
 SUPPORT_COLOURS = {"ok": "#2ca02c", "near": "#ff9800", "out": "#d62728", "none": "#d62728"}
 SUPPORT_RADIUS = 0.003
+# The plots: title, then each series' name and its player.COLUMNS column. Every source gets the
+# same plots; a value it does not have is a gap in the line and "-" in the title.
+PLOTS = (
+    ("side distance (mm)", (("front", "front_mm"), ("rear", "rear_mm"), ("set point", "setpoint_mm"))),
+    ("PID", (("error (mm)", "error_mm"), ("output (deg/s)", "output_dps"))),
+    ("walking speed (mm/s)", (("asked", "asked_mm_s"), ("body", "body_mm_s"))),
+    ("battery (V)", (("battery", "battery_v"),)),
+    ("frames per second (host clock)", (("frames/s", "frames_per_s"),)),
+    ("loop counters", tuple((k, k) for k in player_mod.COUNTERS)),
+)
+COLUMN = {name: k for k, name in enumerate(player_mod.COLUMNS)}
 LINK_RADIUS = 0.006
 BEAM_RADIUS = 0.004
 CAMERA_BACK = (-0.55, -0.45, 0.45)  # the follow camera's place from the body centre, m (world axes)
@@ -72,9 +83,9 @@ class View:
                 self.jog = _jog_panel(driver)
                 self.table = ui.label().style("white-space: pre; font-family: monospace").props("id=readings")
         self._replay_timeline()
+        self.live = ui.label().props("id=live").classes("font-mono text-sm")
         with ui.row().classes("w-full"):
-            self.dist_plot = self._plot("side distance (mm)", ["front", "rear", "set point"])
-            self.pid_plot = self._plot("PID", ["error (mm)", "output (deg/s)"])
+            self.plots = [(self._plot(title, [n for n, _ in series]), title, series) for title, series in PLOTS]
         self.drawn = 0
         self._follow_player()
         ui.timer(PLOT_DRAW_S, self.draw_plots)
@@ -137,7 +148,7 @@ class View:
         series = [{"name": n, "type": "line", "showSymbol": False, "data": []} for n in names]
         return ui.echart(
             {
-                "title": {"text": title, "textStyle": {"fontSize": 12}},
+                "title": {"text": title, "left": 0, "textStyle": {"fontSize": 12}},
                 "legend": {"top": 0, "right": 0},
                 "animation": False,
                 "xAxis": {"type": "value", "name": "s", "scale": True},
@@ -231,11 +242,30 @@ class View:
         self._readings(self.player.snap)
         h = list(self.player.history)
         t = [row[0] for row in h]
-        for chart, cols in ((self.dist_plot, (1, 2, 3)), (self.pid_plot, (4, 5))):
+        for chart, title, series in self.plots:
+            cols = [COLUMN[c] for _, c in series]
             # Straight to the chart (ECharts merges series by index): assigning into chart.options
             # wraps every point in NiceGUI's observable lists, 5-90 ms a redraw here.
-            series = [{"data": [[ti, row[c]] for ti, row in zip(t, h, strict=True)]} for c in cols]
-            chart.run_chart_method("setOption", {"series": series})
+            data = [{"data": [[ti, row[c]] for ti, row in zip(t, h, strict=True)]} for c in cols]
+            # The newest values in the title: "-" where the source has none (never a made-up 0).
+            now = "  ".join(_value(h[-1][c] if h else None) for c in cols)
+            chart.run_chart_method("setOption", {"title": {"text": "%s: %s" % (title, now)}, "series": data})
+        self.live.set_text(live_text(h[-1] if h else None))
+
+
+def _value(v):
+    return "-" if v is None else "%g" % v
+
+
+def live_text(row):
+    """The newest history row (player.COLUMNS) as one line, "-" for what the source lacks."""
+    row = row or (None,) * len(player_mod.COLUMNS)
+    v = dict(zip(player_mod.COLUMNS, map(_value, row), strict=True))
+    return (
+        "speed asked %(asked_mm_s)s mm/s, body %(body_mm_s)s mm/s  battery %(battery_v)s V  "
+        "frames/s %(frames_per_s)s  overruns %(overruns)s  held %(held)s  bus_failed %(bus_failed)s  "
+        "sonar_faults %(sonar_faults)s" % v
+    )
 
 
 def _jog_panel(driver):
