@@ -69,10 +69,10 @@ def test_a_disconnected_pad_stops():
 def test_a_pad_whose_reports_stop_is_let_go():
     src, d = driving()
     d.gamepad("t", pad(ly=-1.0))
-    for _ in range(PAD_STALE):  # 4 renewals (1 s) with no report: still renewed
+    for _ in range(PAD_STALE):  # 12 renewals (3 s) with no report: still renewed
         d.renew()
     assert src.lines == ["walk 80 0 0"] * (1 + PAD_STALE)
-    d.renew()  # the fifth: the page went quiet, stop
+    d.renew()  # the 13th: the page went quiet, stop
     assert src.lines[-1] == "stop" and not d.held()
     d.renew()
     assert src.lines[-1] == "stop" and len(src.lines) == PAD_STALE + 2

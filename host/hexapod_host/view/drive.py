@@ -37,7 +37,7 @@ BUTTONS = ("stand", "sit", "relax", "stop", "wall off")
 # The gamepad (the browser's Gamepad API, standard mapping): left stick forward/back and strafe,
 # right stick's x or the triggers (LT left, RT right) turn, the east face button (B, circle) stops.
 PAD_DEADZONE = 0.15  # a stick within this of centre is centred (worn sticks rest off zero)
-PAD_STALE = 4  # renewals (RENEW_S apart) with no report from an off-centre pad: the page went quiet, let go
+PAD_STALE = 12  # renewals (RENEW_S apart: 3 s) with no report from an off-centre pad: the page went quiet
 WALL_CM = (4.0, 50.0)  # the console's set point range
 
 

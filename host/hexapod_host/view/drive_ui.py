@@ -19,7 +19,8 @@ PAD_JS = """<script>
   let last = "", sent = 0;
   const r = (v) => Math.round((v || 0) * 50) / 50;
   setInterval(() => {
-    if (typeof emitEvent !== "function") return;
+    // Not before NiceGUI's app is mounted (emitEvent needs it: an error in the console otherwise).
+    if (typeof emitEvent !== "function" || typeof mounted_app === "undefined" || !mounted_app) return;
     const pads = navigator.getGamepads ? Array.from(navigator.getGamepads() || []) : [];
     const p = pads.find((g) => g && g.connected);
     let state = null;
