@@ -211,9 +211,12 @@ def test_the_stick_pushed_up_walks_and_let_go_stops(drive):
     n0, s0 = len(vb.commands(board.trace(), "walk")), len(vb.commands(board.trace(), "stop"))
     stick = driver.find_element(By.ID, "drive-stick")
     ActionChains(driver).move_to_element(stick).click_and_hold().move_by_offset(0, -60).perform()  # up, to the rim
-    assert vb.wait_for(lambda: len(vb.commands(board.trace(), "walk")) > n0, timeout=30), "the stick sent no walk"
-    words = vb.commands(board.trace(), "walk")[-1][2]
-    assert float(words[1]) > 60 and abs(float(words[3])) < 5, words  # forward, hardly turning
+    # The stick's first move can be its centre (`walk 0 0 0`, then the push): wait for the push.
+    assert vb.wait_for(
+        lambda: [c for c in vb.commands(board.trace(), "walk")[n0:] if float(c[2][1]) > 60], timeout=30
+    ), "the stick sent no forward walk: %s" % vb.commands(board.trace(), "walk")[n0:]
+    words = [c for c in vb.commands(board.trace(), "walk")[n0:] if float(c[2][1]) > 60][0][2]
+    assert abs(float(words[3])) < 5, words  # forward, hardly turning
     ActionChains(driver).release().perform()
     assert vb.wait_for(lambda: len(vb.commands(board.trace(), "stop")) > s0, timeout=30), "letting go sent no stop"
     assert vb.page_errors(driver) == []
@@ -237,3 +240,57 @@ def test_a_second_tab_is_view_only(drive):
         assert len(vb.commands(board.trace(), "walk")) == n0, "a view-only tab made the board walk"
         assert vb.page_errors(driver) == []
     assert "you drive" in text(driver, "drive-who")
+
+
+# A pretend gamepad in the page: navigator.getGamepads replaced by one that returns the test's pad
+# (standard mapping: axes 0-3 the sticks, 17 buttons), whose axes the test then moves.
+FAKE_PAD = """
+window.hexapodPad = {connected: true, id: "test pad", mapping: "standard", axes: [0, 0, 0, 0],
+                     buttons: Array.from({length: 17}, () => ({pressed: false, value: 0}))};
+Object.defineProperty(navigator, "getGamepads", {configurable: true, value: () => [window.hexapodPad]});
+"""
+NO_PAD = 'Object.defineProperty(navigator, "getGamepads", {configurable: true, value: () => [null, null]});'
+
+
+def test_a_gamepad_walks_while_off_centre_and_stops_centred_or_gone(drive):
+    driver, board, _ = drive
+    stand(driver, board)
+    try:
+        driver.execute_script(FAKE_PAD)
+        n0 = len(vb.commands(board.trace(), "walk"))
+        driver.execute_script("window.hexapodPad.axes = [0, -1, 0, 0]")  # left stick up, to the rim
+        assert vb.wait_for(lambda: len(vb.commands(board.trace(), "walk")) > n0, timeout=30), "the pad sent no walk"
+        fw, _, words = vb.commands(board.trace(), "walk")[n0]
+        assert words == ["walk", "80", "0", "0"]
+        # Held 10 s of the board's time, well past the server's PAD_STALE (12 renewals: 3 s, 5-6 s
+        # at load 15): the page's reports while off-centre keep the pad held (no stop until it is
+        # centred), and the walk is renewed.
+        frames_pass(board, 500)
+        s0 = len(vb.commands(board.trace(), "stop"))
+        early = [c for c in vb.commands(board.trace(), "stop") if c[0] > fw]
+        assert not early, "stopped at frame %d while the pad was held (walk at %d)" % (early[0][0], fw)
+        driver.execute_script("window.hexapodPad.axes = [0, 0.05, 0, 0]")  # let go: back within the dead zone
+        assert vb.wait_for(lambda: len(vb.commands(board.trace(), "stop")) > s0, timeout=30), "centred sent no stop"
+        fs = vb.commands(board.trace(), "stop")[s0][0]
+        frames_pass(board, SETTLE_FRAMES + 10)
+        ev = board.trace()
+        renewals = [c for c in vb.commands(ev, "walk")[n0:] if c[0] < fs]
+        assert len(renewals) >= 4 and all(c[2] == ["walk", "80", "0", "0"] for c in renewals), renewals
+        assert any(m[1] == WALKING and m[2:] == (800, 0, 0) for m in modes(ev, fw) if m[0] < fs)  # 0.1 mm/s
+        zero = next(m[0] for m in modes(ev, fs) if m[2:] == (0, 0, 0))
+        assert zero - fs <= STOP_FRAMES
+        assert not [c for c in vb.commands(ev, "walk") if c[0] > fs], "a walk after the pad was centred"
+
+        # The right stick turns; then the pad disconnects while held: stop.
+        n1, s1 = len(vb.commands(ev, "walk")), len(vb.commands(ev, "stop"))
+        driver.execute_script("window.hexapodPad.axes = [0, 0, 1, 0]")
+        assert vb.wait_for(lambda: len(vb.commands(board.trace(), "walk")) > n1, timeout=30), "the turn sent no walk"
+        assert vb.commands(board.trace(), "walk")[n1][2] == ["walk", "0", "0", "-20"]  # right turns right
+        driver.execute_script(NO_PAD)
+        assert vb.wait_for(lambda: len(vb.commands(board.trace(), "stop")) > s1, timeout=30), "gone sent no stop"
+        fg = vb.commands(board.trace(), "stop")[s1][0]
+        frames_pass(board, 50)
+        assert not [c for c in vb.commands(board.trace(), "walk") if c[0] > fg], "a walk after the pad was gone"
+        assert vb.page_errors(driver) == []
+    finally:
+        driver.execute_script(NO_PAD)

@@ -8,6 +8,36 @@ from hexapod import gait
 from hexapod_host.view.drive import RENEW_S, WALL_CM, NotOwner
 
 REFRESH_S = 0.25  # the panel's text and who-drives, this often
+PAD_POLL_MS = 50  # the page reads the gamepad this often (the Gamepad API has no move events)
+# The page's side of the gamepad: the first connected pad of navigator.getGamepads() (standard
+# mapping: axes 0-3 the sticks, button 1 the east face button, 6 and 7 the triggers), rounded to
+# 0.02, reported to the server (Driver.gamepad) when it changes and every RENEW_S while a stick
+# or trigger is off its rest (the server's deadman lets go of a pad whose reports stop); null when
+# there is none. The mapping to a walk is the server's (drive._pad_velocity).
+PAD_JS = """<script>
+(() => {
+  let last = "", sent = 0;
+  const r = (v) => Math.round((v || 0) * 50) / 50;
+  setInterval(() => {
+    // Not before NiceGUI's app is mounted (emitEvent needs it: an error in the console otherwise).
+    if (typeof emitEvent !== "function" || typeof mounted_app === "undefined" || !mounted_app) return;
+    const pads = navigator.getGamepads ? Array.from(navigator.getGamepads() || []) : [];
+    const p = pads.find((g) => g && g.connected);
+    let state = null;
+    if (p) {
+      const b = (k) => (p.buttons[k] ? r(p.buttons[k].value || (p.buttons[k].pressed ? 1 : 0)) : 0);
+      state = {axes: [0, 1, 2, 3].map((k) => r(p.axes[k])), lt: b(6), rt: b(7), stop: b(1)};
+    }
+    const text = JSON.stringify(state), now = performance.now();
+    const off = state && (state.axes.some((v) => Math.abs(v) > 0.1) || state.lt > 0.1 || state.rt > 0.1);
+    if (text !== last || (off && now - sent >= %d)) {
+      last = text;
+      sent = now;
+      emitEvent("hexapod_pad", state);
+    }
+  }, %d);
+})();
+</script>""" % (RENEW_S * 1000, PAD_POLL_MS)
 
 
 def _key_name(code):
@@ -46,7 +76,10 @@ class DrivePanel:
                 on = ui.button("follow wall", on_click=lambda: self._do(driver.wall, self.side.value, self.cm.value))
                 off = ui.button("wall off", on_click=lambda: self._do(driver.wall, None, None))
                 self.widgets += [self.side, self.cm, on.props("id=drive-wall"), off.props("id=drive-wall-off")]
-            ui.label("keys: W/S forward/back, A/D strafe, Q/E turn, space stops; or the stick").classes("text-xs")
+            ui.label(
+                "keys: W/S forward/back, A/D strafe, Q/E turn, space stops; or the stick; or a gamepad "
+                "(left stick walks, right stick or triggers turn, B stops)"
+            ).classes("text-xs")
             self.stick = (
                 ui.joystick(
                     color="#e07b00",
@@ -67,6 +100,8 @@ class DrivePanel:
         # A key held while the window loses focus never sends its keyup: let go of it then.
         ui.add_body_html('<script>window.addEventListener("blur", () => emitEvent("hexapod_blur"));</script>')
         ui.on("hexapod_blur", lambda: self.driver.owner == client.id and self._do(driver.let_go))
+        ui.add_body_html(PAD_JS)
+        ui.on("hexapod_pad", lambda e: self.driver.owner == client.id and self._pad(e.args))
         ui.timer(RENEW_S, self._renew)
         ui.timer(REFRESH_S, self.refresh)
         client.on_disconnect(lambda: driver.release(client.id))
@@ -82,6 +117,14 @@ class DrivePanel:
         except (NotOwner, ValueError) as e:
             self.error = str(e)
         self.refresh()
+
+    def _pad(self, state):
+        """A gamepad report: no blur (unlike a click), it comes 4 times a second while held."""
+        try:
+            self.driver.gamepad(self.client.id, state)
+            self.error = ""
+        except (NotOwner, ValueError) as e:
+            self.error = str(e)
 
     def _key(self, e):
         name = _key_name(e.key.code)

@@ -10,6 +10,7 @@ from hexapod_host.view import player as player_mod
 from hexapod_host.view.drive import Driver
 from hexapod_host.view.drive_ui import DrivePanel
 from hexapod_host.view.scene import geometry, segment_pose
+from hexapod_host.view.support import support
 
 PLOT_DRAW_S = 0.25
 COLOURS = {
@@ -24,6 +25,21 @@ COLOURS = {
     "trail": "#1f77b4",
     "bracket": "#404040",
 }
+# The support polygon and the centre of mass by support.support's state: well inside, within
+# support.NEAR_MM of an edge, outside, fewer than three feet down.
+SUPPORT_COLOURS = {"ok": "#2ca02c", "near": "#ff9800", "out": "#d62728", "none": "#d62728"}
+SUPPORT_RADIUS = 0.003
+# The plots: title, then each series' name and its player.COLUMNS column. Every source gets the
+# same plots; a value it does not have is a gap in the line and "-" in the title.
+PLOTS = (
+    ("side distance (mm)", (("front", "front_mm"), ("rear", "rear_mm"), ("set point", "setpoint_mm"))),
+    ("PID", (("error (mm)", "error_mm"), ("output (deg/s)", "output_dps"))),
+    ("walking speed (mm/s)", (("asked", "asked_mm_s"), ("body", "body_mm_s"))),
+    ("battery (V)", (("battery", "battery_v"),)),
+    ("frames per second (host clock)", (("frames/s", "frames_per_s"),)),
+    ("loop counters", tuple((k, k) for k in player_mod.COUNTERS)),
+)
+COLUMN = {name: k for k, name in enumerate(player_mod.COLUMNS)}
 LINK_RADIUS = 0.006
 BEAM_RADIUS = 0.004
 CAMERA_BACK = (-0.55, -0.45, 0.45)  # the follow camera's place from the body centre, m (world axes)
@@ -67,9 +83,9 @@ class View:
                 self.jog = _jog_panel(driver)
                 self.table = ui.label().style("white-space: pre; font-family: monospace").props("id=readings")
         self._replay_timeline()
+        self.live = ui.label().props("id=live").classes("font-mono text-sm")
         with ui.row().classes("w-full"):
-            self.dist_plot = self._plot("side distance (mm)", ["front", "rear", "set point"])
-            self.pid_plot = self._plot("PID", ["error (mm)", "output (deg/s)"])
+            self.plots = [(self._plot(title, [n for n, _ in series]), title, series) for title, series in PLOTS]
         self.drawn = 0
         self._follow_player()
         ui.timer(PLOT_DRAW_S, self.draw_plots)
@@ -111,6 +127,10 @@ class View:
             self.brackets = [scene.cylinder(0.004, 0.004, 1.0).material(COLOURS["bracket"]) for _ in d["brackets"]]
             self.feet = [scene.sphere(0.012).material(COLOURS["stance"]) for _ in range(6)]
             self.beams = [scene.cylinder(BEAM_RADIUS, BEAM_RADIUS, 1.0).material(COLOURS["ok"], 0.8) for _ in range(5)]
+            self.support_edges = [scene.cylinder(SUPPORT_RADIUS, SUPPORT_RADIUS, 1.0) for _ in range(6)]
+            self.com_ground = scene.cylinder(0.014, 0.014, 0.002).rotate(math.pi / 2, 0, 0)  # a flat disc
+            self.com_plumb = scene.cylinder(0.0015, 0.0015, 1.0)  # from the centre of mass down
+            self.com = scene.sphere(0.008)
             self.trail = scene.point_cloud([[0, 0, 0]], point_size=0.01).material(COLOURS["trail"])
             self.trail_n = 0
 
@@ -128,7 +148,7 @@ class View:
         series = [{"name": n, "type": "line", "showSymbol": False, "data": []} for n in names]
         return ui.echart(
             {
-                "title": {"text": title, "textStyle": {"fontSize": 12}},
+                "title": {"text": title, "left": 0, "textStyle": {"fontSize": 12}},
                 "legend": {"top": 0, "right": 0},
                 "animation": False,
                 "xAxis": {"type": "value", "name": "s", "scale": True},
@@ -157,6 +177,7 @@ class View:
         for obj, beam in zip(self.beams, g["beams"], strict=True):
             _place(obj, beam["start"], beam["end"])
             obj.material(COLOURS[beam["state"]], 0.8)
+        self._draw_support(g["support"])
         if len(p.trail) != self.trail_n:
             self.trail_n = len(p.trail)
             self.trail.set_points([[x / 1000, y / 1000, 0.002] for x, y in p.trail])
@@ -164,6 +185,23 @@ class View:
             cx, cy, _ = _m(b["centre"])
             dx, dy, dz = CAMERA_BACK
             self.scene.move_camera(round(cx + dx, DIGITS), round(cy + dy, DIGITS), dz, cx, cy, 0.0, duration=0)
+
+    def _draw_support(self, sup):
+        """The stance feet's polygon on the ground (edges 1 mm up, over the grid) and the centre of
+        mass with its plumb line down to the ground, coloured by how far inside it is."""
+        colour = SUPPORT_COLOURS[sup["state"]]
+        poly = [[x, y, 1.0] for x, y, _ in sup["polygon"]]
+        n = len(poly) if len(poly) >= 3 else 0
+        for k, edge in enumerate(self.support_edges):
+            if k < n:
+                _place(edge, poly[k], poly[(k + 1) % n])
+                edge.material(colour)
+            edge.visible(k < n)
+        down = sup["com_ground"][:2] + [1.0]
+        self.com_ground.move(*_m(down)).material(colour)
+        self.com.move(*_m(sup["com"])).material(colour)
+        _place(self.com_plumb, sup["com"], down)
+        self.com_plumb.material(colour)
 
     def _status(self, s):
         f, x = s["follow"], s.get("extra", {})
@@ -189,6 +227,11 @@ class View:
             lines.append("%-5s %6.1f %6.1f %6.1f" % (name, a[0] / 100, a[1] / 100, a[2] / 100))
         lines.append("")
         lines.append("PID error %.1f mm  output %.1f deg/s" % (f["error_mm"], f["output_dps"]))
+        sup = support(s["legs"], s["stance"])
+        lines.append(
+            "feet down %d  support margin %s (%s)"
+            % (len(sup["polygon"]), "-" if sup["margin_mm"] is None else "%.1f mm" % sup["margin_mm"], sup["state"])
+        )
         if x.get("wall_mm") is not None:
             lines.append("true wall distance %.1f mm" % x["wall_mm"])
         lines.append(" ".join("%s %d" % kv for kv in s["counters"].items()))
@@ -199,11 +242,30 @@ class View:
         self._readings(self.player.snap)
         h = list(self.player.history)
         t = [row[0] for row in h]
-        for chart, cols in ((self.dist_plot, (1, 2, 3)), (self.pid_plot, (4, 5))):
+        for chart, title, series in self.plots:
+            cols = [COLUMN[c] for _, c in series]
             # Straight to the chart (ECharts merges series by index): assigning into chart.options
             # wraps every point in NiceGUI's observable lists, 5-90 ms a redraw here.
-            series = [{"data": [[ti, row[c]] for ti, row in zip(t, h, strict=True)]} for c in cols]
-            chart.run_chart_method("setOption", {"series": series})
+            data = [{"data": [[ti, row[c]] for ti, row in zip(t, h, strict=True)]} for c in cols]
+            # The newest values in the title: "-" where the source has none (never a made-up 0).
+            now = "  ".join(_value(h[-1][c] if h else None) for c in cols)
+            chart.run_chart_method("setOption", {"title": {"text": "%s: %s" % (title, now)}, "series": data})
+        self.live.set_text(live_text(h[-1] if h else None))
+
+
+def _value(v):
+    return "-" if v is None else "%g" % v
+
+
+def live_text(row):
+    """The newest history row (player.COLUMNS) as one line, "-" for what the source lacks."""
+    row = row or (None,) * len(player_mod.COLUMNS)
+    v = dict(zip(player_mod.COLUMNS, map(_value, row), strict=True))
+    return (
+        "speed asked %(asked_mm_s)s mm/s, body %(body_mm_s)s mm/s  battery %(battery_v)s V  "
+        "frames/s %(frames_per_s)s  overruns %(overruns)s  held %(held)s  bus_failed %(bus_failed)s  "
+        "sonar_faults %(sonar_faults)s" % v
+    )
 
 
 def _jog_panel(driver):

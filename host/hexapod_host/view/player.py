@@ -2,6 +2,7 @@
 the pages to draw; the page's buttons call start, pause, step and set_speed."""
 
 import asyncio
+import math
 import sys
 import time
 import traceback
@@ -12,12 +13,32 @@ SPEEDS = (0.25, 0.5, 1.0, 2.0, 4.0, 8.0)  # simulated seconds per real second
 MAX_FRAMES = 100  # frames one update may step: a slow machine falls behind instead of freezing the page
 PLOT_S = 20.0  # the plots keep this many seconds of updates (20 s of the source at 1x, 160 s at 8x)
 TRAIL_MM = 5.0  # a new trail point once the body is this far from the last one
+SPEED_S = 0.5  # the body's speed is its travel over this much of the source's time
+RATE_S = 1.0  # the frame rate is the frames counted over this much of the host's time
+COUNTERS = ("overruns", "held", "bus_failed", "sonar_faults")
+# One history row per snapshot published (None where the source has no such value: the page shows
+# "-"): time s; the followed side's front and rear readings, the set point, the PID's error (mm) and
+# output (deg/s); the walk asked (mm/s, the telemetry's vx vy) and the body's own speed (mm/s, a
+# source with a room); the battery (V); the source's frames per second of the host's clock; the
+# loop's counters.
+COLUMNS = (
+    "time_s",
+    "front_mm",
+    "rear_mm",
+    "setpoint_mm",
+    "error_mm",
+    "output_dps",
+    "asked_mm_s",
+    "body_mm_s",
+    "battery_v",
+    "frames_per_s",
+) + COUNTERS
 
 
 class Player:
     """One source, stepped by run() (an asyncio task) at `speed` while running."""
 
-    def __init__(self, source, speed=1.0, running=True, recorder=None):
+    def __init__(self, source, speed=1.0, running=True, recorder=None, clock=time.monotonic):
         self.source = source
         self.recorder = recorder  # record.Recorder: every snapshot published goes into it
         self.listeners = []  # called after each snapshot published (the tabs' redraws)
@@ -28,6 +49,9 @@ class Player:
         self.frames = 0  # frames stepped
         self.history = deque(maxlen=int(PLOT_S / UPDATE_S))
         self.trail = []
+        self.clock = clock  # the host's clock (s), for the frame rate; tests give their own
+        self._moves = deque()  # (time_s, x, y) of the body over the last SPEED_S
+        self._frames = deque()  # (host s, frame) over the last RATE_S
         self._due = 0.0  # frames owed to real time, fractional
         self._stopped = False
         self.publish()
@@ -45,9 +69,7 @@ class Player:
         """Run on; a finished trial gives way to the next one."""
         if self.done():
             self.source.restart()
-            self.trail, self._due = [], 0.0
-            self.history.clear()
-            self.publish()
+            self._start_over()
         self.running = True
 
     def pause(self):
@@ -65,8 +87,14 @@ class Player:
     def seek(self, seconds):
         """Jump to `seconds` into a source that can (a replay); the trail and plots start over."""
         self.source.seek(seconds)
+        self._start_over()
+
+    def _start_over(self):
+        """A new trial or a jump: the trail, the plots and the rates begin again."""
         self.trail, self._due = [], 0.0
         self.history.clear()
+        self._moves.clear()
+        self._frames.clear()
         self.publish()
 
     def _frame(self):
@@ -95,6 +123,9 @@ class Player:
             self.trail.append((b["x"], b["y"]))
         f = s["follow"]
         front, rear = (1, 2) if f["side"] != "right" else (3, 4)
+        x = s.get("extra", {})
+        walk, mv = x.get("walk"), x.get("battery_mv")
+        counters = s.get("counters", {})
         self.history.append(
             (
                 s["time_s"],
@@ -103,8 +134,40 @@ class Player:
                 f["setpoint_mm"] if f["mode"] != "off" else None,
                 f["error_mm"],
                 f["output_dps"],
+                None if walk is None else round(math.hypot(walk[0], walk[1]), 1),
+                self._body_speed(s) if "walls" in self.described else None,  # no room: no odometry
+                None if mv is None else mv / 1000,
+                self._frame_rate(s["frame"]),
+                *(counters.get(k) for k in COUNTERS),
             )
         )
+
+    def _body_speed(self, s):
+        """The body's travel (mm) over the last SPEED_S of the source's time, per second; None
+        until it has some time to measure over."""
+        b, t = s["body"], s["time_s"]
+        moves = self._moves
+        if moves and t < moves[-1][0]:  # the source's clock went back (a new trial)
+            moves.clear()
+        if not moves or t > moves[-1][0]:  # paused: the same time again, nothing new to measure
+            moves.append((t, b["x"], b["y"]))
+        while len(moves) > 2 and t - moves[1][0] >= SPEED_S:
+            moves.popleft()
+        t0, x0, y0 = moves[0]
+        t1, x1, y1 = moves[-1]
+        return round(math.hypot(x1 - x0, y1 - y0) / (t1 - t0), 1) if t1 > t0 else None
+
+    def _frame_rate(self, frame):
+        """The source's frames per second of the host's clock over the last RATE_S (the emulated
+        Pico runs slower than real time; the simulator at its speed); None until measurable."""
+        now, frames = self.clock(), self._frames
+        if frames and frame < frames[-1][1]:
+            frames.clear()
+        frames.append((now, frame))
+        while len(frames) > 2 and now - frames[1][0] >= RATE_S:
+            frames.popleft()
+        h0, f0 = frames[0]
+        return round((frame - f0) / (now - h0), 1) if now > h0 else None
 
     def _tell(self):
         """Each listener once; one that raises is dropped (a broken tab must not stop the source)."""

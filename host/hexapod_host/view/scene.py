@@ -3,6 +3,8 @@ it can be checked by hand. World frame: the room's x, y (mm), z up from the grou
 
 import math
 
+from hexapod_host.view.support import support
+
 NO_ECHO_MM = 150.0  # a beam with no reading is drawn this long, grey
 # hexapod.sensors.STATUS_NAMES drawn red: the names every source's snapshot carries (these were
 # drivers.hcsr04's prose names, which no snapshot holds: no beam was ever drawn red).
@@ -27,7 +29,8 @@ def beam_state(status):
 def geometry(described, snap):
     """World-frame geometry of one snapshot: the body (centre, yaw, half sizes), the sonar
     brackets and 18 links as [start, end] (coxa, femur, tibia of legs 1-6), 6 feet with their
-    stance flags, 5 beams (start, end, state, reading). mm and rad."""
+    stance flags, 5 beams (start, end, state, reading), the support polygon's corners and the
+    centre of mass, in the air and on the ground, with its margin (support.support). mm and rad."""
     body = snap["body"]
     links, feet = [], []
     for leg in snap["legs"]:
@@ -45,7 +48,14 @@ def geometry(described, snap):
     brackets = [
         [to_world(body, (x1, y1, 0.0)), to_world(body, (x2, y2, 0.0))] for x1, y1, x2, y2 in described["brackets"]
     ]
+    held = support(snap["legs"], snap["stance"])
     return {
+        "support": {
+            **held,
+            "polygon": [to_world(body, (x, y, 0.0))[:2] + [0.0] for x, y in held["polygon"]],
+            "com": to_world(body, held["com"]),
+            "com_ground": to_world(body, held["com"][:2] + [0.0])[:2] + [0.0],
+        },
         "brackets": brackets,
         "body": {"centre": [body["x"], body["y"], body["z"]], "yaw": body["yaw"], "half": described["body_half"]},
         "links": links,

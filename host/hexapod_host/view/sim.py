@@ -99,5 +99,8 @@ class SimSource(Source):
                 "why": t.why,
                 "wall_mm": t.wall_mm,
                 "path_mm": round(t.path, 1),
+                # the walk asked (the follower's), as the telemetry's vx vy yaw: mm/s, mm/s, deg/s
+                "walk": [rig.robot.asked_vx / 10, rig.robot.asked_vy / 10, rig.robot.asked_yaw / 100],
+                "battery_mv": None if runner.battery is None else runner.battery.level_mv,
             },
         }
