@@ -16,9 +16,12 @@ State for a reply or the status line: runner.follower.mode_name, .used, .distanc
 .distance, .angle, .error, .output, .front, .faults, .fault_total, .reason_name.
 """
 
-from hexapod import battery as batteries
+from hexapod import BOOT_ONLY, follow, limits, release, sensors, tick  # noqa: F401 (BOOT_ONLY, release: main.py's)
 from hexapod import faultlog as faultlogs
-from hexapod import follow, limits, sensors, tick
+
+# hexapod.battery, loaded by the first Runner handed a monitor (battery_module): a board without a
+# battery setting never loads it (room on a Feather's heap, time in a Pico's boot).
+batteries = None
 
 FRAME_MS = 20
 FRAME_US = 20000
@@ -84,6 +87,7 @@ class Runner:
         self._chip_errors = [c.errors for c in chips]
         self._chip_resets = [c.resets_seen for c in chips]
         if battery is not None:
+            battery_module()
             if adc is None or not hasattr(adc, "read_u16"):
                 raise ValueError("adc: a battery monitor needs an ADC with read_u16(), got %r" % (adc,))
             self._battery_changed(battery.update(adc.read_u16()))
@@ -312,26 +316,12 @@ class Runner:
             self.robot.go_limp()
 
 
-# What main.main and code.py's main release once the runner is built, with the robot's two files:
-# the board file's validator, the robot file's and the calibration file's checks, their helpers,
-# and what builds from the files as flashed without them (hexapod.wiring).
-BOOT_ONLY = ("hexapod.board", "hexapod.robotfile", "hexapod.robotcal", "hexapod.check", "hexapod.wiring")
-
-
-def release(*names):
-    """Forget boot-only modules (the board file's validator, the robot file once its geometry is
-    built) so the heap their code takes goes back to the loop (7-8 KB on a Pico); a later import
-    loads them again."""
-    import sys
-
-    if sys.implementation.name == "cpython":
-        return  # the host's tests share one process and hold these modules: nothing to win there
-    for name in names:
-        if name in sys.modules:
-            del sys.modules[name]
-            package, _, leaf = name.rpartition(".")
-            if package in sys.modules and hasattr(sys.modules[package], leaf):
-                delattr(sys.modules[package], leaf)
+def battery_module():
+    """hexapod.battery (loaded on the first call; after it, also runner.batteries)."""
+    global batteries
+    if batteries is None:
+        from hexapod import battery as batteries
+    return batteries
 
 
 def counters(r):
