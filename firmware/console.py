@@ -14,8 +14,9 @@ import sys
 
 from calstore import TRIM_MAX, Store
 from micropython import const
-from runner import BOOT_WORDS, battery_module, counters
+from runner import BOOT_WORDS, counters
 
+from hexapod import battery as batteries
 from hexapod import faultlog, follow, gait, limits, sensors, tick
 from hexapod.leg import describe as leg_describe
 from hexapod.units import format_fixed, parse_fixed
@@ -140,8 +141,7 @@ class Console:
         self._walking = False  # a console walk runs, expiring at _deadline (ticks_ms)
         self._deadline = 0
         self._held = False  # a held frame was announced (once, until frames are sent again)
-        # the battery state last announced (a notice at each change); hexapod.battery's OK at first
-        self._battery = None if runner.battery is None else battery_module().OK
+        self._battery = batteries.OK  # the battery state last announced (a notice at each change)
         self.lines = 0  # lines answered
         self._job = None  # a multi-line reply under way (selftest): step() once a frame, abort(), done
         self._job_tag = None  # its request's tag: each of its lines carries it
@@ -476,7 +476,6 @@ class Console:
     def battery_line(self):
         """The notice for a battery state change: never 'ok' or 'err'."""
         b = self.runner.battery
-        batteries = battery_module()
         v = batteries.volts
         if b.state == batteries.LOW:
             return "battery: low, %s V (below %s V for 1 s): walking capped at %d mm/s and %d deg/s; charge soon" % (
@@ -500,8 +499,8 @@ class Console:
         """ValueError naming the battery and its voltage while it is cut off: every command that
         would drive a servo (stand, sit, walk, wall, the jog) waits for a charged pack."""
         b = self.runner.battery
-        if b is not None and b.state == battery_module().CUTOFF:
-            v = battery_module().volts
+        if b is not None and b.state == batteries.CUTOFF:
+            v = batteries.volts
             raise ValueError(
                 "battery %s V, cut off below %s V (%d cells); charge it: allowed again after 1 s above %s V"
                 % (v(b.mv), v(b.cutoff_mv), b.cells, v(b.resume_mv))
@@ -550,7 +549,7 @@ class Console:
                 f.fault_total if on else 0,
                 self.cal_source,
                 BOOT_WORDS[r.boot],
-                "n/a" if r.battery is None else battery_module().STATE_NAMES[r.battery.state],
+                "n/a" if r.battery is None else batteries.STATE_NAMES[r.battery.state],
                 "n/a" if r.battery is None else r.battery.level_mv,
             )
         )

@@ -16,12 +16,11 @@ State for a reply or the status line: runner.follower.mode_name, .used, .distanc
 .distance, .angle, .error, .output, .front, .faults, .fault_total, .reason_name.
 """
 
-from hexapod import BOOT_ONLY, follow, limits, release, sensors, tick  # noqa: F401 (BOOT_ONLY, release: main.py's)
+from hexapod import battery as batteries
 from hexapod import faultlog as faultlogs
+from hexapod import follow, limits, sensors, tick
 
-# hexapod.battery, loaded by the first Runner handed a monitor (battery_module): a board without a
-# battery setting never loads it (room on a Feather's heap, time in a Pico's boot).
-batteries = None
+from hexapod import BOOT_ONLY, release  # noqa: F401, I001  # isort: skip (main.py's names; in hexapod for code.py)
 
 FRAME_MS = 20
 FRAME_US = 20000
@@ -87,7 +86,6 @@ class Runner:
         self._chip_errors = [c.errors for c in chips]
         self._chip_resets = [c.resets_seen for c in chips]
         if battery is not None:
-            battery_module()
             if adc is None or not hasattr(adc, "read_u16"):
                 raise ValueError("adc: a battery monitor needs an ADC with read_u16(), got %r" % (adc,))
             self._battery_changed(battery.update(adc.read_u16()))
@@ -314,14 +312,6 @@ class Runner:
         self.follower.off()
         if not hold:
             self.robot.go_limp()
-
-
-def battery_module():
-    """hexapod.battery (loaded on the first call; after it, also runner.batteries)."""
-    global batteries
-    if batteries is None:
-        from hexapod import battery as batteries
-    return batteries
 
 
 def counters(r):
