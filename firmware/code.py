@@ -9,24 +9,9 @@ standing (hexapod.follow). Edit BOARD and ROBOT to match yours (files in boards/
 Needs adafruit_pca9685, adafruit_bus_device and adafruit_register in lib/ (docs/wiring.md).
 """
 
-# Import order matters where the board compiles .py at import (CircuitPython cannot load
-# MicroPython's .mpy): compiling a module needs several times its source in free heap, and every
-# module loaded before it leaves less. The largest compile first, on the emptiest heap: console
-# (it loads the core as it runs), then the drivers (drivers.pca9685 is the biggest of them).
-# `hexapod bench feather` (docs/flashing.md): 77 KB less heap needed (64-bit VM) than runner first.
 # isort: off
 import gc
 import sys
-
-import console
-
-gc.collect()  # the compiles' garbage out before the drivers compile: 17 KB less heap needed (VM)
-if sys.implementation.name != "cpython":  # CPython: the tests install fake modules first (and pdb imports a `code`)
-    from drivers import cp_clock, cp_hcsr04_pulsein, cp_pca9685  # noqa: F401
-from runner import BOOT_ONLY, FRAME_MS, Runner, release  # noqa: E402
-from hexapod import geometry, sensors  # noqa: E402
-
-# isort: on
 
 BOARD = "feather_rp2040"
 ROBOT = "default"
@@ -47,11 +32,12 @@ def board_pin(board, name, where):
     return pin
 
 
-def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000, samples=SONAR_SAMPLES):
-    """The Runner for a CircuitPython board and robot file (max_range: 0.1 mm; samples: pings per
-    median, hexapod.sensors order); clock: cp_clock.Clock."""
-    from hexapod import board as boards  # boot only: main() releases these (runner.release)
-    from hexapod import robotcal
+def settings(board_name=BOARD, robot_name=ROBOT):
+    """What the loop needs from the board file and the robot's files, checked: (board dict, robot
+    geometry, servo table rows, sonar mounts, sonar pin names, the `board` module's sonar pins,
+    SCL, SDA). ValueError naming the file, value and what is allowed."""
+    from hexapod import board as boards  # boot only: released once read (hexapod.release)
+    from hexapod import geometry, robotcal, sensors
 
     board = boards.load(board_name)
     if board["runtime"] != "circuitpython":
@@ -76,7 +62,54 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000, sampl
         trigger, echo = pairs[k]
         where = sensors.SENSOR_NAMES[k] + " sensor"
         sonar_pins.append((board_pin(board, trigger, where + " trigger"), board_pin(board, echo, where + " echo")))
+    table = boards.servo_table(board, robotcal.servo_maps(cal))
+    return board, robot, table, robotcal.sensor_mounts(cal), pairs, sonar_pins, scl, sda
 
+
+def _release(robot_name):
+    """The boot-only modules (the board and robot files and their checks) out of the heap."""
+    from hexapod import BOOT_ONLY, release
+
+    release(*BOOT_ONLY, "robots." + robot_name, "robots.%s_cal" % robot_name)
+
+
+# Import order matters where the board compiles .py at import (CircuitPython cannot load
+# MicroPython's .mpy): compiling a module needs several times its source in free heap, every module
+# loaded before it leaves less, and the compiles' garbage left between the modules that stay cuts
+# the heap into holes. So on a board: the board and robot files first, read and let go before
+# anything else loads (their checks are not alive while the loop is built); then the largest
+# compile on the emptiest heap, console (it loads the core as it runs); then the biggest driver,
+# drivers.pca9685, alone; a collection after each. A board file refused stops code.py here, with
+# the message build() gave before. `hexapod bench feather` (docs/flashing.md) has the figures.
+_settings = None  # settings(BOARD, ROBOT), read at import on a board; build() takes it once
+if sys.implementation.name != "cpython":  # CPython: the tests install fake modules first (and pdb imports a `code`)
+    _settings = settings()
+    _release(ROBOT)
+    gc.collect()
+
+import console  # noqa: E402
+
+gc.collect()
+if sys.implementation.name != "cpython":
+    from drivers import pca9685  # noqa: F401
+
+    gc.collect()
+    from drivers import cp_clock, cp_hcsr04_pulsein, cp_pca9685  # noqa: F401
+from runner import FRAME_MS, Runner  # noqa: E402
+from hexapod import sensors  # noqa: E402
+
+# isort: on
+
+
+def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000, samples=SONAR_SAMPLES):
+    """The Runner for a CircuitPython board and robot file (max_range: 0.1 mm; samples: pings per
+    median, hexapod.sensors order); clock: cp_clock.Clock."""
+    global _settings
+    if _settings is not None and (board_name, robot_name) == (BOARD, ROBOT):
+        board, robot, table, mounts, pairs, sonar_pins, scl, sda = _settings
+        _settings = None  # the Runner holds what it keeps: the rest is the loop's heap
+    else:
+        board, robot, table, mounts, pairs, sonar_pins, scl, sda = settings(board_name, robot_name)
     import busio
 
     from drivers import cp_clock, cp_hcsr04_pulsein, cp_pca9685, hcsr04  # loaded at the top on a board
@@ -92,11 +125,10 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000, sampl
         for s in rangers:
             s.deinit()
         raise
-    i2c = busio.I2C(scl, sda, frequency=bus["freq"])
-    table = boards.servo_table(board, robotcal.servo_maps(cal))
+    i2c = busio.I2C(scl, sda, frequency=board["i2c"]["freq"])
     bank = cp_pca9685.servo_bank(i2c, board["pca9685"], table)
     sonars = sensors.Sonars(hcsr04.RoundRobin(rangers, tick_ms=FRAME_MS), len(rangers))
-    r = Runner(robot, [row[2] for row in table], bank, sonars, clock, robotcal.sensor_mounts(cal))
+    r = Runner(robot, [row[2] for row in table], bank, sonars, clock, mounts)
     r.board = board
     r.sonar_pins = pairs
     return r
@@ -113,8 +145,7 @@ def main(frames=-1, clock=None, board_name=BOARD, robot_name=ROBOT, reader=None,
     the status line (docs/console.md); Ctrl-C relaxes the servos (or holds, on_exit)."""
     global runner
     r = runner = build(board_name, robot_name, clock)
-    # The boot-only modules (the board and robot files and their checks): their heap back to the loop.
-    release(*BOOT_ONLY, "robots." + robot_name, "robots.%s_cal" % robot_name)
+    _release(robot_name)  # when build read them: their heap back to the loop
     r.bring_up(reader, boot, calibrated)
     if reader is not None and r.board.get("watchdog_ms"):
         from microcontroller import watchdog

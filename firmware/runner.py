@@ -22,6 +22,8 @@ from hexapod import battery as batteries
 from hexapod import faultlog as faultlogs
 from hexapod import follow, limits, sensors, tick
 
+from hexapod import BOOT_ONLY, release  # noqa: F401, I001  # isort: skip (main.py's names; in hexapod for code.py)
+
 # The names step() reads every frame, copied as private constants: folded into the code, where an
 # imported module's name is two dictionary lookups a frame (tests/test_viper_twins.py checks each
 # copy against its source).
@@ -332,28 +334,6 @@ class Runner:
         self.follower.off()
         if not hold:
             self.robot.go_limp()
-
-
-# What main.main and code.py's main release once the runner is built, with the robot's two files:
-# the board file's validator, the robot file's and the calibration file's checks, their helpers,
-# and what builds from the files as flashed without them (hexapod.wiring).
-BOOT_ONLY = ("hexapod.board", "hexapod.robotfile", "hexapod.robotcal", "hexapod.check", "hexapod.wiring")
-
-
-def release(*names):
-    """Forget boot-only modules (the board file's validator, the robot file once its geometry is
-    built) so the heap their code takes goes back to the loop (7-8 KB on a Pico); a later import
-    loads them again."""
-    import sys
-
-    if sys.implementation.name == "cpython":
-        return  # the host's tests share one process and hold these modules: nothing to win there
-    for name in names:
-        if name in sys.modules:
-            del sys.modules[name]
-            package, _, leaf = name.rpartition(".")
-            if package in sys.modules and hasattr(sys.modules[package], leaf):
-                delattr(sys.modules[package], leaf)
 
 
 def counters(r):

@@ -12,7 +12,7 @@ import pytest
 from hexapod import wiring
 from hexapod_host import FIRMWARE, ROOT, STUBS, mpvm
 from hexapod_host.commands import cli
-from hexapod_host.serial import flash
+from hexapod_host.serial import flash, strip
 from hexapod_host.testing.runtimes import TESTS
 
 CORE = sorted("hexapod/" + f for f in os.listdir(os.path.join(FIRMWARE, "hexapod")) if f.endswith(".py"))
@@ -188,7 +188,10 @@ def test_dry_run_plan_for_a_circuitpython_drive(tmp_path, capsys):
     assert status == 1 and "circup could not install adafruit_pca9685 (Could not reach the bundle server" in out
     assert "the firmware files landed" in out and (str(fake) + " --path " + str(drive) + " install") in out
     assert sorted(os.path.relpath(os.path.join(d, f), drive) for d, _, fs in os.walk(drive) for f in fs) == files
-    assert (drive / "hexapod" / "leg.py").read_text() == flash._read(os.path.join(FIRMWARE, "hexapod", "leg.py"))
+    # the drive's sources lose their docstrings (serial.strip, tests/test_strip.py), every line kept in place
+    leg, source = (drive / "hexapod" / "leg.py").read_text(), flash._read(os.path.join(FIRMWARE, "hexapod", "leg.py"))
+    assert leg == strip.docstrings(source) and source.startswith('"""') and leg.startswith("pass\n")
+    assert leg.count("\n") == source.count("\n") and len(leg) < len(source)
     (drive / "robots" / "default.py").write_text("# edited on the drive\n")
     status, out, _ = hexapod(argv + ["--dry-run"], capsys)
     assert "# 1 of %d files changed on %s: robots/default.py" % (len(files), drive) in out
@@ -481,9 +484,9 @@ def test_a_circuitpython_drive_gets_no_micropython_emitter_decorators(tmp_path):
         if "@micropython." in text:
             carrying.append(rel)
         source = os.path.join(FIRMWARE if os.path.exists(os.path.join(FIRMWARE, rel)) else ROOT, rel)
-        if rel != "code.py":  # the rest is the source less its decorator lines
-            kept = [ln for ln in flash._read(source).splitlines() if ln.strip() != "@micropython.native"]
-            assert text.splitlines() == kept, rel
+        if rel != "code.py":  # the rest is the source less its decorator lines and docstrings (serial.strip)
+            kept = [ln for ln in flash._read(source).splitlines(keepends=True) if ln.strip() != "@micropython.native"]
+            assert text == strip.docstrings("".join(kept)), rel
     assert carrying == []
     natives = [p for p in MP_DRIVERS + CORE if "@micropython." in flash._read(os.path.join(FIRMWARE, p))]
     assert "drivers/pca9685.py" in natives and "drivers/pca9685.py" in image

@@ -24,6 +24,7 @@ import sys
 from hexapod import board as board_checks
 from hexapod import geometry, robotcal, wiring
 from hexapod_host import FIRMWARE, ROOT
+from hexapod_host.serial import strip
 
 MANIFEST = "hexapod.manifest"
 NEW = ".new"  # suffix of a file on its way up, renamed into place once every file has landed
@@ -191,6 +192,15 @@ def entry_text(src, board, robot):
     return text
 
 
+def cp_text(text, rel):
+    """A source as a CircuitPython drive gets it: without `@micropython.native` lines and without
+    docstrings (serial.strip: line numbers kept; the board compiles it with less heap)."""
+    try:
+        return strip.docstrings(NATIVE_LINE.sub("", text), rel)
+    except ValueError as err:
+        raise FlashError(str(err)) from None
+
+
 def sha256(path):
     with open(path, "rb") as f:
         return hashlib.sha256(f.read()).hexdigest()
@@ -224,12 +234,12 @@ def stage(board, robot, out=None, arch=None):
             dest = os.path.join(out, rel)
             os.makedirs(os.path.dirname(dest), exist_ok=True)
             with open(dest, "w") as f:
-                f.write(entry_text(src, board, robot))
+                f.write(cp_text(entry_text(src, board, robot), rel) if cp else entry_text(src, board, robot))
         elif cp:
             dest = os.path.join(out, rel)
             os.makedirs(os.path.dirname(dest), exist_ok=True)
             with open(dest, "w") as f:
-                f.write(NATIVE_LINE.sub("", _read(src)))
+                f.write(cp_text(_read(src), rel))
         else:
             rel = rel[:-3] + ".mpy"
             dest = os.path.join(out, rel)
