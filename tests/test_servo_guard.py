@@ -376,3 +376,42 @@ def test_command_reversals_keep_every_joint_inside_the_budget(gait):
             prev = list(robot.angles)
     assert robot.walker.state == WALKING  # still walking: the guard held the body, it did not stop it
     assert worst <= budget, worst
+
+
+def _reversals_without_the_hold(gait):
+    """The reversal schedule with the stance hold undone (a stance foot may walk on to its reach
+    disc, as issue 22's planner lets it): the largest joint change a tick, cdeg; the ticks it held."""
+    g = geometry.load(d)
+    robot, t = standing(g)
+    assert robot.set_gait(gait) == tick.OK
+    w = robot.walker
+    worst = 0
+    for cmd in REVERSALS:
+        assert robot.walk(*cmd) == tick.OK
+        prev = list(robot.angles)
+        for _ in range(w.clock.cycle_ticks):
+            w.stance_rho[:] = w.rho  # (walk() makes the stance discs again)
+            assert robot.tick(t[0]) == tick.OK
+            t[0] += 20
+            worst = max(worst, *(abs(a - b) for a, b in zip(robot.angles, prev, strict=True)))
+            prev = list(robot.angles)
+    return worst, w.held
+
+
+@pytest.mark.parametrize("gait", [TRIPOD, TETRAPOD, RIPPLE, WAVE])
+def test_the_swing_budget_alone_keeps_reversals_inside_the_datasheet_budget(gait):
+    # Without the stance hold a foot lifts off up to its reach disc away (74 mm, the step 12-30 mm):
+    # hexapod.budget shortens each such swing so that no joint turns faster than the servos' budget
+    # (60 deg / 170 ms x 40 % a 20 ms tick = 282 cdeg). Measured 269 / 276 / 262 / 257 cdeg; without
+    # the budget (today's swing) 332 cdeg on the tetrapod and past 282 on ripple and wave too.
+    worst, held = _reversals_without_the_hold(gait)
+    assert worst <= int(6000 / 8.5 * 0.4), worst
+
+
+def test_without_the_swing_budget_a_reversal_breaks_the_datasheet_budget(monkeypatch):
+    # Teeth: the same schedule with the budget never shortening a swing.
+    from hexapod import walk
+
+    monkeypatch.setattr(walk, "in_budget", lambda walker, i, t, cv: 0)
+    worst, _ = _reversals_without_the_hold(TETRAPOD)
+    assert worst > int(6000 / 8.5 * 0.4), worst
