@@ -10,8 +10,9 @@ tick. `swing_max` is |C + D g| of the guard's swing; a swing asking more lands s
 from S + C toward T, and the next swings make the rest up (a steady step below srho has room).
 
 This is the swing half of issue 22's planner. With the stance hold in force (hexapod.walk stance_rho:
-the scaled step + 1.6 mm) no swing on the drives measured starts far enough out to be shortened, and
-the walk is the same to the bit; with the hold undone (a stance foot walking on to its reach disc) it
+the scaled step + 1.6 mm) it shortens the first swings after a gait change while walking (the shipped
+gait tour: 284 -> 258 cdeg a tick at most) and leaves the joystick stream's walk the same to the bit;
+with the hold undone (a stance foot walking on to its reach disc) it
 alone keeps every joint within the budget on the reversal schedule (tests/test_servo_guard.py) and
 the tetrapod under the stall in MuJoCo (tests/test_physics_reversals.py). Why the hold is not relaxed
 yet: docs/physics.md, "Issue 22: the swing budget". Units: 0.1 mm, feet in body.FINE units; nothing
