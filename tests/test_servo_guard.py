@@ -376,3 +376,71 @@ def test_command_reversals_keep_every_joint_inside_the_budget(gait):
             prev = list(robot.angles)
     assert robot.walker.state == WALKING  # still walking: the guard held the body, it did not stop it
     assert worst <= budget, worst
+
+
+def _reversals_without_the_hold(gait):
+    """The reversal schedule with the stance hold undone (a stance foot may walk on to its reach
+    disc, as issue 22's planner lets it): the largest joint change a tick, cdeg; the ticks it held."""
+    g = geometry.load(d)
+    robot, t = standing(g)
+    assert robot.set_gait(gait) == tick.OK
+    w = robot.walker
+    worst = 0
+    for cmd in REVERSALS:
+        assert robot.walk(*cmd) == tick.OK
+        prev = list(robot.angles)
+        for _ in range(w.clock.cycle_ticks):
+            w.stance_rho[:] = w.rho  # (walk() makes the stance discs again)
+            assert robot.tick(t[0]) == tick.OK
+            t[0] += 20
+            worst = max(worst, *(abs(a - b) for a, b in zip(robot.angles, prev, strict=True)))
+            prev = list(robot.angles)
+    return worst, w.held
+
+
+@pytest.mark.parametrize("gait", [TRIPOD, TETRAPOD, RIPPLE, WAVE])
+def test_the_swing_budget_alone_keeps_reversals_inside_the_datasheet_budget(gait):
+    # Without the stance hold a foot lifts off up to its reach disc away (74 mm, the step 12-30 mm):
+    # hexapod.budget shortens each such swing so that no joint turns faster than the servos' budget
+    # (60 deg / 170 ms x 40 % a 20 ms tick = 282 cdeg). Measured 269 / 276 / 262 / 257 cdeg; without
+    # the budget (today's swing) 332 cdeg on the tetrapod and past 282 on ripple and wave too.
+    worst, held = _reversals_without_the_hold(gait)
+    assert worst <= int(6000 / 8.5 * 0.4), worst
+
+
+def test_without_the_swing_budget_a_reversal_breaks_the_datasheet_budget(monkeypatch):
+    # Teeth: the same schedule with the budget never shortening a swing.
+    from hexapod import walk
+
+    monkeypatch.setattr(walk, "in_budget", lambda walker, i, t, cv: 0)
+    worst, _ = _reversals_without_the_hold(TETRAPOD)
+    assert worst > int(6000 / 8.5 * 0.4), worst
+
+
+@pytest.mark.parametrize("gait", [TRIPOD, TETRAPOD, RIPPLE, WAVE])
+def test_the_gait_tour_keeps_every_joint_inside_the_budget(gait):
+    # The shipped gait tour (eight gait changes while walking, asked as the console asks them): a new
+    # gait's first swings start where the old gait's stances left the feet, up to 30 mm out where the
+    # tripod steps 12.1 mm. Before hexapod.budget: 284 / 283 / 283 / 278 cdeg a tick (starting in
+    # tripod / tetrapod / ripple / wave), over the 282 of the datasheet; measured with it 256-258.
+    from hexapod_host import drives
+    from hexapod_host.drives.play import end_ticks
+
+    g = geometry.load(d)
+    robot, t = standing(g)
+    assert robot.set_gait(gait) == tick.OK
+    cmds = drives.load("gait_tour")
+    worst = nxt = 0
+    prev = list(robot.angles)
+    for k in range(end_ticks(cmds, gait)):
+        while nxt < len(cmds) and cmds[nxt][1] <= 20 * k:
+            _, _, vx, vy, yaw, new_gait, stop = cmds[nxt]
+            if new_gait >= 0 and new_gait != robot.gait:
+                assert robot.set_gait(new_gait, wait=False) == tick.OK
+            assert (robot.stop() if stop else robot.walk(vx, vy, yaw)) == tick.OK
+            nxt += 1
+        assert robot.tick(t[0]) == tick.OK
+        t[0] += 20
+        worst = max(worst, *(abs(a - b) for a, b in zip(robot.angles, prev, strict=True)))
+        prev = list(robot.angles)
+    assert worst <= int(6000 / 8.5 * 0.4), worst

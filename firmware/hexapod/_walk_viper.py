@@ -27,6 +27,8 @@ _DEG360 = const(3600000)  # hexapod.walk._DEG360
 _REANCHOR = const(4194304)  # hexapod.walk._REANCHOR
 _HALF_TURN = const(9000)  # hexapod.walk._HALF_TURN
 _SLACK = const(16)  # hexapod.walk.STANCE_SLACK
+_EASE = const(300)  # hexapod.budget.SWING_EASE
+_EASE_DEAD = const(16)  # hexapod.budget.EASE_DEAD
 
 
 @micropython.viper
@@ -113,6 +115,13 @@ def swings(walker, lo: int, hi: int, w: int, still: int) -> int:
     k1 = (k[1] ^ sb) - sb
     k2 = (k[2] ^ sb) - sb
     tab = ptr16(SIN_Q15)  # noqa: F821
+    smax = ptr32(walker.swing_max)  # noqa: F821
+    gain = int(walker.stroke_gain)
+    geo = walker.geometry
+    reach = int(geo.neutral_reach)
+    mxs = geo.mount_x
+    mys = geo.mount_y
+    srho = walker.srho
     airborne = 0
     for i in range(lo, hi):
         u = (su[i] ^ sb) - sb
@@ -139,7 +148,7 @@ def swings(walker, lo: int, hi: int, w: int, still: int) -> int:
             ys = 0 - ys
         x = xc - ys + a2  # Walker.target
         y = xs + yc + a3
-        t0 = t1 = c0 = c1 = c2 = c3 = rx = ry = st = 0
+        t0 = t1 = c0 = c1 = c2 = c3 = rx = ry = st = budgeted = 0
         # Four points go through the one reach clamp below: the touch-down point (stage 0), the
         # plan at the last tick u - 1 (1) and at u (2), and the re-aimed foot (3). The plan is
         # written once, for both ticks.
@@ -215,6 +224,39 @@ def swings(walker, lo: int, hi: int, w: int, still: int) -> int:
                 c1 = k1 - (((sx >> 4) * k2) >> 11)
                 c2 = k0 + (((t1 >> 4) * k2) >> 11)
                 c3 = k1 - (((t0 >> 4) * k2) >> 11)
+                if not budgeted:
+                    # hexapod.budget.in_budget: the stroke D shortened until |C + D gain| fits the budget
+                    # (budget.eased); a touch-down point moved goes round once more (reach, carries).
+                    budgeted = 1
+                    dx = (t0 - sx - c2) >> 4
+                    dy = (t1 - sy - c3) >> 4
+                    bx = dx * gain >> 15
+                    by = dy * gain >> 15
+                    b = int(isqrt(bx * bx + by * by))
+                    if b:
+                        al = ((c2 >> 4) * bx + (c3 >> 4) * by) // b
+                        bx = c2 >> 4
+                        by = c3 >> 4
+                        m = (sx >> 4) - int(mxs[i])
+                        e = (sy >> 4) - int(mys[i])
+                        e = int(isqrt(m * m + e * e)) - reach
+                        if e < 0:
+                            e = 0 - e
+                        e -= int(srho[i]) + _EASE_DEAD
+                        v = (smax[i] ^ sb) - sb
+                        if e > 0:
+                            v = v * _EASE // (_EASE + e)
+                        v = v * v - (bx * bx + by * by - al * al)
+                        if v > 0:
+                            v = int(isqrt(v)) - al
+                        else:
+                            v = 0
+                        if v < b:
+                            if v < 0:
+                                v = 0
+                            x = sx + c2 + ((dx * v // b) << 4)
+                            y = sy + c3 + ((dy * v // b) << 4)
+                            continue
                 stage = 1
             elif stage == 1:
                 # How far the plan moved since the last tick, fine (0 when steady).

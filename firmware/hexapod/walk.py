@@ -30,6 +30,7 @@ from array import array
 from micropython import const
 
 from hexapod.body import FINE, FINE_SHIFT, Body
+from hexapod.budget import in_budget, swing_budget
 from hexapod.fixmath import ONE, cos, isqrt, mul_q15, sin
 from hexapod.gait import TICK_MS, TRIPOD, GaitClock, actual_cycle_ms, check_cycle_ms, check_gait, swing_stance_ticks
 from hexapod.limits import (  # largest |vx|, |vy| (0.1 mm/s) and |yaw rate| (cdeg/s) accepted
@@ -100,6 +101,12 @@ class Walker:
         # another command's touch-down would otherwise end past it, and the next swing would
         # turn the joints faster than the servo budget (docs/physics.md, 2026-11-23 reversals).
         self.stance_rho = _words(6)
+        # The swing's servo budget (planner): each leg's largest "swing speed" |C + D g| (0.1 mm), C
+        # the ground's move under the foot over one swing, D the stroke T - S - C, g stroke_gain: the
+        # steady swing the guard passed (half a stance srho) at its peak tick. A swing whose lift-off
+        # is further out than a steady one lands short instead of turning a joint too fast.
+        self.swing_max = _words(6)
+        self.stroke_gain = 0  # w x the stroke's largest fraction in one tick, Q15
         self.servo_peak = 0  # largest joint change (cdeg/tick) of a swing without a step, last configure
         self.configured = OK  # the last configure's code (configure_steps leaves it here)
         self._caps = [0] * 6  # the servo guard's scratch: how far it looks, its radii and peak
@@ -153,6 +160,7 @@ class Walker:
             self.nx[i] = self._xy[0] << FINE_SHIFT
             self.ny[i] = self._xy[1] << FINE_SHIFT
         self.feet_to_neutral()
+        swing_budget(self)
 
     # -- settings (off the tick) -------------------------------------------------------
 
@@ -257,6 +265,7 @@ class Walker:
             self.srho[i] = self.next_srho[i]
         self.phase = 0
         self.pending = 0
+        swing_budget(self)
         self._rescale()
 
     # -- commands ----------------------------------------------------------------------
@@ -622,6 +631,8 @@ class Walker:
         cv = self._cv
         self.carry_at(self.sx[i], self.sy[i], cv, 0)
         self.carry_at(t[0], t[1], cv, 2)
+        if in_budget(self, i, t, cv):
+            self.carry_at(t[0], t[1], cv, 2)
         p = self._plan
         self._swing_at(i, u - 1, w, p)
         rx = p[0] - self.fx[i]  # how far the plan moved since the last tick, fine (0 when steady)

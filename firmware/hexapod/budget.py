@@ -1,0 +1,102 @@
+"""The swing's servo budget: how far a swing may carry its foot in its ticks (hexapod.walk's planner).
+
+The servo guard (hexapod.reach.servo_steps) passes the longest steady step, half a stance srho
+(0.1 mm), whose swing keeps every joint within the servos' speed budget: from n - srho to n + srho
+around the neutral point n, the ground carrying the foot C = 2 srho w / st back over its w swing
+ticks (st stance ticks). A swing from lift-off S to touch-down T moves the foot
+x(u) = S + C u / w + (T - S - C) stroke(u) (hexapod.trajectory.swing_stroke), so its fastest tick
+moves it (C + D g) / w, with D = T - S - C the stroke and g = w x the stroke's largest share in one
+tick. `swing_max` is |C + D g| of the guard's swing; a swing asking more lands short, on the line
+from S + C toward T, and the next swings make the rest up (a steady step below srho has room).
+
+This is the swing half of issue 22's planner. With the stance hold in force (hexapod.walk stance_rho:
+the scaled step + 1.6 mm) it shortens the first swings after a gait change while walking (the shipped
+gait tour: 284 -> 258 cdeg a tick at most) and leaves the joystick stream's walk the same to the bit;
+with the hold undone (a stance foot walking on to its reach disc) it
+alone keeps every joint within the budget on the reversal schedule (tests/test_servo_guard.py) and
+the tetrapod under the stall in MuJoCo (tests/test_physics_reversals.py). Why the hold is not relaxed
+yet: docs/physics.md, "Issue 22: the swing budget". Units: 0.1 mm, feet in body.FINE units; nothing
+allocates (the walker's tick).
+"""
+
+from micropython import const
+
+from hexapod.body import FINE_SHIFT
+from hexapod.fixmath import isqrt
+from hexapod.trajectory import swing_stroke
+
+# A lift-off this far (0.1 mm) further from or nearer to the coxa axis than the guard's swings reached
+# gets half the budget: a leg more stretched or folded turns its joints more for each mm (measured,
+# the hold undone: the wave's tibia at 304 cdeg a tick against 282 without it, from 47 mm out).
+SWING_EASE = const(300)
+# A steady stance may end this much (0.1 mm) past its scaled step (hexapod.walk.STANCE_SLACK, 16: the
+# guard's answer is good to 1.6 mm); its swing gets the budget of a half stance srho + STANCE_SLACK / 2
+# (the old hold's longest swing, 2 srho + STANCE_SLACK) and no easing inside STANCE_SLACK, so that a
+# steady walk's swings are never shortened (they were 0.3 mm a swing, and the feet drifted out).
+LIFT_SLACK = const(8)
+EASE_DEAD = const(16)
+
+
+def swing_budget(walker):
+    """walker.stroke_gain (Q15) and swing_max (0.1 mm, per leg) for its clock and srho in force."""
+    w = walker.clock.swing_ticks
+    st = walker.clock.stance_ticks
+    s = walker._stroke
+    last = 0
+    best = 0
+    for u in range(1, w + 1):
+        swing_stroke(u, w, s)
+        if s[0] - last > best:
+            best = s[0] - last
+        last = s[0]
+    g = best * w
+    walker.stroke_gain = g
+    for i in range(6):
+        r = walker.srho[i] + LIFT_SLACK
+        # The guard's swing: D = 2 r (st + w) / st forward, C = 2 r w / st back.
+        walker.swing_max[i] = (2 * r * (st + w) // st * g >> 15) - 2 * r * w // st
+
+
+def in_budget(walker, i, t, cv):
+    """Pull leg i's touch-down point t (fine) toward where the ground takes its lift-off point
+    (carry cv[2:4], fine) until |C + D g| fits its budget (eased): 1 when t was moved (then also
+    kept in the reach disc), else 0 (hexapod/_walk_viper.py's swings is the same in viper)."""
+    sx = walker.sx[i]
+    sy = walker.sy[i]
+    dx = (t[0] - sx - cv[2]) >> FINE_SHIFT  # the stroke D, 0.1 mm
+    dy = (t[1] - sy - cv[3]) >> FINE_SHIFT
+    bx = dx * walker.stroke_gain >> 15
+    by = dy * walker.stroke_gain >> 15
+    b = isqrt(bx * bx + by * by)
+    if b == 0:
+        return 0
+    # |C + k b| <= v: k |b| <= sqrt(v^2 - C_across^2) - C_along, C's parts across b and along it.
+    a = ((cv[2] >> FINE_SHIFT) * bx + (cv[3] >> FINE_SHIFT) * by) // b
+    bx = cv[2] >> FINE_SHIFT
+    by = cv[3] >> FINE_SHIFT
+    v = eased(walker, i)
+    v = v * v - (bx * bx + by * by - a * a)
+    v = isqrt(v) - a if v > 0 else 0  # the room for k |b|
+    if v >= b:
+        return 0
+    if v < 0:
+        v = 0
+    t[0] = sx + cv[2] + (dx * v // b << FINE_SHIFT)
+    t[1] = sy + cv[3] + (dy * v // b << FINE_SHIFT)
+    walker._in_reach(i, t)
+    return 1
+
+
+def eased(walker, i):
+    """Leg i's swing budget (0.1 mm) for its lift-off point: swing_max within srho of the neutral
+    reach from the coxa axis (where the guard's swings were), less beyond (half at SWING_EASE more)."""
+    g = walker.geometry
+    x = (walker.sx[i] >> FINE_SHIFT) - g.mount_x[i]
+    y = (walker.sy[i] >> FINE_SHIFT) - g.mount_y[i]
+    e = isqrt(x * x + y * y) - g.neutral_reach
+    if e < 0:
+        e = -e
+    e -= walker.srho[i] + EASE_DEAD
+    if e > 0:
+        return walker.swing_max[i] * SWING_EASE // (SWING_EASE + e)
+    return walker.swing_max[i]
