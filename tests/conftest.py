@@ -1,6 +1,7 @@
 import os
 
 import pytest
+from _pytest.nodeid import NodeId
 
 import hexapod_host  # noqa: F401  (puts firmware, boards and shims on sys.path)
 from hexapod_host.pico import emulator as pico
@@ -14,6 +15,46 @@ def pytest_sessionstart(session):
         reason = pico.missing()
         if reason:
             raise pytest.UsageError("CI runs every Pico test, but the emulated Pico cannot start: " + reason)
+
+
+# The longest single tests (minutes on 2 loaded cores), then the modules whose tests take tens of
+# seconds each (emulated Pico, Chromium, long VM runs): started first, so that neither worker is
+# left running one of them alone at the end. Measured with --durations on 2026-11-27.
+LONGEST = ("test_pico_battery.py::test_the_battery_scenario_on_the_emulated_pico",)
+SLOW_MODULES = ("test_pico", "browser")
+
+
+def _shares_a_module_fixture(item):
+    info = getattr(item, "_fixtureinfo", None)
+    defs = info.name2fixturedefs.values() if info else ()
+    module = item.nodeid.split("::")[0]
+    return any(d and d[-1].scope == "module" and d[-1].baseid == module for d in defs)
+
+
+def _tier(item):
+    if "%s::%s" % (item.path.name, item.originalname) in LONGEST:
+        return 0
+    if any(word in item.path.name for word in SLOW_MODULES) or item.get_closest_marker("xdist_group"):
+        return 1
+    return 2
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_collection_modifyitems(config, items):
+    """Under xdist (-n, `--dist loadgroup` from pyproject.toml): the tests of a module that share
+    its module-scoped fixture (an emulated-Pico image, a browser page, one long VM run) are one
+    xdist_group, so that fixture is set up on one worker, not on both; and the slow tests go
+    first. pytest-randomly has shuffled already (its hook wraps), and the sort is stable: the
+    order within a tier is still the seed's."""
+    for item in items:
+        if _shares_a_module_fixture(item):
+            item.add_marker(pytest.mark.xdist_group(item.module.__name__))
+            if getattr(config.option, "loadgroup", False):  # an xdist worker under --dist loadgroup
+                # xdist 3.8 names the group by appending "@group" to item._nodeid, which pytest 9
+                # no longer reads (the node id is item._id): without this every group was spread
+                # over both workers (seen: test_gait's `tables` built on each). Done as xdist does it.
+                item._id = NodeId.parse("%s@%s" % (item.nodeid, item.module.__name__))
+    items.sort(key=_tier)
 
 
 @pytest.fixture
