@@ -17,11 +17,33 @@ def pytest_sessionstart(session):
             raise pytest.UsageError("CI runs every Pico test, but the emulated Pico cannot start: " + reason)
 
 
-# The longest single tests (minutes on 2 loaded cores), then the modules whose tests take tens of
-# seconds each (emulated Pico, Chromium, long VM runs): started first, so that neither worker is
-# left running one of them alone at the end. Measured with --durations on 2026-11-27.
-LONGEST = ("test_pico_battery.py::test_the_battery_scenario_on_the_emulated_pico",)
-SLOW_MODULES = ("test_pico", "browser")
+# The longest single tests, longest first (minutes each on 2 loaded cores), then the modules whose
+# tests take tens of seconds (emulated Pico, Chromium, long VM runs): started first, so that
+# neither worker is left running one of them alone at the end. From `pytest -n 2 --durations=0`
+# of the whole suite on 2026-11-27 (load 5-30: other helpers' runs): the first two took 749 and
+# 740 s there, and the run's wall time was 80 min for 1037 s of this process's own CPU.
+LONGEST = (
+    "test_rescale.py::test_rescale_equals_the_plain_form_on_the_emulated_pico",
+    "test_tick_viper.py::test_viper_paths_equal_plain_code_on_the_emulated_pico",
+    "test_tick_ranges.py::test_every_intermediate_of_the_tick_fits_a_small_int",
+    "test_pico.py::test_viper_on_thumb_equals_plain_solver_and_cpython",
+    "test_pico.py::test_every_module_imports_as_mpy_with_the_heap_left",
+    "test_pico_battery.py::test_the_battery_scenario_on_the_emulated_pico",
+    "test_console_sequences.py::test_random_command_sequences_never_freeze",
+)
+SLOW_MODULES = (
+    "test_pico",
+    "browser",
+    "test_rescale",
+    "test_tick_viper",
+    "test_tick_ranges",
+    "test_flash",
+    "test_console_sequences",
+    "test_replan",
+    "test_leg_accuracy",
+    "test_servo_guard",
+    "test_wall_sim",
+)
 
 
 def _shares_a_module_fixture(item):
@@ -32,11 +54,12 @@ def _shares_a_module_fixture(item):
 
 
 def _tier(item):
-    if "%s::%s" % (item.path.name, item.originalname) in LONGEST:
-        return 0
+    name = "%s::%s" % (item.path.name, item.originalname)
+    if name in LONGEST:
+        return (0, LONGEST.index(name))
     if any(word in item.path.name for word in SLOW_MODULES) or item.get_closest_marker("xdist_group"):
-        return 1
-    return 2
+        return (1, 0)
+    return (2, 0)
 
 
 @pytest.hookimpl(tryfirst=True)
