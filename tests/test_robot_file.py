@@ -105,7 +105,19 @@ def test_mpy_cross_compiles_robots_and_motion_core(tmp_path):
     files = glob.glob(os.path.join(ROOT, "robots", "*.py"))
     files += [
         os.path.join(FIRMWARE, "hexapod", n + ".py")
-        for n in ("geometry", "body", "gait", "trajectory", "walk", "reach", "turns", "posture", "stability", "tick")
+        for n in (
+            "geometry",
+            "body",
+            "gait",
+            "gaitswitch",
+            "trajectory",
+            "walk",
+            "reach",
+            "turns",
+            "posture",
+            "stability",
+            "tick",
+        )
     ]
     for src in files:
         out = tmp_path / (os.path.basename(src) + ".mpy")
