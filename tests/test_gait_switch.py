@@ -84,3 +84,10 @@ def test_a_refused_gait_change_changes_nothing(both_runtimes):
         32,  # hexapod.tick.CONFIGURING: the first change is still being checked
         True,
     ]
+
+
+def test_a_change_on_the_move_allocates_nothing_a_tick(mp):
+    # The fitting, the tick the new gait is taken (phase_in) and the slowed ticks after it.
+    pairs = [[3, 0], [0, 3], [2, 1], [1, 2]]
+    got = mp.with_heapsize("1m").call(TARGET + "heap_per_tick", pairs)
+    assert got == [[a, b, b, 0, 299] for a, b in pairs]

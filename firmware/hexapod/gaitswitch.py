@@ -170,7 +170,9 @@ def _best_slot(w, lag):
     room = w._room
     cycle = clock.cycle_ticks
     best = -1
-    for p in range(0, cycle, clock.slot_ticks):
+    p = -clock.slot_ticks
+    while p + clock.slot_ticks < cycle:  # (not range: a variable step makes a range object)
+        p += clock.slot_ticks
         k = 1000
         for i in range(6):
             r = clock.start[i] - p

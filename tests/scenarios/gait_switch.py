@@ -72,3 +72,35 @@ def refusals():
     out.append(robot.set_gait(1, wait=False))
     out.append(snap() == before)
     return out
+
+
+def heap_per_tick(pairs):
+    """The most heap bytes one tick took from a change's ask on (the configure's own ticks left out:
+    they run the guard's generator), for each (a, b) at 30 mm/s: [[a, b, gait walked, bytes, ticks]]."""
+    import gc
+
+    rig = Rig()
+    rig.stand()
+    robot = rig.robot
+    out = []
+    for a, b in pairs:
+        robot.set_gait(a)
+        robot.walk(300, 0, 0)
+        rig.run(300)
+        robot.set_gait(b, wait=False)
+        worst = n = 0
+        for _ in range(300):
+            was = robot.configuring()
+            gc.collect()
+            gc.disable()
+            m0 = gc.mem_alloc()
+            robot.tick(rig.t)
+            d = gc.mem_alloc() - m0
+            gc.enable()
+            rig.t += 20
+            if was or robot.configuring():
+                continue
+            worst = d if d > worst else worst
+            n += 1
+        out.append([a, b, rig.w.clock.gait, worst, n])
+    return out
