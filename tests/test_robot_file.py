@@ -109,6 +109,7 @@ def test_mpy_cross_compiles_robots_and_motion_core(tmp_path):
             "geometry",
             "body",
             "gait",
+            "gaitswitch",
             "trajectory",
             "walk",
             "budget",

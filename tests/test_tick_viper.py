@@ -336,7 +336,7 @@ g = geometry.load(robot_file)
 w = walk.Walker(g)
 b = body.Body(g)
 count = differ = still = lifted = made = level = 0
-FIELDS = ("vel", "su", "sx", "sy", "done", "_aim", "_aim_key", "_carry")
+FIELDS = ("vel", "su", "sx", "sy", "done", "_aim", "_aim_key", "_carry", "goal")
 
 
 def state():
@@ -354,6 +354,8 @@ for n in range(CASES):
         top = walk.YAW_RATE_MAX if k == 2 else walk.SPEED_MAX
         w.cmd[k] = draw(15) % (2 * top + 1) - top if n % 5 else 0
         w.vel[k] = w.cmd[k] + (draw(8) % 301 - 150 if n % 3 else 0) if n % 7 else 0
+        # The ramp heads for goal: the command, or less of it while a gait change settles.
+        w.goal[k] = w.cmd[k] * (1000 if n % 3 else draw(10) % 1001) // 1000
     w.state = (walk.STARTING, walk.WALKING, walk.STOPPING)[draw(2) % 3]
     w.pending = draw(3) == 0
     w.clock.set(draw(2) % 4, 500 + draw(12) % 4000)  # the gaits' start phases, their stance and swing ticks

@@ -33,12 +33,12 @@ _EASE_DEAD = const(16)  # hexapod.budget.EASE_DEAD
 
 @micropython.viper
 def begin(walker) -> int:
-    """Walker.update's start: one tick of the velocity ramp (Walker._ramp); returns 1 when the
+    """Walker.update's start: one tick of the velocity ramp to walker.goal (Walker._ramp); 1 when the
     ramped velocity is zero, plus 2 << i for every leg i due to lift (Walker._lift_all's test:
     in stance at its start phase)."""
     sb = 1
     sb <<= 31  # (v ^ sb) - sb sign-extends a ptr32 load (unsigned on a 64-bit VM); on a board it is v
-    c = ptr32(walker.cmd)  # noqa: F821
+    c = ptr32(walker.goal)  # noqa: F821
     v = ptr32(walker.vel)  # noqa: F821
     r = 1
     for k in range(3):

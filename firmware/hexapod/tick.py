@@ -37,6 +37,10 @@ from hexapod.servo import ServoMap
 from hexapod.turns import sweep_command
 from hexapod.walk import SERVO_SPEED, SPEED_MAX, STEP_MAX, STOPPED, YAW_RATE_MAX, Walker
 
+# isort: split
+# After walk: compiling walk.py from source needs the VM's room in one piece (a 256 KB heap).
+from hexapod.stability import NO_SUPPORT, support_margin
+
 # The viper twins (docs/viper.md): the frame and the pose check compiled by the viper emitter where
 # MicroPython has one (hexapod/_tick_viper.py and _body_viper.py, proven equal to _output_plain
 # and Body.settled by tests/test_tick_viper.py); CPython and CircuitPython run the plain code.
@@ -210,6 +214,14 @@ class Robot:
         self.jog_code = OK
         self.jog_excess = 0
         self.gait = TRIPOD
+        # Static stability while a gait change settles (walker.pending or settling): the body centre's
+        # distance inside the stance feet's polygon (0.1 mm, hexapod.stability; NO_SUPPORT on fewer
+        # than three feet), this tick's and the smallest since the last gait asked for.
+        self.margin = NO_SUPPORT
+        self.margin_min = NO_SUPPORT
+        self._mx = [0] * 6
+        self._my = [0] * 6
+        self._down = [False] * 6
         self.speed_cap = 0  # walking capped at this planar speed (0.1 mm/s; 0: no cap), cap_speed
         self.yaw_cap = 0  # and this yaw rate (cdeg/s)
         self.asked_vx = 0  # the last walk command as asked, before the cap
@@ -264,8 +276,12 @@ class Robot:
                 # A settled pose makes slew() a no-op (its frame is a heap one).
                 if not _settled(self.body):
                     self.body.slew()
-                if m == WALKING and self.walker.update() == STOPPED:
-                    self.mode = STANDING
+                if m == WALKING:
+                    w = self.walker
+                    if w.update() == STOPPED:
+                        self.mode = STANDING
+                    if w.pending or w.settling:
+                        self._margin(w)
             if _output_fast is not None and not _output_fast(self):
                 if self.wake < WAKE_FRAMES:
                     self._asleep()
@@ -284,6 +300,20 @@ class Robot:
             self.job_steps += 1
             if self._job is None:
                 return
+
+    def _margin(self, w):
+        """margin and margin_min for the walker's planned feet (a gait change is settling)."""
+        xs = self._mx
+        ys = self._my
+        down = self._down
+        for i in range(6):
+            xs[i] = w.fx[i] >> FINE_SHIFT
+            ys[i] = w.fy[i] >> FINE_SHIFT
+            down[i] = w.su[i] < 0
+        m = support_margin(xs, ys, down)
+        self.margin = m
+        if self.margin_min == NO_SUPPORT or m < self.margin_min:
+            self.margin_min = m
 
     def _output_plain(self):
         w = self.walker
@@ -547,6 +577,7 @@ class Robot:
             self.cycles[self.gait] = arg
         else:
             self.gait = what
+            self.margin_min = NO_SUPPORT  # this change's margins from here on
             self.cycle_ms = arg
             self.cycles[what] = arg
         self._end(code)
@@ -624,8 +655,12 @@ class Robot:
 
     def set_gait(self, gait, cycle_ms=None, wait=True):
         """Switch gait (gait.TRIPOD ...) at cycle_ms (ms), else at the gait's own cycle time: now
-        when stopped, else when no foot is in the air (wait=False: checked over the next frames
-        while the robot walks on in its gait, job_code says how it ended)."""
+        when stopped; while walking, without stopping (hexapod.walk.Walker._phase_in): the steps
+        are first brought inside the new gait's stance discs where they are not, then at a moment
+        with every foot down the new gait starts at the slot that suits the feet, slower until each
+        leg has lifted once where needed (less than one cycle). margin, margin_min report the
+        static stability meanwhile. wait=False: checked over the next frames while the robot
+        walks on in its gait, job_code says how it ended."""
         check_gait(gait)
         if cycle_ms is not None:
             check_cycle_ms(cycle_ms)

@@ -20,8 +20,7 @@ So the planner never asks for a foot the leg cannot reach.
 
 States: STOPPED (feet at neutral), STARTING (ramping up from a stop), WALKING, STOPPING
 (the command is zero: every leg finishes its step and lands at neutral, then STOPPED).
-Gait, cycle time and lift height changes asked for while walking wait for a moment when
-no foot is in the air (new swings are held back until then).
+Gait, cycle time and lift height changes asked for while walking: hexapod.gaitswitch.
 """
 
 import sys
@@ -29,6 +28,7 @@ from array import array
 
 from micropython import const
 
+from hexapod import gaitswitch
 from hexapod.body import FINE, FINE_SHIFT, Body
 from hexapod.budget import in_budget, swing_budget
 from hexapod.fixmath import ONE, cos, isqrt, mul_q15, sin
@@ -142,6 +142,7 @@ class Walker:
         self.phase = 0
         self.held = 0  # ticks the body was held still to keep a stance foot in reach
         self.pending = 0  # 1 while a gait/cycle/lift change waits for all feet down
+        gaitswitch.init(self)  # goal (the ramp's target), slow, settling, fitting and scratch
         self.next_gait = TRIPOD
         self.next_cycle_ms = 1000
         self.next_lift = 300
@@ -251,13 +252,14 @@ class Walker:
             self._apply()
         elif same:
             self.pending = 0  # nothing the feet would notice: no need to wait (step applies now)
+            self.fitting = 0
             self._rescale()
         else:
-            self.pending = 1
-            self._rescale()
+            gaitswitch.begin(self)
         return OK
 
     def _apply(self):
+        gaitswitch.reset(self)
         self.clock.set(self.next_gait, self.next_cycle_ms)
         self.lift = self.next_lift
         for i in range(6):
@@ -267,6 +269,8 @@ class Walker:
         self.pending = 0
         swing_budget(self)
         self._rescale()
+        if self.state != STOPPED:
+            gaitswitch.phase_in(self)
 
     # -- commands ----------------------------------------------------------------------
 
@@ -294,7 +298,7 @@ class Walker:
         self.req_vx = vx
         self.req_vy = vy
         self.req_yaw = yaw_rate
-        self._rescale()
+        gaitswitch.scale(self)
         moving = self.cmd[0] or self.cmd[1] or self.cmd[2]
         if moving:
             if self.state == STOPPED:
@@ -331,6 +335,7 @@ class Walker:
         # form on many random commands and reach discs.
         if _rescale_fast is not None:
             _rescale_fast(self)
+            gaitswitch.goal(self)
             return
         vx = self.req_vx
         vy = self.req_vy
@@ -441,6 +446,7 @@ class Walker:
         self.cmd[0] = vx * k // 1000
         self.cmd[1] = vy * k // 1000
         self.cmd[2] = w * k // 1000
+        gaitswitch.goal(self)
 
     def aim_for(self, vx, vy, w):
         """Half a stance of body motion at (vx, vy, w): the turn and the shift, into _aim."""
@@ -510,7 +516,8 @@ class Walker:
         else:
             due = _begin_fast(self)  # the ramp; 1 when still, 2 << i for each leg due to lift
         v = self.vel
-        if self.state == STARTING and v[0] == self.cmd[0] and v[1] == self.cmd[1] and v[2] == self.cmd[2]:
+        g = self.goal
+        if self.state == STARTING and v[0] == g[0] and v[1] == g[1] and v[2] == g[2]:
             self.state = WALKING
         still = not (v[0] or v[1] or v[2])
         # Lift first: a foot leaving the ground this tick is not carried by the body's move,
@@ -528,8 +535,8 @@ class Walker:
         self.phase += 1
         if self.phase >= self.clock.cycle_ticks:
             self.phase = 0
-        if self.pending and not airborne:
-            self._apply()
+        if self.settling or self.pending:
+            gaitswitch.after_tick(self, airborne)
         if self.state == STOPPING and still and not airborne:
             for i in range(6):
                 if not self.done[i]:
@@ -577,7 +584,7 @@ class Walker:
         return airborne
 
     def _ramp(self):
-        c = self.cmd
+        c = self.goal
         v = self.vel
         for k in range(3):
             step = YAW_STEP if k == 2 else SPEED_STEP
@@ -589,7 +596,7 @@ class Walker:
             v[k] += d
 
     def _maybe_lift(self, i, still):
-        if self.pending:
+        if self.pending and not self.fitting:
             return
         if self.state == STOPPING and still:
             if self.done[i]:
@@ -598,6 +605,7 @@ class Walker:
             if self.fx[i] == self.nx[i] and self.fy[i] == self.ny[i]:
                 self.done[i] = 1
                 return
+        self._early &= ~(1 << i)
         self.su[i] = 0
         self.sx[i] = self.fx[i]
         self.sy[i] = self.fy[i]

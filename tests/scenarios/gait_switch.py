@@ -1,0 +1,106 @@
+"""Gait changes asked while walking (issue 22 point 2), on the default robot with its servo guard.
+
+switch(a, b, vx, vy, yaw) returns [robot.faults, faulted ticks, info, rows]: info is [ticks from the ask
+to the new gait, the walker's held ticks over the whole run after the ask, the smallest margin the tick
+reported (0.1 mm), the new gait's cycle and slot ticks, the old gait's cycle ticks]; rows one a tick
+from the ask on: [held this tick, gait walked, settling, the tick's margin, the walked vx, vy (0.1 mm/s)
+and yaw rate (cdeg/s), then each foot's x, y (0.1 mm,
+body frame), down (1/0), its distance from neutral and its reach disc (0.1 mm)]."""
+
+from scenarios.rig import Rig
+
+from hexapod.body import FINE_SHIFT
+from hexapod.fixmath import isqrt
+from hexapod.stability import NO_SUPPORT
+
+
+def switch(a, b, vx, vy, yaw, before=600, after=480):
+    rig = Rig()
+    rig.stand()
+    robot = rig.robot
+    w = rig.w
+    robot.set_gait(a)
+    robot.walk(vx, vy, yaw)
+    rig.run(before)
+    old_cycle = w.clock.cycle_ticks
+    held0 = w.held
+    robot.set_gait(b, wait=False)
+    rows = []
+    came = -1
+    for k in range(after):
+        h = w.held
+        rig.run(1)
+        if came < 0 and w.clock.gait == b:
+            came = k + 1
+        # (getattr: the same scenario runs on code from before gait changes on the move)
+        row = [w.held - h, w.clock.gait, getattr(w, "settling", 0), getattr(robot, "margin", NO_SUPPORT)]
+        row += [w.vel[0], w.vel[1], w.vel[2]]
+        for i in range(6):
+            dx = (w.fx[i] - w.nx[i]) >> FINE_SHIFT
+            dy = (w.fy[i] - w.ny[i]) >> FINE_SHIFT
+            row += [w.fx[i] >> FINE_SHIFT, w.fy[i] >> FINE_SHIFT, 1 if w.su[i] < 0 else 0]
+            row += [isqrt(dx * dx + dy * dy), w.rho[i]]
+        rows.append(row)
+    info = [came, w.held - held0, getattr(robot, "margin_min", NO_SUPPORT)]
+    info += [w.clock.cycle_ticks, w.clock.slot_ticks, old_cycle]
+    return [robot.faults, rig.faults, info, rows]
+
+
+def refusals():
+    """Gait changes refused while walking change nothing: [per ask: what it said, state unchanged]."""
+    rig = Rig()
+    rig.stand()
+    robot = rig.robot
+    w = rig.w
+    robot.walk(200, 0, 0)
+    rig.run(100)
+
+    def snap():
+        return [robot.gait, robot.cycle_ms, w.clock.gait, w.pending, w.phase, list(w.cmd), list(w.vel), list(w.su)]
+
+    out = []
+    for args in ((7,), ("ripple",), (-1,), (True,), (2, 100), (2, 9000)):
+        before = snap()
+        try:
+            out.append(str(robot.set_gait(*args)))
+        except ValueError as e:
+            out.append(str(e))
+        out.append(snap() == before)
+    # A second change while the first is still being checked: CONFIGURING, nothing changed.
+    robot.set_gait(3, wait=False)
+    before = snap()
+    out.append(robot.set_gait(1, wait=False))
+    out.append(snap() == before)
+    return out
+
+
+def heap_per_tick(pairs):
+    """The most heap bytes one tick took from a change's ask on (the configure's own ticks left out:
+    they run the guard's generator), for each (a, b) at 30 mm/s: [[a, b, gait walked, bytes, ticks]]."""
+    import gc
+
+    rig = Rig()
+    rig.stand()
+    robot = rig.robot
+    out = []
+    for a, b in pairs:
+        robot.set_gait(a)
+        robot.walk(300, 0, 0)
+        rig.run(300)
+        robot.set_gait(b, wait=False)
+        worst = n = 0
+        for _ in range(300):
+            was = robot.configuring()
+            gc.collect()
+            gc.disable()
+            m0 = gc.mem_alloc()
+            robot.tick(rig.t)
+            d = gc.mem_alloc() - m0
+            gc.enable()
+            rig.t += 20
+            if was or robot.configuring():
+                continue
+            worst = d if d > worst else worst
+            n += 1
+        out.append([a, b, rig.w.clock.gait, worst, n])
+    return out
