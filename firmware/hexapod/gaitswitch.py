@@ -25,9 +25,10 @@ from hexapod.fixmath import isqrt
 from hexapod.gait import TICK_MS
 
 ROOM_MAX = const(1000000)  # a foot that does not move has room without end (ticks)
-_SLACK = const(16)  # hexapod.walk.STANCE_SLACK (0.1 mm)
-_SPEED_STEP = const(40)  # hexapod.walk.SPEED_STEP (0.1 mm/s a tick)
-_YAW_STEP = const(100)  # hexapod.walk.YAW_STEP (cdeg/s a tick)
+# The stance's slack (0.1 mm) and the ramp's steps a tick (0.1 mm/s, cdeg/s), copied by hand.
+_SLACK = const(16)  # hexapod.walk.STANCE_SLACK
+_SPEED_STEP = const(40)  # hexapod.walk.SPEED_STEP
+_YAW_STEP = const(100)  # hexapod.walk.YAW_STEP
 
 
 def init(w):
