@@ -742,11 +742,7 @@ def start(runner, reader, os=None, opener=open, out=print, walk_timeout_ms=WALK_
         store = Store(os, opener)
     c = Console(runner, reader, out, store, walk_timeout_ms, write)
     if store is not None:
-        import consolecal  # its code goes again once the file is read (release)
-
-        reply = consolecal.load_file(c)
-        if not c.keep_cal:
-            release(CAL)
+        reply = c._calibration("boot", ())  # consolecal.load_file, its code let go again
         if reply.startswith("ok defaults ("):
             out("cal: %s; the robot file's calibration is in use" % reply[13:-1])
         elif not reply.startswith("ok loaded"):

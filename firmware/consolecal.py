@@ -15,6 +15,8 @@ JOINTS = ("coxa", "femur", "tibia")
 
 def command(con, word, args):
     """The reply to a jog or calibration command line's word and arguments on console con."""
+    if word == "boot":  # console.start: the file's calibration, else the robot file's in force
+        return load_file(con)
     if word == "foot":
         return _foot(con, args)
     if word == "nudge":
