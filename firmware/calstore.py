@@ -7,7 +7,7 @@ servo's reference angle (robots/<robot>_cal.py REFERENCE), and a direction other
 robot file's mirrors the servo about that reference. Version 1 files (before the reference:
 trim added to the pulse at angle 0, a flipped direction mirrored about 0) load too; they mean
 the same pulses unless they flip the direction of a servo whose reference is not 0, which the
-console refuses to load (console.Console.load_file; docs/console.md). Written atomically: the whole text
+console refuses to load (consolecal.load_file; docs/console.md). Written atomically: the whole text
 goes to TMP, is read back, then renamed over FILE (where the filesystem cannot rename over an
 existing file, FILE is removed first; load() then takes the complete TMP). So a save cut at
 any point leaves the old calibration or the new one, never a broken one.

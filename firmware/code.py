@@ -91,6 +91,12 @@ import console  # noqa: E402
 
 gc.collect()
 if sys.implementation.name != "cpython":
+    # The jog and calibration commands: kept here, where the next compile would find a fuller heap
+    # (MicroPython loads their .mpy per command instead).
+    import consolecal  # noqa: F401
+
+    console.Console.keep_cal = True
+    gc.collect()
     from drivers import pca9685  # noqa: F401
 
     gc.collect()

@@ -12,9 +12,8 @@ SerialReader (CircuitPython: supervisor.runtime.serial_bytes_available), BufferR
 
 import sys
 
-from calstore import TRIM_MAX, Store
 from micropython import const
-from runner import BOOT_WORDS, counters
+from runner import BOOT_WORDS, counters, release
 
 from hexapod import battery as batteries
 from hexapod import faultlog, follow, gait, limits, sensors, tick
@@ -34,6 +33,9 @@ TAG_DIGITS = const(9)  # a request tag: '#' and 1..9 digits (docs/console.md, "R
 # posture move's trial of all its frames; a flash write): a tagged request of one of them gets
 # '#TAG working' before the command runs, so a client waits for its reply without a fixed timeout.
 SLOW = ("gait", "stand", "sit", "relax", "save", "load", "defaults")
+# The jog and calibration commands' module (consolecal.py): imported when one runs, let go after it
+# (hexapod.release): 6.6 KB of heap the walking loop keeps on a Pico, for an import per command.
+CAL = "consolecal"
 
 
 def fault_text(log, bank):
@@ -119,6 +121,10 @@ class BufferReader:
 class Console:
     """Command lines -> calls on a runner.Runner; replies through `out` (print on a board)."""
 
+    # CircuitPython compiles a module's source at each import, needing several times its size in
+    # free heap: code.py loads consolecal once, next to console, and sets this to keep it.
+    keep_cal = False
+
     def __init__(self, runner, reader=None, out=print, store=None, walk_timeout_ms=WALK_TIMEOUT_MS, write=None):
         """runner: runner.Runner; reader: has read_byte(); store: calstore.Store or None (no
         file: save/load answer err); walk_timeout_ms: a console walk's life without renewal;
@@ -159,10 +165,10 @@ class Console:
             "stand": self._stand,
             "sit": self._sit,
             "relax": self._relax,
-            "foot": self._foot,
-            "nudge": self._nudge,
-            "joint": self._joint,
-            "pulse": self._pulse,
+            "foot": CAL,
+            "nudge": CAL,
+            "joint": CAL,
+            "pulse": CAL,
             "get": self._get,
             "walk": self._walk,
             "stop": self._stop,
@@ -170,13 +176,13 @@ class Console:
             "sonar": self._sonar,
             "wall": self._wall,
             "pid": self._pid,
-            "cal": self._cal,
-            "trim": self._trim,
-            "dir": self._dir,
-            "range": self._range,
-            "save": self._save,
-            "load": self._load,
-            "defaults": self._defaults,
+            "cal": CAL,
+            "trim": CAL,
+            "dir": CAL,
+            "range": CAL,
+            "save": CAL,
+            "load": CAL,
+            "defaults": CAL,
             "echo": self._echo,
             "selftest": self._selftest,
             "faults": self._faults,
@@ -336,7 +342,7 @@ class Console:
         if tag is not None and word in SLOW:
             self.out(tag, "working")  # sent before the command runs: the client waits on
         try:
-            reply = fn(args)
+            reply = self._calibration(word, args) if fn is CAL else fn(args)
         except ValueError as e:
             return "err %s: %s" % (word, e)
         except Exception as e:  # the loop must go on whatever a command hits
@@ -362,12 +368,6 @@ class Console:
             raise ValueError("leg %r, allowed 1..6" % (text[:20],))
         return int(text) - 1
 
-    def _joint_of(self, text):
-        for j in range(3):
-            if JOINTS[j] == text:
-                return j
-        raise ValueError("joint %r, allowed coxa, femur, tibia" % (text[:20],))
-
     def _num(self, name, text, places, lo, hi, unit):
         try:
             v = parse_fixed(text, places)
@@ -376,15 +376,6 @@ class Console:
         if v < lo or v > hi:
             lo = format_fixed(lo, places)
             raise ValueError("%s %s is outside %s..%s %s" % (name, text[:20], lo, format_fixed(hi, places), unit))
-        return v
-
-    def _whole(self, name, text, lo, hi, unit):
-        body = text[1:] if text[:1] in ("-", "+") else text
-        if not body.isdigit() or len(body) > 9:
-            raise ValueError("%s %r is not a whole number (%s)" % (name, text[:20], unit))
-        v = int(text)
-        if v < lo or v > hi:
-            raise ValueError("%s %d is outside %d..%d %s" % (name, v, lo, hi, unit))
         return v
 
     # -- replies --------------------------------------------------------------------------
@@ -408,20 +399,6 @@ class Console:
             format_fixed(foot[0], 1),
             format_fixed(foot[1], 1),
             format_fixed(foot[2], 1),
-        )
-
-    def cal_line(self, k):
-        """'ok leg L joint J centre_us C ref_deg R trim T dir D min_us A max_us B' for servo 0..17."""
-        s = self.robot.servos[k]
-        return "ok leg %d joint %s centre_us %d ref_deg %s trim %d dir %d min_us %d max_us %d" % (
-            k // 3 + 1,
-            JOINTS[k % 3],
-            self.base[k][0],
-            format_fixed(s.ref_cdeg, 2),
-            self.trims[k],
-            s.direction,
-            s.min_us,
-            s.max_us,
         )
 
     def _refused(self, code):
@@ -571,55 +548,6 @@ class Console:
         self._no_follow()
         return self._mode_reply(self.robot.relax())
 
-    def _foot(self, args):
-        self._args(args, 4, "L X Y Z (leg 1..6, mm in the leg frame)")
-        leg = self._leg(args[0])
-        x = self._num("x", args[1], 1, -5000, 5000, "mm")
-        y = self._num("y", args[2], 1, -5000, 5000, "mm")
-        z = self._num("z", args[3], 1, -5000, 5000, "mm")
-        self._no_follow()
-        self._battery_ok()
-        return self._jogged(leg, self.robot.jog_foot(leg, x, y, z))
-
-    def _jogged(self, leg, code):
-        if code:
-            return self._refused(code)
-        self._walking = False
-        return self.leg_line(leg)
-
-    def _nudge(self, args):
-        self._args(args, 4, "L DX DY DZ (leg 1..6, mm in the leg frame)")
-        leg = self._leg(args[0])
-        d = [self._num(n, args[k + 1], 1, -1000, 1000, "mm") for k, n in enumerate(("dx", "dy", "dz"))]
-        self._no_follow()
-        self._battery_ok()
-        r = self.robot
-        k = 3 * leg
-        if not (r.pulses[k] and r.pulses[k + 1] and r.pulses[k + 2]):
-            raise ValueError("leg %d has a limp servo: place it with 'foot' first" % (leg + 1))
-        foot = [0, 0, 0]
-        r.geometry.legs[leg].fk(r.angles[k], r.angles[k + 1], r.angles[k + 2], foot, 0)
-        return self._jogged(leg, r.jog_foot(leg, foot[0] + d[0], foot[1] + d[1], foot[2] + d[2]))
-
-    def _joint(self, args):
-        self._args(args, 3, "L J DEG (leg 1..6, coxa|femur|tibia, degrees)")
-        leg = self._leg(args[0])
-        j = self._joint_of(args[1])
-        a = self._num("angle", args[2], 2, -18000, 18000, "degrees")
-        self._no_follow()
-        self._battery_ok()
-        return self._jogged(leg, self.robot.jog_joint(leg, j, a))
-
-    def _pulse(self, args):
-        self._args(args, 3, "L J US (leg 1..6, coxa|femur|tibia, microseconds)")
-        leg = self._leg(args[0])
-        j = self._joint_of(args[1])
-        s = self.robot.servos[3 * leg + j]
-        us = self._whole("pulse", args[2], s.min_us, s.max_us, "us (this servo's calibrated range)")
-        self._no_follow()
-        self._battery_ok()
-        return self._jogged(leg, self.robot.jog_pulse(leg, j, us))
-
     def _get(self, args):
         self._args(args, 1, "L (leg 1..6)")
         return self.leg_line(self._leg(args[0]))
@@ -715,119 +643,6 @@ class Console:
             self.runner.follower.set_gains(kp, ki, kd)
         return "ok pid %s %s %s" % (format_fixed(p.kp, 3), format_fixed(p.ki, 3), format_fixed(p.kd, 3))
 
-    def _servo(self, args, n, usage):
-        self._args(args, n, usage)
-        return 3 * self._leg(args[0]) + self._joint_of(args[1])
-
-    def _cal(self, args):
-        return self.cal_line(self._servo(args, 2, "L J (leg 1..6, coxa|femur|tibia)"))
-
-    def _set_cal(self, k, trim, direction, lo, hi):
-        r = self.robot
-        code = r.calibrate(k, self.base[k][0] + trim, direction, lo, hi)
-        if code == tick.JOG_SERVO:
-            return "err leg %d %s: at %s deg it would need %d us, outside %d..%d us" % (
-                k // 3 + 1,
-                JOINTS[k % 3],
-                format_fixed(r.angles[k], 2),
-                lo - r.jog_excess if r.jog_code == 1 else hi + r.jog_excess,
-                lo,
-                hi,
-            )
-        if code:
-            return self._refused(code)
-        self.trims[k] = trim
-        self.cal_source = "changed"
-        return self.cal_line(k)
-
-    def _trim(self, args):
-        k = self._servo(args, 3, "L J US (leg 1..6, coxa|femur|tibia, us)")
-        c = self.base[k][0]
-        lo = -TRIM_MAX if c - TRIM_MAX >= 500 else 500 - c
-        hi = TRIM_MAX if c + TRIM_MAX <= 2500 else 2500 - c
-        t = self._whole("trim", args[2], lo, hi, "us (centre_us %d + trim within 500..2500)" % c)
-        s = self.robot.servos[k]
-        return self._set_cal(k, t, s.direction, s.min_us, s.max_us)
-
-    def _dir(self, args):
-        k = self._servo(args, 3, "L J D (leg 1..6, coxa|femur|tibia, 1 or -1)")
-        if args[2] not in ("1", "-1", "+1"):
-            raise ValueError("direction %r, allowed 1 or -1" % (args[2][:20],))
-        s = self.robot.servos[k]
-        return self._set_cal(k, self.trims[k], int(args[2]), s.min_us, s.max_us)
-
-    def _range(self, args):
-        k = self._servo(args, 4, "L J MIN MAX (leg 1..6, coxa|femur|tibia, us)")
-        lo = self._whole("min_us", args[2], 500, 2500, "us")
-        hi = self._whole("max_us", args[3], 500, 2500, "us")
-        if lo >= hi:
-            raise ValueError("min_us %d must be below max_us %d" % (lo, hi))
-        s = self.robot.servos[k]
-        return self._set_cal(k, self.trims[k], s.direction, lo, hi)
-
-    def rows(self):
-        """The calibration in force: 18 (trim, direction, min_us, max_us)."""
-        return [(self.trims[k], s.direction, s.min_us, s.max_us) for k, s in enumerate(self.robot.servos)]
-
-    def apply(self, rows):
-        """Put 18 rows in force, all or none; returns 0 or the refusing reason code."""
-        old = self.rows()
-        for k in range(18):
-            t, d, lo, hi = rows[k]
-            code = self.robot.calibrate(k, self.base[k][0] + t, d, lo, hi)
-            if code:
-                for j in range(k):
-                    t, d, lo, hi = old[j]
-                    self.robot.calibrate(j, self.base[j][0] + t, d, lo, hi)
-                    self.trims[j] = t  # all or none: the trims too
-                return code
-            self.trims[k] = t
-        return 0
-
-    def _save(self, args):
-        self._args(args, 0, "no arguments")
-        if self.store is None:
-            raise ValueError("no calibration file on this board")
-        try:
-            crc = self.store.save(self.rows())
-        except OSError as e:
-            why = "the filesystem is read-only" if e.args and e.args[0] == 30 else "the filesystem refused"
-            return "err save: %s (%s); the previous file is kept" % (why, e)
-        self.cal_source = "file"
-        return "ok saved %s crc %04x" % (self.store.path, crc)
-
-    def load_file(self):
-        """Calibration from the store, else the robot file's defaults; returns the reply."""
-        if self.store is None:
-            raise ValueError("no calibration file on this board")
-        try:
-            rows, where, version = self.store.load()
-        except ValueError as e:
-            return "ok defaults (%s)" % (e,)
-        if version == 1:
-            # Version 1 mirrored a flipped servo about angle 0, version 2 about its reference:
-            # the same pulses everywhere else, different ones there.
-            for k in range(18):
-                s = self.robot.servos[k]
-                if rows[k][1] != self.base[k][1] and s.ref_cdeg:
-                    return (
-                        "err load: %s is version 1 and flips leg %d %s, which it mirrored about 0 deg; now "
-                        "its reference is %s deg: 'defaults', set it again and 'save'"
-                        % (where, k // 3 + 1, JOINTS[k % 3], format_fixed(s.ref_cdeg, 2))
-                    )
-        code = self.apply(rows)
-        if code:
-            return "err load: %s kept the calibration in force: %s" % (where, self._refused(code)[4:])
-        self.cal_source = "file"
-        return "ok loaded " + where
-
-    def _load(self, args):
-        self._args(args, 0, "no arguments")
-        reply = self.load_file()
-        if reply.startswith("ok defaults"):
-            self._defaults([])
-        return reply
-
     def _echo(self, args):
         if len(args) > 1 or (args and args[0] not in ("on", "off")):
             raise ValueError("need on, off or nothing (ask), got %r" % (" ".join(args)[:20],))
@@ -850,6 +665,16 @@ class Console:
         from drivers import stream  # only now: a board that never streams keeps its heap and names
 
         return stream.command(self, args)
+
+    def _calibration(self, word, args):
+        """A jog or calibration command (consolecal), its code on the heap only while it runs."""
+        import consolecal
+
+        try:
+            return consolecal.command(self, word, args)
+        finally:
+            if not self.keep_cal:
+                release(CAL)
 
     # -- multi-line replies (selftest) ------------------------------------------------------
 
@@ -891,14 +716,6 @@ class Console:
         self.lines += 1
         sys.modules.pop("selftest", None)  # its heap goes back once the job is dropped
 
-    def _defaults(self, args):
-        self._args(args, 0, "no arguments")
-        code = self.apply([(0, b[1], b[2], b[3]) for b in self.base])
-        if code:
-            return self._refused(code)
-        self.cal_source = "defaults"
-        return "ok defaults"
-
 
 def tag_length(buf, n):
     """The length of the request tag at the start of buf's first n bytes ('#' and 1..TAG_DIGITS
@@ -918,10 +735,14 @@ def start(runner, reader, os=None, opener=open, out=print, walk_timeout_ms=WALK_
     """Attach a console to runner (runner.console) and load the calibration file (os: the
     filesystem module, None: none). Prints one 'cal: ...' line when the file cannot be used.
     write: raw text out (sys.stdout.write) for `echo on`; None: echo is refused."""
-    store = None if os is None else Store(os, opener)
+    store = None
+    if os is not None:
+        from calstore import Store
+
+        store = Store(os, opener)
     c = Console(runner, reader, out, store, walk_timeout_ms, write)
     if store is not None:
-        reply = c.load_file()
+        reply = c._calibration("boot", ())  # consolecal.load_file, its code let go again
         if reply.startswith("ok defaults ("):
             out("cal: %s; the robot file's calibration is in use" % reply[13:-1])
         elif not reply.startswith("ok loaded"):

@@ -1,0 +1,251 @@
+"""The console's jog (`foot`, `nudge`, `joint`, `pulse`) and calibration commands (`cal`, `trim`,
+`dir`, `range`, `save`, `load`, `defaults`), and the calibration file's load at boot: imported by
+console.py when one of them runs and let go after it (hexapod.release), so the walking loop has
+their code's heap (docs/console.md). None runs while walking. The console names the command in an
+err reply.
+"""
+
+from calstore import TRIM_MAX
+
+from hexapod import tick
+from hexapod.units import format_fixed
+
+JOINTS = ("coxa", "femur", "tibia")
+
+
+def command(con, word, args):
+    """The reply to a jog or calibration command line's word and arguments on console con."""
+    if word == "boot":  # console.start: the file's calibration, else the robot file's in force
+        return load_file(con)
+    if word == "foot":
+        return _foot(con, args)
+    if word == "nudge":
+        return _nudge(con, args)
+    if word == "joint":
+        return _joint(con, args)
+    if word == "pulse":
+        return _pulse(con, args)
+    if word == "cal":
+        return cal_line(con, _servo(con, args, 2, "L J (leg 1..6, coxa|femur|tibia)"))
+    if word == "trim":
+        return _trim(con, args)
+    if word == "dir":
+        return _dir(con, args)
+    if word == "range":
+        return _range(con, args)
+    con._args(args, 0, "no arguments")
+    if word == "save":
+        return _save(con)
+    if word == "load":
+        reply = load_file(con)
+        if reply.startswith("ok defaults"):
+            _defaults(con)
+        return reply
+    return _defaults(con)
+
+
+def _foot(con, args):
+    con._args(args, 4, "L X Y Z (leg 1..6, mm in the leg frame)")
+    leg = con._leg(args[0])
+    x = con._num("x", args[1], 1, -5000, 5000, "mm")
+    y = con._num("y", args[2], 1, -5000, 5000, "mm")
+    z = con._num("z", args[3], 1, -5000, 5000, "mm")
+    con._no_follow()
+    con._battery_ok()
+    return _jogged(con, leg, con.robot.jog_foot(leg, x, y, z))
+
+
+def _jogged(con, leg, code):
+    if code:
+        return con._refused(code)
+    con._walking = False
+    return con.leg_line(leg)
+
+
+def _nudge(con, args):
+    con._args(args, 4, "L DX DY DZ (leg 1..6, mm in the leg frame)")
+    leg = con._leg(args[0])
+    d = [con._num(n, args[k + 1], 1, -1000, 1000, "mm") for k, n in enumerate(("dx", "dy", "dz"))]
+    con._no_follow()
+    con._battery_ok()
+    r = con.robot
+    k = 3 * leg
+    if not (r.pulses[k] and r.pulses[k + 1] and r.pulses[k + 2]):
+        raise ValueError("leg %d has a limp servo: place it with 'foot' first" % (leg + 1))
+    foot = [0, 0, 0]
+    r.geometry.legs[leg].fk(r.angles[k], r.angles[k + 1], r.angles[k + 2], foot, 0)
+    return _jogged(con, leg, r.jog_foot(leg, foot[0] + d[0], foot[1] + d[1], foot[2] + d[2]))
+
+
+def _joint(con, args):
+    con._args(args, 3, "L J DEG (leg 1..6, coxa|femur|tibia, degrees)")
+    leg = con._leg(args[0])
+    j = _joint_of(args[1])
+    a = con._num("angle", args[2], 2, -18000, 18000, "degrees")
+    con._no_follow()
+    con._battery_ok()
+    return _jogged(con, leg, con.robot.jog_joint(leg, j, a))
+
+
+def _pulse(con, args):
+    con._args(args, 3, "L J US (leg 1..6, coxa|femur|tibia, microseconds)")
+    leg = con._leg(args[0])
+    j = _joint_of(args[1])
+    s = con.robot.servos[3 * leg + j]
+    us = _whole("pulse", args[2], s.min_us, s.max_us, "us (this servo's calibrated range)")
+    con._no_follow()
+    con._battery_ok()
+    return _jogged(con, leg, con.robot.jog_pulse(leg, j, us))
+
+
+def _joint_of(text):
+    for j in range(3):
+        if JOINTS[j] == text:
+            return j
+    raise ValueError("joint %r, allowed coxa, femur, tibia" % (text[:20],))
+
+
+def _whole(name, text, lo, hi, unit):
+    body = text[1:] if text[:1] in ("-", "+") else text
+    if not body.isdigit() or len(body) > 9:
+        raise ValueError("%s %r is not a whole number (%s)" % (name, text[:20], unit))
+    v = int(text)
+    if v < lo or v > hi:
+        raise ValueError("%s %d is outside %d..%d %s" % (name, v, lo, hi, unit))
+    return v
+
+
+def cal_line(con, k):
+    """'ok leg L joint J centre_us C ref_deg R trim T dir D min_us A max_us B' for servo 0..17."""
+    s = con.robot.servos[k]
+    return "ok leg %d joint %s centre_us %d ref_deg %s trim %d dir %d min_us %d max_us %d" % (
+        k // 3 + 1,
+        JOINTS[k % 3],
+        con.base[k][0],
+        format_fixed(s.ref_cdeg, 2),
+        con.trims[k],
+        s.direction,
+        s.min_us,
+        s.max_us,
+    )
+
+
+def _servo(con, args, n, usage):
+    con._args(args, n, usage)
+    return 3 * con._leg(args[0]) + _joint_of(args[1])
+
+
+def _set_cal(con, k, trim, direction, lo, hi):
+    r = con.robot
+    code = r.calibrate(k, con.base[k][0] + trim, direction, lo, hi)
+    if code == tick.JOG_SERVO:
+        return "err leg %d %s: at %s deg it would need %d us, outside %d..%d us" % (
+            k // 3 + 1,
+            JOINTS[k % 3],
+            format_fixed(r.angles[k], 2),
+            lo - r.jog_excess if r.jog_code == 1 else hi + r.jog_excess,
+            lo,
+            hi,
+        )
+    if code:
+        return con._refused(code)
+    con.trims[k] = trim
+    con.cal_source = "changed"
+    return cal_line(con, k)
+
+
+def _trim(con, args):
+    k = _servo(con, args, 3, "L J US (leg 1..6, coxa|femur|tibia, us)")
+    c = con.base[k][0]
+    lo = -TRIM_MAX if c - TRIM_MAX >= 500 else 500 - c
+    hi = TRIM_MAX if c + TRIM_MAX <= 2500 else 2500 - c
+    t = _whole("trim", args[2], lo, hi, "us (centre_us %d + trim within 500..2500)" % c)
+    s = con.robot.servos[k]
+    return _set_cal(con, k, t, s.direction, s.min_us, s.max_us)
+
+
+def _dir(con, args):
+    k = _servo(con, args, 3, "L J D (leg 1..6, coxa|femur|tibia, 1 or -1)")
+    if args[2] not in ("1", "-1", "+1"):
+        raise ValueError("direction %r, allowed 1 or -1" % (args[2][:20],))
+    s = con.robot.servos[k]
+    return _set_cal(con, k, con.trims[k], int(args[2]), s.min_us, s.max_us)
+
+
+def _range(con, args):
+    k = _servo(con, args, 4, "L J MIN MAX (leg 1..6, coxa|femur|tibia, us)")
+    lo = _whole("min_us", args[2], 500, 2500, "us")
+    hi = _whole("max_us", args[3], 500, 2500, "us")
+    if lo >= hi:
+        raise ValueError("min_us %d must be below max_us %d" % (lo, hi))
+    s = con.robot.servos[k]
+    return _set_cal(con, k, con.trims[k], s.direction, lo, hi)
+
+
+def rows(con):
+    """The calibration in force: 18 (trim, direction, min_us, max_us)."""
+    return [(con.trims[k], s.direction, s.min_us, s.max_us) for k, s in enumerate(con.robot.servos)]
+
+
+def apply(con, new):
+    """Put 18 rows in force, all or none; returns 0 or the refusing reason code."""
+    old = rows(con)
+    robot = con.robot
+    for k in range(18):
+        t, d, lo, hi = new[k]
+        code = robot.calibrate(k, con.base[k][0] + t, d, lo, hi)
+        if code:
+            for j in range(k):
+                t, d, lo, hi = old[j]
+                robot.calibrate(j, con.base[j][0] + t, d, lo, hi)
+                con.trims[j] = t  # all or none: the trims too
+            return code
+        con.trims[k] = t
+    return 0
+
+
+def _save(con):
+    store = con.store
+    if store is None:
+        raise ValueError("no calibration file on this board")
+    try:
+        crc = store.save(rows(con))
+    except OSError as e:
+        why = "the filesystem is read-only" if e.args and e.args[0] == 30 else "the filesystem refused"
+        return "err save: %s (%s); the previous file is kept" % (why, e)
+    con.cal_source = "file"
+    return "ok saved %s crc %04x" % (store.path, crc)
+
+
+def load_file(con):
+    """Calibration from the store, else the robot file's defaults; returns the reply."""
+    if con.store is None:
+        raise ValueError("no calibration file on this board")
+    try:
+        new, where, version = con.store.load()
+    except ValueError as e:
+        return "ok defaults (%s)" % (e,)
+    if version == 1:
+        # Version 1 mirrored a flipped servo about angle 0, version 2 about its reference:
+        # the same pulses everywhere else, different ones there.
+        for k in range(18):
+            s = con.robot.servos[k]
+            if new[k][1] != con.base[k][1] and s.ref_cdeg:
+                return (
+                    "err load: %s is version 1 and flips leg %d %s, which it mirrored about 0 deg; now "
+                    "its reference is %s deg: 'defaults', set it again and 'save'"
+                    % (where, k // 3 + 1, JOINTS[k % 3], format_fixed(s.ref_cdeg, 2))
+                )
+    code = apply(con, new)
+    if code:
+        return "err load: %s kept the calibration in force: %s" % (where, con._refused(code)[4:])
+    con.cal_source = "file"
+    return "ok loaded " + where
+
+
+def _defaults(con):
+    code = apply(con, [(0, b[1], b[2], b[3]) for b in con.base])
+    if code:
+        return con._refused(code)
+    con.cal_source = "defaults"
+    return "ok defaults"
