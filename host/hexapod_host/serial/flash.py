@@ -370,8 +370,15 @@ def explain_mpremote(port, text):
     return text.strip().splitlines()[-1] if text.strip() else "mpremote failed"
 
 
-def run(cmd, timeout=120):
+# A board that has not answered an mpremote command in this long is taken as hung (a real board copies
+# the whole tree in seconds; the emulated Pico, at a tenth of real time or less, is given more).
+MPREMOTE_S = 120
+
+
+def run(cmd, timeout=None):
     """(exit status, stdout + stderr) of a command; a missing tool is status 127."""
+    if timeout is None:
+        timeout = MPREMOTE_S
     try:
         proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
     except FileNotFoundError:
