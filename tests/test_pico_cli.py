@@ -109,6 +109,7 @@ def test_run_streams_output_and_returns_the_boards_status(tmp_path):
         "boards",
         "calstore.mpy",
         "console.mpy",
+        "consolecal.mpy",
         "drivers",
         "hexapod",
         "hexapod.checked",
