@@ -13,10 +13,10 @@ SerialReader (CircuitPython: supervisor.runtime.serial_bytes_available), BufferR
 import sys
 
 from micropython import const
-from runner import BOOT_WORDS, counters, release
+from runner import BOOT_WORDS, counters
 
 from hexapod import battery as batteries
-from hexapod import faultlog, follow, gait, limits, sensors, tick
+from hexapod import faultlog, follow, gait, limits, release, sensors, tick
 from hexapod.leg import describe as leg_describe
 from hexapod.units import format_fixed, parse_fixed
 

@@ -22,8 +22,6 @@ from hexapod import battery as batteries
 from hexapod import faultlog as faultlogs
 from hexapod import follow, limits, sensors, tick
 
-from hexapod import BOOT_ONLY, release  # noqa: F401, I001  # isort: skip (main.py's names; in hexapod for code.py)
-
 # The names step() reads every frame, copied as private constants: folded into the code, where an
 # imported module's name is two dictionary lookups a frame (tests/test_viper_twins.py checks each
 # copy against its source).

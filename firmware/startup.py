@@ -19,10 +19,10 @@ cut up: imported after them it found no block big enough on an emulated Pico (Me
 import time
 
 from machine import I2C, Pin, time_pulse_us
-from runner import BOOT_ONLY, FRAME_MS, Runner, release
+from runner import FRAME_MS, Runner
 
 from drivers import hcsr04, pca9685
-from hexapod import geometry, sensors
+from hexapod import BOOT_ONLY, geometry, release, sensors
 
 STATUS_FRAMES = 250  # 5 s of 20 ms frames
 # Pings per median, hexapod.sensors order: each sensor pings every 100 ms, so a median of n
@@ -35,7 +35,7 @@ def build(board_name, robot_name, clock=time, max_range=10000, samples=SONAR_SAM
     """The Runner for a board and robot on this machine's I2C and pins (max_range: 0.1 mm;
     samples: pings per median for each sonar, hexapod.sensors order; bank: where frames go,
     None for the board's PCA9685s on its I2C)."""
-    from hexapod import wiring  # boot only: run() releases it (runner.BOOT_ONLY)
+    from hexapod import wiring  # boot only: run() releases it (hexapod.BOOT_ONLY)
 
     files = wiring.load(board_name, robot_name)
     if files is None:  # not as flashed (or no marker): checked here

@@ -95,7 +95,7 @@ def test_every_module_the_run_loads_is_shipped_and_boot_only_ones_are_let_go(run
     # the frames keep adafruit_bus_device's I2CDevice only
     assert libs == ["adafruit_pca9685"]  # circup brings adafruit_bus_device and adafruit_register with it
     assert {m for m in loaded if m.startswith("adafruit_")} == {"adafruit_bus_device", "adafruit_bus_device.i2c_device"}
-    # code.py releases the board file's validator and the robot file after boot (runner.release),
+    # code.py releases the board file's validator and the robot file after boot (hexapod.release),
     # the console drops selftest when the command is done
     for gone in ("hexapod.board", "hexapod.robotfile", "robots.default", "selftest"):
         assert gone in shipped and gone not in loaded, gone

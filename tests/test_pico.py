@@ -159,9 +159,9 @@ def load(names):
 # In a function: its frame is gone by the release, so no stale pointer on the VM's stack keeps a
 # released module alive for the conservative collector.
 load(%r)
-import runner
-runner.release(*runner.BOOT_ONLY, "robots.default", "robots.default_cal")  # as main.main does
-runner.release("consolecal")  # as console.start does
+import hexapod
+hexapod.release(*hexapod.BOOT_ONLY, "robots.default", "robots.default_cal")  # as main.main does
+hexapod.release("consolecal")  # as console.start does
 gc.collect()
 print("resident", gc.mem_free())
 load(%r)
@@ -186,7 +186,7 @@ load(%r)
     # A Pico has ~240 KB of heap. The loop allocates nothing a frame; what the running set must leave
     # free is room for what comes on demand: `selftest` (its module and checks: 10.3 KB measured on
     # 2026-11-27) above its own floor below (45 KB), plus one more qstr pool. MicroPython keeps every
-    # name a loaded module interns for good (runner.release frees code, never names) in pools that
+    # name a loaded module interns for good (hexapod.release frees code, never names) in pools that
     # double: the 7th, 8.2 KB, opened when the running names passed ~1,260 (the fault log, the
     # link's tags and issue 19's split together: 1,311), and the next, ~16 KB, opens near 2,500
     # names. 45 + 10.3 + 16 = 71.3 KB: 72 KB (30 % of the heap) stays free while the loop runs.

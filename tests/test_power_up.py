@@ -72,6 +72,6 @@ def test_bad_boot_settings_are_refused(monkeypatch, bad):
 
 def test_main_releases_the_boot_only_modules(rt, tmp_path):
     # MicroPython: forgotten once the runner is built (their heap back to the loop); CPython, where
-    # the tests share one process, keeps them (runner.release is a no-op there).
+    # the tests share one process, keeps them (hexapod.release is a no-op there).
     kept = rt.name == "cpython"
     assert rt.with_heapsize("4m").call("scenarios.power_up:released", str(tmp_path)) == [kept] * 6

@@ -7,7 +7,7 @@ VERSION = "0.1.0"
 # What main.py's start-up and code.py release once the robot's files are read, with the robot's two
 # files: the board file's validator, the robot file's and the calibration file's checks, their
 # helpers, and what builds from the files as flashed without them (hexapod.wiring). Here, not in
-# runner: code.py lets them go before the loop's modules load (runner re-exports both).
+# runner: code.py lets them go before the loop's modules load.
 BOOT_ONLY = ("hexapod.board", "hexapod.robotfile", "hexapod.robotcal", "hexapod.check", "hexapod.wiring")
 
 

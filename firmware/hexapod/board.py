@@ -21,7 +21,7 @@ RUNTIMES = ("micropython", "circuitpython")
 ARCHES = ("x86", "x64", "armv6", "armv6m", "armv7m", "armv7em", "armv7emsp", "armv7emdp", "xtensa", "xtensawin")
 ARCHES += ("rv32imc",)
 # The private tables below are const(): folded into the code, no name kept on the board (each
-# module-level name is a qstr, which stays in the heap after runner.release forgets this module).
+# module-level name is a qstr, which stays in the heap after hexapod.release forgets this module).
 
 _TOP = const(("name", "runtime", "arch", "i2c", "pca9685", "channels", "sonars"))
 _OPTIONAL = const(("notes", "follow", "watchdog_ms", "on_exit", "walk_timeout_ms", "boot", "battery"))

@@ -1,6 +1,6 @@
 """Checks for plain-data files (boards/, robots/): one ValueError naming the file, the place, what
 is wrong and what is allowed. Pure, imports nothing; never runs in the frame. Boot-only: the board
-and robot checks import it, main.main forgets it with them once the loop is built (runner.release).
+and robot checks import it, main.main forgets it with them once the loop is built (hexapod.release).
 """
 
 
@@ -9,7 +9,7 @@ class Check:
 
     Names and short strings here (and in the other boot-only checks) reuse what the firmware has
     anyway where they can: each new one is a qstr, which stays in the board's heap after the
-    module is released (runner.release), and a few dozen more cost a new qstr pool (8 KB)."""
+    module is released (hexapod.release), and a few dozen more cost a new qstr pool (8 KB)."""
 
     def __init__(self, label, name):
         self.name = label + " " + repr(name)  # what every message starts with

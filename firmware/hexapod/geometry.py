@@ -4,7 +4,7 @@
 and units: lengths 0.1 mm, angles cdeg) and raises ValueError naming the robot, the field
 and what is allowed when something is wrong, before anything moves. The checks are in
 hexapod.robotfile, imported only then: boot-only code that main.main forgets once it has
-built the robot (runner.release), so its heap goes back to the loop.
+built the robot (hexapod.release), so its heap goes back to the loop.
 """
 
 from hexapod.fixmath import cos, sin

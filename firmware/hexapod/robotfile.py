@@ -1,6 +1,6 @@
 """Robot files (robots/<name>.py): read one and check it whole before anything moves; one
 ValueError naming the robot, the field and what is allowed. Boot-only: hexapod.geometry.load
-imports it, main.main forgets it once the robot is built (runner.release). Units as in
+imports it, main.main forgets it once the robot is built (hexapod.release). Units as in
 robots/default.py: lengths 0.1 mm, angles cdeg.
 """
 

@@ -12,7 +12,7 @@ listed with its CRC32, builds from them without the board's checks (hexapod.boar
 the checks' code and names never reach its heap. Anything else (no marker, another path, one
 changed byte) is checked on the board as before, with the same messages. No checks here:
 hexapod.board and hexapod.robotcal hold them and give the helpers' names too. Boot-only:
-startup.run releases it (runner.BOOT_ONLY). Units as everywhere: pulses in us, lengths 0.1 mm, angles cdeg.
+startup.run releases it (hexapod.BOOT_ONLY). Units as everywhere: pulses in us, lengths 0.1 mm, angles cdeg.
 """
 
 from hexapod.sensors import SENSOR_NAMES

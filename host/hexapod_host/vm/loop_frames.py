@@ -31,6 +31,8 @@ except ImportError:
 import main
 import runner
 
+import hexapod
+
 FRAMES = int(sys.argv[1]) if len(sys.argv) > 1 else 500
 SCENARIO = sys.argv[2] if len(sys.argv) > 2 else "default"
 if SCENARIO == "stream":
@@ -92,7 +94,7 @@ def drive(robot, n, pending):
 def streaming(r):
     """The stream scenario's console (no reader) streaming at 25 Hz; its reply printed. The
     boot-only modules go first, as main.main lets them go before its console comes."""
-    runner.release(*runner.BOOT_ONLY, "robots." + main.ROBOT, "robots.%s_cal" % main.ROBOT)
+    hexapod.release(*hexapod.BOOT_ONLY, "robots." + main.ROBOT, "robots.%s_cal" % main.ROBOT)
     gc.collect()
     con = console.start(r, None, None, write=sys.stdout.write)
     if sys.implementation.name == "cpython":  # the host has no MicroPython stream.write(buf, n)
