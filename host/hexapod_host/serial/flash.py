@@ -233,8 +233,9 @@ def stage(board, robot, out=None, arch=None):
         if rel == entry:
             dest = os.path.join(out, rel)
             os.makedirs(os.path.dirname(dest), exist_ok=True)
+            text = entry_text(src, board, robot)
             with open(dest, "w") as f:
-                f.write(cp_text(entry_text(src, board, robot), rel) if cp else entry_text(src, board, robot))
+                f.write(cp_text(text, rel) if cp else text)
         elif cp:
             dest = os.path.join(out, rel)
             os.makedirs(os.path.dirname(dest), exist_ok=True)
