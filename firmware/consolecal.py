@@ -5,12 +5,10 @@ their code's heap (docs/console.md). None runs while walking. The console names 
 err reply.
 """
 
-from calstore import TRIM_MAX
+from calstore import JOINTS, TRIM_MAX
 
 from hexapod import tick
 from hexapod.units import format_fixed
-
-JOINTS = ("coxa", "femur", "tibia")
 
 
 def command(con, word, args):
