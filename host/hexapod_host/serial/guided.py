@@ -20,7 +20,7 @@ Esc or q at any step quits without `save`: the calibration file on the board is 
 import json
 import os
 
-from hexapod_host.serial.jog import JOINTS, STEPS_US, fields
+from hexapod_host.serial.jog import CAL_FIELDS, JOINTS, STEPS_US, fields
 
 FIT, SWEEP, TRIM, STAND, DONE, QUIT = "fit", "sweep", "trim", "stand", "done", "quit"
 # The sweep about the reference, degrees: +10 first, then -10, then back, 2 degrees a step.
@@ -145,7 +145,7 @@ class Guide:
         reply = self.ask("cal %d %s" % (leg, joint))
         if reply is None:
             return False
-        f = fields(reply, ("leg", "joint", "centre_us", "ref_deg", "trim", "dir", "min_us", "max_us"))
+        f = fields(reply, CAL_FIELDS)
         self.cal = {k: int(f[k][0]) for k in ("centre_us", "trim", "dir", "min_us", "max_us")}
         self.cal["ref_cdeg"] = centidegrees(f["ref_deg"][0])
         return True

@@ -8,6 +8,8 @@ Steps are decimal text sent as typed, so no float ever rounds a step.
 import time
 
 JOINTS = ("coxa", "femur", "tibia")
+# A `cal` reply's fields (docs/console.md): ok leg L joint J centre_us C ref_deg R trim T dir D ...
+CAL_FIELDS = ("leg", "joint", "centre_us", "ref_deg", "trim", "dir", "min_us", "max_us")
 STEPS_MM = ("0.5", "1", "5", "10")  # foot steps, mm
 STEPS_US = (1, 5, 10, 50)  # servo nudge and trim steps, us
 # Arrow keys in the leg frame: x outward along the mount, y to the left of it, z up.
@@ -87,7 +89,7 @@ def apply(view, command, reply):
             view.foot = tuple(f["foot"])
         view.message = "%s: ok" % command
     elif words[1:2] == ["leg"] and "joint" in words:
-        f = fields(reply, ("leg", "joint", "centre_us", "ref_deg", "trim", "dir", "min_us", "max_us"))
+        f = fields(reply, CAL_FIELDS)
         if f.get("leg") == [str(view.leg)] and f.get("joint") == [JOINTS[view.joint]]:
             view.cal = {k: int(f[k][0]) for k in ("centre_us", "trim", "dir", "min_us", "max_us") if f.get(k)}
             if f.get("ref_deg"):

@@ -16,9 +16,8 @@ import threading
 
 from hexapod.servo import ServoMap
 from hexapod_host.serial.guided import centidegrees
-from hexapod_host.serial.jog import JOINTS, fields
+from hexapod_host.serial.jog import CAL_FIELDS, JOINTS, fields
 
-CAL_FIELDS = ("leg", "joint", "centre_us", "ref_deg", "trim", "dir", "min_us", "max_us")
 ROW_COMMANDS = ("cal", "trim", "dir", "range")  # answered with the servo's cal line
 ALL_COMMANDS = ("save", "load", "defaults")  # the 18 maps may have changed: read them again
 PENDING_KEPT = 100  # tags waiting for a reply; a reply older than BoardLink keeps never comes
