@@ -235,7 +235,10 @@ def test_only_the_owning_tab_drives_and_its_going_stops_the_robot():
     assert src.lines == ["walk 80 0 0", "stop"]
     d.renew()
     assert src.lines[-1] == "stop" and d.owner is None
-    assert d.claim("tab2")
+    # The gone tab's panel still refreshes until the server forgets it: it does not take the drive
+    # back (a reloaded page is a new tab, which then would be view-only for RECONNECT_S).
+    assert not d.claim("tab1", connected=False) and d.owner is None
+    assert d.claim("tab2") and not d.claim("tab1")
 
 
 def test_buttons_gait_and_wall_following():

@@ -61,9 +61,12 @@ class Driver:
 
     # -- who drives ----------------------------------------------------------------------
 
-    def claim(self, client):
-        """Take the drive for client if it is free; True when client owns it."""
-        if self.drivable and self.owner is None:
+    def claim(self, client, connected=True):
+        """Take the drive for client if it is free and client is connected; True when client owns
+        it. A tab whose socket is gone (a reload, a lost network) keeps its panel's timer until the
+        server forgets it (server.RECONNECT_S later): it must not take back the drive its
+        disconnect let go, or the reloaded page, a new client, stays view-only meanwhile."""
+        if connected and self.drivable and self.owner is None:
             self.owner = client
         return self.owner == client
 

@@ -104,9 +104,17 @@ class DrivePanel:
         ui.on("hexapod_pad", lambda e: self.driver.owner == client.id and self._pad(e.args))
         ui.timer(RENEW_S, self._renew)
         ui.timer(REFRESH_S, self.refresh)
-        client.on_disconnect(lambda: driver.release(client.id))
+        # A tab without its socket (reloaded, network lost) neither drives nor claims until it is
+        # back: its panel's timers run on until the server forgets it (server.RECONNECT_S).
+        self.connected = True
+        client.on_connect(lambda: setattr(self, "connected", True))
+        client.on_disconnect(self._gone)
         client.on_delete(lambda: driver.release(client.id))
         self.refresh()
+
+    def _gone(self):
+        self.connected = False
+        self.driver.release(self.client.id)
 
     def _do(self, fn, *args):
         try:
@@ -137,7 +145,7 @@ class DrivePanel:
 
     def refresh(self):
         d = self.driver
-        owns = d.claim(self.client.id)  # a freed drive goes to the next tab that looks
+        owns = d.claim(self.client.id, self.connected)  # a freed drive goes to the next tab that looks
         if not d.drivable:
             who = "this source cannot be driven"
         elif owns:
