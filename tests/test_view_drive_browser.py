@@ -82,8 +82,12 @@ def pulse_frames(events, after=-1):
 
 def stand(driver, board):
     n = len(vb.commands(board.trace(), "stand"))  # an earlier test's stand is not this one's
+    # A socket that reconnected under load gives the drive back within a refresh: wait for it.
+    assert vb.wait_for(lambda: "you drive" in text(driver, "drive-who"), timeout=30), text(driver, "drive-who")
     click(driver, "drive-stand")
-    assert vb.wait_for(lambda: len(vb.commands(board.trace(), "stand")) > n, timeout=30), "no stand reached the board"
+    assert vb.wait_for(lambda: len(vb.commands(board.trace(), "stand")) > n, timeout=30), (
+        "no stand reached the board: %r" % text(driver, "drive-who")
+    )
     f0 = vb.commands(board.trace(), "stand")[n][0]
     assert vb.wait_for(lambda: any(m[1] == STANDING for m in modes(board.trace(), f0)), timeout=60), (
         "the board did not reach standing"

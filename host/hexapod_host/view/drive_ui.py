@@ -113,7 +113,9 @@ class DrivePanel:
         self.refresh()
 
     def _gone(self):
-        self.connected = False
+        # A socket that reconnected before the old one was reaped keeps the tab connected: NiceGUI
+        # clears the tab only when no socket is left (has_socket_connection).
+        self.connected = self.client.has_socket_connection
         self.driver.release(self.client.id)
 
     def _do(self, fn, *args):
