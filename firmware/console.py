@@ -742,7 +742,14 @@ def start(runner, reader, os=None, opener=open, out=print, walk_timeout_ms=WALK_
         store = Store(os, opener)
     c = Console(runner, reader, out, store, walk_timeout_ms, write)
     if store is not None:
-        reply = c._calibration("boot", ())  # consolecal.load_file, its code let go again
+        # The file read here (calstore is resident): consolecal, ~26 ms of import on a Pico, only
+        # to put a file's rows in force (and let go again).
+        try:
+            found = store.load()
+        except ValueError as e:
+            reply = "ok defaults (%s)" % (e,)
+        else:
+            reply = c._calibration("boot", found)
         if reply.startswith("ok defaults ("):
             out("cal: %s; the robot file's calibration is in use" % reply[13:-1])
         elif not reply.startswith("ok loaded"):

@@ -13,8 +13,8 @@ from hexapod.units import format_fixed
 
 def command(con, word, args):
     """The reply to a jog or calibration command line's word and arguments on console con."""
-    if word == "boot":  # console.start: the file's calibration, else the robot file's in force
-        return load_file(con)
+    if word == "boot":  # console.start: the calibration file's (rows, where, version) it read
+        return put_file(con, *args)
     if word == "foot":
         return _foot(con, args)
     if word == "nudge":
@@ -223,6 +223,11 @@ def load_file(con):
         new, where, version = con.store.load()
     except ValueError as e:
         return "ok defaults (%s)" % (e,)
+    return put_file(con, new, where, version)
+
+
+def put_file(con, new, where, version):
+    """The rows a calibration file held (calstore.Store.load) in force; returns the reply."""
     if version == 1:
         # Version 1 mirrored a flipped servo about angle 0, version 2 about its reference:
         # the same pulses everywhere else, different ones there.
