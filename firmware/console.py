@@ -33,9 +33,12 @@ TAG_DIGITS = const(9)  # a request tag: '#' and 1..9 digits (docs/console.md, "R
 # posture move's trial of all its frames; a flash write): a tagged request of one of them gets
 # '#TAG working' before the command runs, so a client waits for its reply without a fixed timeout.
 SLOW = ("gait", "stand", "sit", "relax", "save", "load", "defaults")
-# The jog and calibration commands' module (consolecal.py): imported when one runs, let go after it
-# (hexapod.release): 6.6 KB of heap the walking loop keeps on a Pico, for an import per command.
+# The jog and calibration commands' module (consolecal.py): imported at a jog session's first
+# command and kept while the session goes on (each import took 24-45 ms on a Pico: the frame
+# overran), let go (hexapod.release) CAL_KEEP_MS after its last command or once the robot walks or
+# follows a wall: the 5.3 KB of heap it takes on a Pico are the walking loop's again.
 CAL = "consolecal"
+CAL_KEEP_MS = const(30000)
 
 
 def fault_text(log, bank):
@@ -159,6 +162,8 @@ class Console:
         self.base = tuple((s.centre_us, s.direction, s.min_us, s.max_us) for s in self.robot.servos)
         self.trims = [0] * 18
         self.cal_source = "defaults"
+        self._cal_kept = False  # consolecal stays loaded for a jog session, until _cal_until (ticks_ms)
+        self._cal_until = 0
         self._table = {
             "help": self._help,
             "status": self._status,
@@ -213,6 +218,9 @@ class Console:
                 self._walking = False
                 if self.robot.mode == tick.WALKING and not self.runner.follower.mode:
                     self.robot.stop()
+        if self._cal_kept and self._cal_over():
+            self._cal_kept = False
+            release(CAL)
         if self._job is not None:
             self._job_step()
         if self._gait_reply >= 0 and not self.robot.configuring():
@@ -667,14 +675,29 @@ class Console:
         return stream.command(self, args)
 
     def _calibration(self, word, args):
-        """A jog or calibration command (consolecal), its code on the heap only while it runs."""
+        """A jog or calibration command (consolecal): its module stays on the heap for the session
+        (poll lets it go, _cal_over); the boot's file load ("boot") lets it go at once."""
         import consolecal
 
         try:
             return consolecal.command(self, word, args)
         finally:
-            if not self.keep_cal:
+            if self.keep_cal:
+                pass
+            elif word == "boot":
                 release(CAL)
+            else:
+                clock = self.runner.clock
+                self._cal_kept = True
+                self._cal_until = clock.ticks_add(clock.ticks_ms(), CAL_KEEP_MS)
+
+    def _cal_over(self):
+        """True when the jog session is over: CAL_KEEP_MS without a jog or calibration command, or
+        the robot walks or follows a wall (none of those commands runs then)."""
+        if self.robot.mode == tick.WALKING or self.runner.follower.mode:
+            return True
+        clock = self.runner.clock
+        return clock.ticks_diff(clock.ticks_ms(), self._cal_until) >= 0
 
     # -- multi-line replies (selftest) ------------------------------------------------------
 

@@ -200,10 +200,12 @@ def test_a_short_write_that_reports_success_is_caught_by_the_read_back(rt):
     assert rt.call("scenarios.calstore:short_write") == (28, True, True)
 
 
-def test_the_jog_and_calibration_commands_module_leaves_after_each_command(rt):
-    # consolecal is the console's jog and calibration commands, imported per command and let go
-    # after it (hexapod.release; the running loop keeps its 5.5 KB of heap on a Pico). On CPython
-    # release does nothing (the host's tests share one process). CircuitPython's code.py keeps it.
+def test_the_jog_and_calibration_commands_module_stays_for_a_jog_session(rt):
+    # consolecal is the console's jog and calibration commands: imported at a session's first
+    # command and kept while it goes on (an import per command overran the Pico's frame), let go
+    # (hexapod.release) 30 s (CAL_KEEP_MS) after the last one or once the robot walks; the boot's
+    # file load lets it go at once. On CPython release does nothing (the host's tests share one
+    # process). CircuitPython's code.py keeps it (keep_cal).
     src = (
         RIG
         + STUB_FS
@@ -212,15 +214,33 @@ import sys
 fs = StubFS({calstore.FILE: calstore.encode([(0, 1, 600, 2400)] * 18)})
 said = []
 c = console.start(r, None, fs, fs.open, out=said.append)
+r.console = c
 seen = [c.cal_source, "consolecal" in sys.modules]
-for line in ("trim 1 coxa 5", "trim 1 coxa 999", "foot 9 0 0 0", "cal 1 coxa", "get 1"):
+
+
+def frames(n):
+    for _ in range(n):
+        clock.advance_us(20000)
+        r.step()
+        c.poll()
+    return "consolecal" in sys.modules
+
+
+for line in ("trim 1 coxa 5", "trim 1 coxa 999", "foot 9 0 0 0", "get 1"):
     seen += [c.do(line)[:3], "consolecal" in sys.modules]
+seen.append(frames(1499))  # 29.98 s after the last jog command: kept
+seen.append(frames(1))  # 30 s: let go
+seen += [c.do("stand")[:3], frames(150), c.do("cal 1 coxa")[:3], frames(1)]  # standing: kept again
+seen += [c.do("walk 100 0 0")[:3], frames(1), r.robot.mode]  # walking: let go
 c.keep_cal = True
-seen += [c.do("cal 1 coxa")[:3], "consolecal" in sys.modules]
+seen += [c.do("cal 1 coxa")[:3], frames(1600)]
 c.keep_cal = False
 print(repr((sys.implementation.name, seen)))
 """
     )
     name, seen = ast.literal_eval(rt.run(src, heapsize="4m").splitlines()[-1])
     kept = name == "cpython"
-    assert seen == ["file", kept, "ok ", kept, "err", kept, "err", kept, "ok ", kept, "ok ", kept, "ok ", True]
+    assert seen == (
+        ["file", kept, "ok ", True, "err", True, "err", True, "ok ", True, True, kept]
+        + ["ok ", kept, "ok ", True, "ok ", kept, 4, "ok ", True]
+    )
