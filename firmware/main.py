@@ -12,7 +12,10 @@ if sys.platform in ("rp2", "esp32"):
     _path = sys.path[:]
     sys.path.clear()
     for _name in ("array", "binascii", "machine", "os", "select", "time"):
-        sys.modules[_name] = __import__(_name)
+        try:  # noqa: SIM105 (no contextlib on MicroPython)
+            sys.modules[_name] = __import__(_name)
+        except ImportError:
+            pass  # not in this port's image: imported from the files as before
     sys.path.extend(_path)
 
 import time  # noqa: E402

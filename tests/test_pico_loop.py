@@ -128,7 +128,7 @@ def test_boot_reaches_the_first_burst_within_1_s(boot):
     # Issue 22's goal. 0.980 s on the frame branch alone, 1.153 s once merged with the fault log, the
     # tags and issue 19's split, 0.987 s with the flashed files built unchecked and main.py's body
     # compiled, 0.981 s after the frame fix; 1.117 s with the swing budget, gait switching and the
-    # on-demand jog commands; 0.974 s with the built-in modules in sys.modules before the imports
+    # on-demand jog commands; 0.975 s with the built-in modules in sys.modules before the imports
     # (main.py: each import of array, time, machine, ... had searched the filesystem first, ~4 ms,
     # 24 times) and the boot's calibration load without consolecal when there is no file
     # (2026-11-27; the emulated clock is deterministic).
