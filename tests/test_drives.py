@@ -188,11 +188,14 @@ def test_standing_still_holds_nothing_and_owes_nothing():
 
 
 @pytest.mark.parametrize("gait", range(4))
-def test_a_reversal_holds_the_body_on_todays_walker(gait):
-    # Forward at 40 mm/s, then straight back: the stance hold (docs/physics.md, 2026-11-23) holds the
-    # body after the reversal on every gait; the held ticks cost distance, so tracking < 1.
+def test_a_reversal_at_the_top_speed_costs_distance(gait):
+    # Forward at 40 mm/s (every gait's top speed or past it), then straight back: a foot that landed
+    # ahead for forward is where the backward stance ends. Tetrapod, ripple and wave hold the body
+    # until such feet lift (their step, 30 mm, is the servo limit: a foot carried past its ease band
+    # would lift into a shortened swing); the tripod's feet (12.1 mm steps) walk on inside their
+    # reach without holding. Held or not, the ramp and the holds cost distance: tracking < 1.
     res = play(stream({"t_ms": 0, "vx": 40}, {"t_ms": 4000, "vx": -40}, {"t_ms": 8000, "stop": True}), gait, "cpython")
-    assert res["held_ticks"] > 0
+    assert (res["held_ticks"] > 0) == (gait != 0)
     assert res["held_share"] == pytest.approx(res["held_ticks"] / res["ticks"], abs=1e-4)
     assert res["tracking"] < 1.0
 
@@ -240,9 +243,10 @@ def test_physics_straight_walk_and_reversal(capsys, tmp_path):
     pytest.importorskip("mujoco")
     f = tmp_path / "d.jsonl"
     f.write_text('{"t_ms":0,"vx":40}\n{"t_ms":3000,"vx":-40}\n{"t_ms":6000,"stop":true}\n')
-    assert cli.main(["sim", "physics", "--commands", str(f), "--json"]) == 0
+    # The tetrapod: the tripod's feet walk this reversal out without holding (test above).
+    assert cli.main(["sim", "physics", "--commands", str(f), "--gait", "tetrapod", "--json"]) == 0
     res = json.loads(capsys.readouterr().out)
-    kin = play(drives.load(str(f)), 0, "cpython")
+    kin = play(drives.load(str(f)), 1, "cpython")
     # The walker is the same core: the same held ticks and commanded distance as the kinematic run.
     assert res["held_ticks"] == kin["held_ticks"] > 0 and res["commanded_mm"] == kin["commanded_mm"]
     # The model walks within a few % of the feet's arithmetic (docs/physics.md: 100-101 % steady).
@@ -277,10 +281,14 @@ def test_kinematics_cli_plot(capsys, tmp_path, monkeypatch):
         assert stop.value.code == 2 and "--plot: " in capsys.readouterr().err
 
 
-@pytest.mark.xfail(strict=True, reason="issue 22 point 1 (today: held 5.7-39.1 %, tracking 0.50-0.86)")
-@pytest.mark.parametrize("gait", range(4))
+NOT_YET = pytest.mark.xfail(strict=True, reason="issue 22 point 1 (held 5.9 / 6.4 %, tracking 0.875 / 0.907)")
+
+
+@pytest.mark.parametrize("gait", [0, 1, pytest.param(2, marks=NOT_YET), pytest.param(3, marks=NOT_YET)])
 def test_issue_22_goal_on_the_joystick_stream(gait):
     # The issue's goals for continuous command following: <= 5 % of ticks held, tracking >= 0.9 on a
-    # joystick stream, every gait. Strict: when the planner meets them this fails, and the mark goes.
+    # joystick stream, every gait. Met by tripod and tetrapod since the stance hold moved from the
+    # scaled step to the reach disc and the ease band (hexapod.budget.off_band; before: held 5.7 / 22.5 %,
+    # tracking 0.857 / 0.671); ripple and wave are strict xfails: when they meet it, the mark goes.
     res = play(drives.load("joystick"), gait, "cpython")
     assert res["held_share"] <= 0.05 and res["tracking"] >= 0.9

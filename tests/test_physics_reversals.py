@@ -18,7 +18,7 @@ COMMANDS += [(600, 0, 2000), (-600, 0, -2000)]
 
 def peak_demand(gait, hold_stance=True, budget=True):
     """Largest kp x (target - angle) of any joint over every 2 ms step (N m), and the stall (N m).
-    hold_stance False: the stance hold undone; budget False: no swing shortened (hexapod.budget)."""
+    hold_stance False: no hold short of the reach disc; budget False: no swing shortened (hexapod.budget)."""
     from hexapod import walk
 
     if not budget:
@@ -42,8 +42,10 @@ def _peak_demand(gait, hold_stance):
     for seg in range(2 * len(COMMANDS)):
         assert r.walk(*COMMANDS[seg % len(COMMANDS)]) == tick.OK
         for _ in range(rng.randint(8, 60)):
-            if not hold_stance:  # the walker before the hold: a stance foot may walk out to its reach disc
-                r.walker.stance_rho[:] = r.walker.rho
+            if not hold_stance:  # no hold short of the reach disc (the ease band's undone)
+                for i in range(6):
+                    r.walker.band[i + 12] = 0
+                    r.walker.band[i + 18] = 1 << 30
             run.now += sp.TICK_MS
             r.tick(run.now)
             run._targets()

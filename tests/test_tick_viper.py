@@ -212,7 +212,8 @@ from hexapod import geometry, walk
 from hexapod._walk_viper import stance
 
 w = walk.Walker(geometry.load(robot_file))
-count = differ = held = 0
+reach = w.geometry.neutral_reach
+count = differ = held = banded = 0
 for n in range(CASES):
     for i in range(6):
         w.su[i] = -1 if draw(2) else draw(4)
@@ -220,7 +221,11 @@ for n in range(CASES):
         w.py[i] = w.ny[i] + draw(15) % 8001 - 4000
         w.fx[i] = w.nx[i] + draw(14) % 16001 - 8000
         w.fy[i] = w.ny[i] + draw(14) % 16001 - 8000
-        w.rho[i] = 200 + draw(10) % 800
+        # Every other case a reach disc too wide to hold: only the ease band (5-35 mm) can.
+        w.rho[i] = 200 + draw(10) % 800 if n % 2 else 30000
+        b = 50 + draw(9) % 300
+        w.band[i + 12] = (reach - b) * (reach - b)
+        w.band[i + 18] = (reach + b) * (reach + b)
         w.ax[i] = w.ay[i] = 0
     bx = draw(16) % 200001 - 100000  # the ground frame's origin may lie far away (< _REANCHOR)
     by = draw(16) % 200001 - 100000
@@ -234,12 +239,13 @@ for n in range(CASES):
         w.ax[i] = w.ay[i] = 0
     fast = (stance(w, bx, by, cd), list(w.ax), list(w.ay))
     held += h1
+    banded += h1 and n % 2 == 0
     if plain != fast:
         differ += 1
         if differ < 4:
             print("differ", n, plain, fast)
     count += 1
-print((count, held, differ))
+print((count, held, banded, differ))
 """
 )
 
@@ -272,7 +278,7 @@ for n in range(CASES):
         w.su[i] = -1 if draw(2) else draw(4)
         w.fx[i] = w.nx[i] + draw(14) % 16001 - 8000
         w.fy[i] = w.ny[i] + draw(14) % 16001 - 8000
-        w.stance_rho[i] = 400 + draw(10) % 800
+        w.rho[i] = 400 + draw(10) % 800
         w.ax[i] = w.ay[i] = 0
     # Walking at anything accepted, or not moving at all (the carries alone change).
     quiet = n % 8 == 0
@@ -416,8 +422,9 @@ def check_starts(result, cases):
 
 
 def check_stances(result, cases):
-    count, held, differ = result
+    count, held, banded, differ = result
     assert count == cases and cases // 10 < held < cases - cases // 10, result
+    assert cases // 20 < banded < cases // 2 - cases // 20, result  # the ease band alone holds some, not all
     assert differ == 0, result
 
 

@@ -14,6 +14,7 @@ import micropython
 from micropython import const
 
 from hexapod._fixmath_viper import SIN_Q15, isqrt, mul_q15, sin
+from hexapod.budget import off_band
 
 # Copied from the plain modules (viper folds only a module's own consts); tests/test_viper_twins.py
 # checks each against the expression after its #.
@@ -335,7 +336,8 @@ def swings(walker, lo: int, hi: int, w: int, still: int) -> int:
 @micropython.viper
 def stance(walker, bx: int, by: int, cd: int) -> int:
     """hexapod.walk.Walker._stance: the stance feet at body (bx, by) (fine) turned cd (cdeg) into
-    ax, ay; 1 when a foot would leave its stance_rho disc (and move away from neutral), else 0."""
+    ax, ay; 1 when a foot would leave its reach disc (and move away from neutral) or go further
+    outside its ease band (hexapod.budget.off_band), else 0."""
     c = int(sin(cd + 9000))  # fixmath.cos
     s = int(sin(cd))
     sb = 1
@@ -347,7 +349,7 @@ def stance(walker, bx: int, by: int, cd: int) -> int:
     ny = ptr32(walker.ny)  # noqa: F821
     fx = ptr32(walker.fx)  # noqa: F821
     fy = ptr32(walker.fy)  # noqa: F821
-    rho = ptr32(walker.stance_rho)  # noqa: F821
+    rho = ptr32(walker.rho)  # noqa: F821
     out_x = ptr32(walker.ax)  # noqa: F821
     out_y = ptr32(walker.ay)  # noqa: F821
     for i in range(6):
@@ -384,6 +386,9 @@ def stance(walker, bx: int, by: int, cd: int) -> int:
                 return 1
         out_x[i] = ax
         out_y[i] = ay
+        # The ease band in plain code: written out here it took 290 more bytes of the board's heap.
+        if int(off_band(walker, i)):
+            return 1
     return 0
 
 

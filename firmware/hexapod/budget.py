@@ -9,14 +9,13 @@ moves it (C + D g) / w, with D = T - S - C the stroke and g = w x the stroke's l
 tick. `swing_max` is |C + D g| of the guard's swing; a swing asking more lands short, on the line
 from S + C toward T, and the next swings make the rest up (a steady step below srho has room).
 
-This is the swing half of issue 22's planner. With the stance hold in force (hexapod.walk stance_rho:
-the scaled step + 1.6 mm) it shortens the first swings after a gait change while walking (the shipped
-gait tour: 284 -> 258 cdeg a tick at most) and leaves the joystick stream's walk the same to the bit;
-with the hold undone (a stance foot walking on to its reach disc) it
-alone keeps every joint within the budget on the reversal schedule (tests/test_servo_guard.py) and
-the tetrapod under the stall in MuJoCo (tests/test_physics_reversals.py). Why the hold is not relaxed
-yet: docs/physics.md, "Issue 22: the swing budget". Units: 0.1 mm, feet in body.FINE units; nothing
-allocates (the walker's tick).
+This is the swing half of issue 22's planner; the stance half is the ease band (walker.band, off_band()):
+a stance foot may walk on past its step to its reach disc, but not further from or nearer to its coxa
+than the guard's swings lifted off (eased() shortens a swing from there, and a steady walk's feet then
+drifted out and held every cycle). The budget alone keeps every joint within the datasheet budget on
+the reversal schedule (tests/test_servo_guard.py) and the tetrapod under the stall in MuJoCo
+(tests/test_physics_reversals.py). docs/physics.md, "Issue 22". Units: 0.1 mm, feet in body.FINE
+units; nothing allocates (the walker's tick).
 """
 
 from micropython import const
@@ -38,7 +37,8 @@ EASE_DEAD = const(16)
 
 
 def swing_budget(walker):
-    """walker.stroke_gain (Q15) and swing_max (0.1 mm, per leg) for its clock and srho in force."""
+    """walker.stroke_gain (Q15) and swing_max (0.1 mm, per leg) for its clock and srho in force, and
+    walker.band: the coxa axes' x, y (0.1 mm), then band_in, band_out (0.1 mm^2) a leg each."""
     w = walker.clock.swing_ticks
     st = walker.clock.stance_ticks
     s = walker._stroke
@@ -55,6 +55,34 @@ def swing_budget(walker):
         r = walker.srho[i] + LIFT_SLACK
         # The guard's swing: D = 2 r (st + w) / st forward, C = 2 r w / st back.
         walker.swing_max[i] = (2 * r * (st + w) // st * g >> 15) - 2 * r * w // st
+        # The ease band: between these squared distances from the coxa axis a lift-off keeps its whole
+        # budget (eased(): the neutral reach +- srho + EASE_DEAD). The walker holds a stance foot from
+        # going further outside (off_band): a swing from there lands short, and the next stance would
+        # end further out again (docs/physics.md, issue 22: the feet drifted out and held every cycle).
+        # (No new names: a MicroPython function of more than 11 locals + stack slots takes its frame
+        # from the heap, and a gait change on the move calls this from the tick.)
+        r += EASE_DEAD - LIFT_SLACK
+        st = walker.geometry.neutral_reach
+        walker.band[i] = walker.geometry.mount_x[i]
+        walker.band[i + 6] = walker.geometry.mount_y[i]
+        walker.band[i + 12] = (st - r) * (st - r) if st > r else 0
+        walker.band[i + 18] = (st + r) * (st + r)
+        st = walker.clock.stance_ticks
+
+
+def off_band(walker, i):
+    """1 when leg i's stance foot moved to (ax[i], ay[i]) (body frame, fine) lies outside its ease band
+    and further out of it than the foot is now (fx, fy), else 0 (Walker._stance and its viper twin)."""
+    b = walker.band
+    x = (walker.ax[i] >> FINE_SHIFT) - b[i]
+    y = (walker.ay[i] >> FINE_SHIFT) - b[i + 6]
+    r = x * x + y * y
+    if b[i + 12] <= r <= b[i + 18]:
+        return 0
+    x = (walker.fx[i] >> FINE_SHIFT) - b[i]
+    y = (walker.fy[i] >> FINE_SHIFT) - b[i + 6]
+    x = x * x + y * y
+    return 1 if (r > x if r > b[i + 18] else r < x) else 0
 
 
 def in_budget(walker, i, t, cv):

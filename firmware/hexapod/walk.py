@@ -15,8 +15,9 @@ command change the foot strays at most REPLAN_STEP a tick from the new plan's ow
 Reach: every foot lives in a disc of radius rho[i] around its neutral point, found by leg
 IK (hexapod.reach) at ground and lift height. Commands are scaled down so half a
 stance stays inside the smaller of rho and the step length; a swing target is clamped to
-the disc, and a tick that would push a stance foot out of it holds the body still instead.
-So the planner never asks for a foot the leg cannot reach.
+the disc, and a tick that would push a stance foot out of it, or out of the band of
+distances from its coxa where its next swing keeps its whole servo budget (hexapod.budget),
+holds the body still instead. So the planner never asks for a foot the leg cannot reach.
 
 States: STOPPED (feet at neutral), STARTING (ramping up from a stop), WALKING, STOPPING
 (the command is zero: every leg finishes its step and lands at neutral, then STOPPED).
@@ -30,7 +31,7 @@ from micropython import const
 
 from hexapod import gaitswitch
 from hexapod.body import FINE, FINE_SHIFT, Body
-from hexapod.budget import in_budget, swing_budget
+from hexapod.budget import in_budget, off_band, swing_budget
 from hexapod.fixmath import ONE, cos, isqrt, mul_q15, sin
 from hexapod.gait import TICK_MS, TRIPOD, GaitClock, actual_cycle_ms, check_cycle_ms, check_gait, swing_stance_ticks
 from hexapod.limits import (  # largest |vx|, |vy| (0.1 mm/s) and |yaw rate| (cdeg/s) accepted
@@ -96,16 +97,16 @@ class Walker:
         self.rho = _words(6)  # reach disc radius around each neutral foot, 0.1 mm
         self.srho = [STEP_MAX] * 6  # largest half stance the servos' speed allows, 0.1 mm
         self.next_srho = [STEP_MAX] * 6
-        # How far from neutral the body may carry a stance foot, 0.1 mm: the step the command is
-        # scaled to (reach, step, servo speed), not just the reach disc. A stance that began at
-        # another command's touch-down would otherwise end past it, and the next swing would
-        # turn the joints faster than the servo budget (docs/physics.md, 2026-11-23 reversals).
+        # The step the command is scaled to (reach, step, servo speed) + STANCE_SLACK, 0.1 mm: where a
+        # gait change plans its slow-down (hexapod.gaitswitch). The stance hold itself is at the reach
+        # disc and the ease band (hexapod.budget.off_band; docs/physics.md, issue 22).
         self.stance_rho = _words(6)
         # The swing's servo budget (planner): each leg's largest "swing speed" |C + D g| (0.1 mm), C
         # the ground's move under the foot over one swing, D the stroke T - S - C, g stroke_gain: the
         # steady swing the guard passed (half a stance srho) at its peak tick. A swing whose lift-off
         # is further out than a steady one lands short instead of turning a joint too fast.
         self.swing_max = _words(6)
+        self.band = _words(24)  # the stance hold's ease band (budget.swing_budget, off_band)
         self.stroke_gain = 0  # w x the stroke's largest fraction in one tick, Q15
         self.servo_peak = 0  # largest joint change (cdeg/tick) of a swing without a step, last configure
         self.configured = OK  # the last configure's code (configure_steps leaves it here)
@@ -700,8 +701,9 @@ class Walker:
 
     def _stance(self, bx, by, cd):
         """The stance feet read back into the body frame with the body at (bx, by) (fine) turned
-        cd (cdeg), into ax, ay; 1 when that would carry a foot out of its stance_rho disc (and further
-        from neutral than it is), else 0 (hexapod/_walk_viper.py's stance is the same in viper)."""
+        cd (cdeg), into ax, ay; 1 when that would carry a foot out of its reach disc (and further
+        from neutral than it is) or of its ease band (budget.off_band), else 0
+        (hexapod/_walk_viper.py's stance is the same in viper)."""
         c = cos(cd)
         s = sin(cd)
         for i in range(6):
@@ -713,7 +715,7 @@ class Walker:
             ay = mul_q15(y, c) - mul_q15(x, s)
             dx = (ax - self.nx[i]) >> FINE_SHIFT
             dy = (ay - self.ny[i]) >> FINE_SHIFT
-            r = self.stance_rho[i]
+            r = self.rho[i]
             if dx * dx + dy * dy > r * r:
                 ox = (self.fx[i] - self.nx[i]) >> FINE_SHIFT
                 oy = (self.fy[i] - self.ny[i]) >> FINE_SHIFT
@@ -721,6 +723,8 @@ class Walker:
                     return 1
             self.ax[i] = ax
             self.ay[i] = ay
+            if off_band(self, i):
+                return 1
         return 0
 
     def _move_body(self):
@@ -752,7 +756,7 @@ class Walker:
         by = self.by + my
         cd = (psi + 50) // 100
         if self._stance(bx, by, cd):
-            self.held += 1  # this move would carry a stance foot out of reach: hold
+            self.held += 1  # this move would carry a stance foot out of reach or its band: hold
             return
         self.bx = bx
         self.by = by
