@@ -117,3 +117,40 @@ def transcript(lines, wait_after_stand=0):
         if line == "stand":
             b.frames(wait_after_stand)
     return [out, b.unsafe()]
+
+
+def steps(todo):
+    """On a fresh board, each step: ("lines", bytes, frames) -> the reply lines the bytes brought,
+    ("do", line) -> the console's reply to line run directly, ("mode",) -> the robot's mode."""
+    b = Board()
+    out = []
+    for step in todo:
+        if step[0] == "lines":
+            out.append(b.lines(step[1], step[2]))
+        elif step[0] == "do":
+            out.append(b.con.do(step[1]))
+        else:
+            out.append(b.robot.mode)
+    return out
+
+
+def frame_heap(datas):
+    """VM heap bytes of one console poll with each whole line waiting in the reader (as the
+    bench's console rows), the replies going nowhere (as print: nothing kept)."""
+    from scenarios.heap import heap_bytes
+
+    b = Board()
+    con = b.con
+    reader = b.reader
+    con.out = _nowhere
+
+    def frame(data):
+        reader.data = data
+        reader.pos = 0
+        con.poll()
+
+    return [heap_bytes(frame, bytearray(d)) for d in datas]
+
+
+def _nowhere(line, tag_line=None):
+    pass
