@@ -138,3 +138,24 @@ def wall_status(echo_mm10):
     b.frames(10 if echo_mm10 is None else 30)
     out.append(b.say("status"))
     return out
+
+
+def _untagged(x):
+    """A reply without its tag (a random '#12 ' starts a tagged request: its reply is '#12 ok ...')."""
+    return x.split(" ", 1)[1] if x.startswith("#") and " " in x else x
+
+
+def random_bytes(data):
+    """data fed to the line reader, frames run until it is read, then 2 more; every frame's
+    unsafe servos kept. Returns [frames ran, unsafe servos, replies neither ok nor err, replies
+    naming an internal error, replies]."""
+    b = Board()
+    b.reader.feed(data)
+    bad = []
+    n0 = b.r.frames
+    while b.reader.pos < len(data):
+        b.frames(1)
+        bad += b.unsafe()
+    b.frames(2)
+    odd = [x for x in map(_untagged, b.replies) if not (x == "ok" or x.startswith("ok ") or x.startswith("err "))]
+    return [b.r.frames - n0 > 0, bad, odd, [x for x in b.replies if "internal" in x], len(b.replies)]
