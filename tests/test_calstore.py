@@ -2,13 +2,12 @@
 every step of the write, on a filesystem that renames over a file (littlefs) and on one that
 cannot (FAT): the next boot always finds the old calibration or the new one."""
 
-import ast
 import binascii
 
-from tests.console_rig import RIG, clean_stubs  # noqa: F401 (autouse fixture)
+from tests.console_rig import clean_stubs  # noqa: F401 (autouse fixture)
 
-# The stub filesystem that loses power, and the cut saves: tests/scenarios/calstore.py.
-STUB_FS = "import calstore\nfrom scenarios.calstore import StubFS\n"
+# The console with its calibration file on the stub filesystem: tests/scenarios/console_cal.py.
+CONSOLE = "scenarios.console_cal:"
 
 
 def test_crc16_is_ccitt_false():
@@ -53,28 +52,8 @@ def test_two_cut_saves_in_a_row_never_lose_the_last_good_file():
         assert n > 500
 
 
-# The console tests below run tests/console_rig.py's RIG, source text, with the stub filesystem imported.
 def test_read_only_filesystem_refuses_save_and_keeps_the_file(rt):
-    src = (
-        RIG
-        + STUB_FS
-        + """
-fs = StubFS({calstore.FILE: calstore.encode([(0, 1, 600, 2400)] * 18)}, -1, True, True)
-con.store = calstore.Store(fs, fs.open)
-print(repr(say("trim 1 coxa 40")))
-print(repr(say("save")))
-print(repr(fs.files[calstore.FILE] == calstore.encode([(0, 1, 600, 2400)] * 18)))
-fs.readonly = False
-print(repr(say("save")))
-print(repr(say("defaults")))
-print(repr(say("cal 1 coxa")))
-print(repr(say("load")))
-print(repr(say("cal 1 coxa")))
-_w = say("status").split()
-print(repr(_w[_w.index("cal") : _w.index("cal") + 2]))
-"""
-    )
-    out = [ast.literal_eval(x) for x in rt.run(src, heapsize="4m").splitlines()]
+    out = rt.with_heapsize("4m").call(CONSOLE + "read_only")
     assert out[0].endswith("trim 40 dir 1 min_us 600 max_us 2400")
     assert out[1].startswith("err save: the filesystem is read-only (") and out[1].endswith("the previous file is kept")
     assert out[2] is True
@@ -85,21 +64,7 @@ print(repr(_w[_w.index("cal") : _w.index("cal") + 2]))
 
 
 def test_boot_with_missing_or_broken_file_says_so_once_and_uses_the_robot_file(rt):
-    src = (
-        RIG
-        + STUB_FS
-        + """
-good = calstore.encode([(25, 1, 600, 2400)] * 18)
-for files in ({}, {calstore.FILE: good[:40]}, {calstore.FILE: good.replace("25", "26", 1)},
-              {calstore.FILE: good}, {calstore.FILE: "x", calstore.TMP: good}):
-    fs = StubFS(files)
-    said = []
-    c = console.start(r, None, fs, fs.open, out=said.append)
-    print(repr((said, c.cal_source, c.trims[0], r.robot.servos[0].centre_us)))
-    c.do("defaults")  # the next boot starts from the robot file again
-"""
-    )
-    out = [ast.literal_eval(x) for x in rt.run(src, heapsize="4m").splitlines()]
+    out = rt.with_heapsize("4m").call(CONSOLE + "boots")
     assert out[0] == (["cal: no hexapod_cal.txt; the robot file's calibration is in use"], "defaults", 0, 1500)
     assert out[1] == (
         ["cal: hexapod_cal.txt truncated (no checksum line); the robot file's calibration is in use"],
@@ -115,24 +80,7 @@ for files in ({}, {calstore.FILE: good[:40]}, {calstore.FILE: good.replace("25",
 def test_versions_read_and_refused(rt):
     """save writes version 2; a version 1 file (written before the tibia's reference moved to -90
     degrees) still decodes; any other version line, with a right checksum, is refused naming both."""
-    src = """
-import calstore
-ROWS = [(k - 9, -1 if k % 2 else 1, 700 + k, 2300 - k) for k in range(18)]
-v2 = calstore.encode(ROWS)
-body = v2[: v2.rfind("crc ")]
-def signed(b):
-    return b + "crc %04x\\n" % calstore.crc16(b.encode())
-v1 = signed(body.replace("hexapod-cal 2", "hexapod-cal 1"))
-v3 = signed(body.replace("hexapod-cal 2", "hexapod-cal 3"))
-def why(t):
-    try:
-        return calstore.decode(t) == ROWS
-    except ValueError as e:
-        return str(e)
-print(repr([calstore.version(v2), calstore.version(v1), calstore.version(v3), calstore.version("")]))
-print(repr([why(v2), why(v1), why(v3)]))
-"""
-    out = [ast.literal_eval(x) for x in rt.run(src).splitlines()]
+    out = rt.call("scenarios.calstore:versions")
     assert out[0] == [2, 1, 0, 0]
     assert out[1][:2] == [True, True]
     assert out[1][2] == "version line 'hexapod-cal 3', this firmware reads 'hexapod-cal 1' or 'hexapod-cal 2'"
@@ -144,35 +92,9 @@ def test_a_version_1_file_loads_with_its_pulses_unless_it_flips_a_tibia(both_run
     tibia: 2420 us at 0 degrees, 1520 at -90, 10 us per degree). A version 1 file that flips a
     tibia's direction mirrored it about 0 degrees, which version 2 cannot say: refused, naming the
     servo, and the robot file's calibration stays in force."""
-    src = (
-        RIG
-        + STUB_FS
-        + """
-import calstore
-def v1(rows):
-    body = calstore.encode(rows)
-    body = body[: body.rfind("crc ")].replace("hexapod-cal 2", "hexapod-cal 1")
-    return body + "crc %04x\\n" % calstore.crc16(body.encode())
-base = [(0, s.direction, s.min_us, s.max_us) for s in r.robot.servos]
-trimmed = list(base)
-trimmed[5] = (20, 1, 600, 2400)
-flipped = list(base)
-flipped[14] = (0, 1, 600, 2400)  # leg 5 tibia: direction -1 in robots/default_cal.py
-for rows in (trimmed, flipped):
-    fs = StubFS({calstore.FILE: v1(rows)})
-    said = []
-    c = console.start(r, None, fs, fs.open, out=said.append)
-    print(repr((said, c.cal_source, [r.robot.servos[5].raw(a) for a in (0, -9000)], c.do("cal 2 tibia"))))
-    print(repr(c.do("load")))
-    c.do("defaults")
-fs = StubFS({calstore.FILE: v1(trimmed)})
-c = console.start(r, None, fs, fs.open, out=said.append)
-print(repr((c.do("save"), fs.files[calstore.FILE].split("\\n")[:7:6])))
-"""
-    )
-    cp, mp = both_runtimes(src, heapsize="4m")
+    cp, mp = both_runtimes.with_heapsize("4m").call(CONSOLE + "version_1_files")
     assert cp == mp
-    out = [ast.literal_eval(x) for x in cp.splitlines()]
+    out = cp
     assert out[0] == (
         [],
         "file",
@@ -206,39 +128,7 @@ def test_the_jog_and_calibration_commands_module_stays_for_a_jog_session(rt):
     # (hexapod.release) 30 s (CAL_KEEP_MS) after the last one or once the robot walks; the boot's
     # file load lets it go at once. On CPython release does nothing (the host's tests share one
     # process). CircuitPython's code.py keeps it (keep_cal).
-    src = (
-        RIG
-        + STUB_FS
-        + """
-import sys
-fs = StubFS({calstore.FILE: calstore.encode([(0, 1, 600, 2400)] * 18)})
-said = []
-c = console.start(r, None, fs, fs.open, out=said.append)
-r.console = c
-seen = [c.cal_source, "consolecal" in sys.modules]
-
-
-def frames(n):
-    for _ in range(n):
-        clock.advance_us(20000)
-        r.step()
-        c.poll()
-    return "consolecal" in sys.modules
-
-
-for line in ("trim 1 coxa 5", "trim 1 coxa 999", "foot 9 0 0 0", "get 1"):
-    seen += [c.do(line)[:3], "consolecal" in sys.modules]
-seen.append(frames(1499))  # 29.98 s after the last jog command: kept
-seen.append(frames(1))  # 30 s: let go
-seen += [c.do("stand")[:3], frames(150), c.do("cal 1 coxa")[:3], frames(1)]  # standing: kept again
-seen += [c.do("walk 100 0 0")[:3], frames(1), r.robot.mode]  # walking: let go
-c.keep_cal = True
-seen += [c.do("cal 1 coxa")[:3], frames(1600)]
-c.keep_cal = False
-print(repr((sys.implementation.name, seen)))
-"""
-    )
-    name, seen = ast.literal_eval(rt.run(src, heapsize="4m").splitlines()[-1])
+    name, seen = rt.with_heapsize("4m").call(CONSOLE + "cal_module_session")
     kept = name == "cpython"
     assert seen == (
         ["file", kept, "ok ", True, "err", True, "err", True, "ok ", True, True, kept]

@@ -2,13 +2,14 @@
 IK oracle, refusals that change nothing, the line reader's limits, walk expiry, calibration
 commands. Core/console logic runs on CPython and in the MicroPython VM, bit-identically."""
 
-import ast
 import re
 
 import pytest
 
 from hexapod_host.testing import reference
-from tests.console_rig import RIG, clean_stubs  # noqa: F401 (autouse fixture)
+from tests.console_rig import clean_stubs  # noqa: F401 (autouse fixture)
+
+SCENARIO = "scenarios.console_lines:"
 
 # seed 004's leg (robots/default.py), mm
 LEG = dict(coxa=30.0, femur=85.0, tibia=125.0, femur_offset=32.0)
@@ -18,14 +19,13 @@ LEG_LINE = re.compile(
 )
 
 
-def transcript(runtime, lines, tail=""):
-    src = RIG + "\nfor line in %r:\n    print(repr(say(line)))\n" % (lines,) + tail
-    return runtime.run(src, heapsize="4m")
+def call(runtime, name, *args):
+    """The scenario tests/scenarios/console_lines.py:name on runtime, in a 4 MB VM heap."""
+    return runtime.with_heapsize("4m").call(SCENARIO + name, *args)
 
 
 def test_jogging_matches_the_float_ik_and_the_servo_map(rt):
-    out = transcript(rt, ["foot 2 130 0 -80", "nudge 2 5 -10 2.5", "get 2"]).splitlines()
-    replies = [ast.literal_eval(x) for x in out]
+    replies = call(rt, "replies", ["foot 2 130 0 -80", "nudge 2 5 -10 2.5", "get 2"])[0]
     for reply, (x, y, z) in zip(replies, [(130, 0, -80), (135, -10, -77.5), (135, -10, -77.5)], strict=True):
         m = LEG_LINE.match(reply)
         assert m, reply
@@ -67,14 +67,10 @@ def test_commands_reply_one_line_each_on_both_runtimes(both_runtimes):
         "save",
         "load",
     ]
-    src = RIG + "\nfor line in %r:\n    print(repr(say(line)))\n    if line == 'stand':\n        frames(120)\n" % (
-        lines,
-    )
-    cp, mp = both_runtimes(src + "print(unsafe())\n", heapsize="4m")
+    cp, mp = both_runtimes.with_heapsize("4m").call(SCENARIO + "replies", lines, 120)
     assert cp == mp
-    replies = [ast.literal_eval(x) for x in cp.splitlines()]
-    assert replies[-1] == []
-    replies = replies[:-1]
+    replies, _, unsafe = cp
+    assert unsafe == []
     assert len(replies) == len(lines)
     assert replies[0] == (
         "ok help status stand sit relax foot nudge joint pulse get walk stop gait sonar wall pid "
@@ -100,8 +96,9 @@ def test_commands_reply_one_line_each_on_both_runtimes(both_runtimes):
 
 
 def test_trim_dir_range_move_a_held_servo_by_what_the_map_says(rt):
-    out = transcript(
+    r, channels, _ = call(
         rt,
+        "replies",
         [
             "joint 3 femur 20",
             "trim 3 femur -35",
@@ -110,16 +107,14 @@ def test_trim_dir_range_move_a_held_servo_by_what_the_map_says(rt):
             "range 3 femur 1200 1500",
             "get 3",
         ],
-        "print(channels()[7])\n",
-    ).splitlines()
-    r = [ast.literal_eval(x) for x in out]
+    )
     assert " pulses 0 1700 0 " in r[0]  # 1500 + 20 deg x 10 us; the leg's other servos stay limp
     assert r[1].endswith("trim -35 dir 1 min_us 600 max_us 2400")
     assert r[2].endswith("trim -35 dir -1 min_us 600 max_us 2400")  # 1465 - 200 = 1265 us now
     assert r[3] == "err range: leg 3 femur: at 20.00 deg it would need 1265 us, outside 1400..1500 us"
     assert r[4].endswith("min_us 1200 max_us 1500")
     assert " pulses 0 1265 0 " in r[5]
-    assert abs(r[6] - 1265) <= 3  # the PCA9685 model: 4.9 us per count at 50 Hz
+    assert abs(channels[7] - 1265) <= 3  # the PCA9685 model: 4.9 us per count at 50 Hz
 
 
 BAD = [
@@ -193,19 +188,14 @@ BAD = [
 
 
 def test_bad_lines_are_refused_and_change_nothing(rt):
-    out = transcript(
-        rt,
-        ["foot 2 130 0 -80"],
-        "frames(3)\nbefore = state()\nprint(repr(before))\n"
-        "for line in %r:\n    print(repr(say(line)))\n    assert state() == before, line\nprint(unsafe())\n" % (BAD,),
-    ).splitlines()
-    replies = [ast.literal_eval(x) for x in out[2:-1]]
+    replies, changed, unsafe = call(rt, "refusals", "foot 2 130 0 -80", BAD)
+    assert changed == []
     assert len(replies) == len(BAD)
     for line, reply in zip(BAD, replies, strict=True):
         word = line.split()[0]
         assert reply.startswith("err %s: " % word) or reply.startswith("err unknown command"), (line, reply)
         assert "internal" not in reply
-    assert out[-1] == "[]"
+    assert unsafe == []
     by = dict(zip(BAD, replies, strict=True))
     assert by["foot 7 100 0 -80"] == "err foot: leg '7', allowed 1..6"
     assert by["foot 2 600 0 -80"] == "err foot: x 600 is outside -500.0..500.0 mm"
@@ -224,29 +214,7 @@ def test_bad_lines_are_refused_and_change_nothing(rt):
 
 
 def test_line_reader_limits(rt):
-    src = (
-        RIG
-        + """
-reader.feed(b"get 1\\r\\nget 2\\rget 3\\n\\n\\r\\n")
-frames(1)
-print(repr(REPLIES))
-del REPLIES[:]
-reader.feed(b"x" * 96 + b"\\nget 4\\n")
-frames(1)   # 64 bytes a frame: the long line is not over yet
-n1 = len(REPLIES)
-frames(2)
-print(repr((n1, REPLIES)))
-del REPLIES[:]
-reader.feed(b"get 1\\xff\\xfe\\n\\x00\\x1b[A\\nget\\t5\\n")
-frames(2)
-print(repr(REPLIES))
-del REPLIES[:]
-reader.feed(b"x" * 95 + b"\\n")
-frames(3)
-print(repr(REPLIES[0][:30]))
-"""
-    )
-    out = [ast.literal_eval(x) for x in rt.run(src, heapsize="4m").splitlines()]
+    out = call(rt, "reader_limits")
     assert [x.split()[2] for x in out[0]] == ["1", "2", "3"]  # \r\n, \r, \n end a line; blank lines: no reply
     n1, replies = out[1]
     assert n1 == 0 and replies[0] == "err line too long (at most 95 characters)" and replies[1].startswith("ok leg 4 ")
@@ -257,74 +225,20 @@ print(repr(REPLIES[0][:30]))
 
 
 def test_walk_expires_unless_renewed(rt):
-    src = (
-        RIG
-        + """
-from hexapod import tick, walk
-say("stand")
-while r.robot.mode != tick.STANDING:
-    frames(1)
-t0 = clock.ticks_ms()
-print(repr(say("walk 60 0 0")))
-t_walk = clock.ticks_ms()
-seen = []
-for k in range(100):
-    if k == 30:
-        say("walk 60 0 5")   # renewed 0.6 s in: a new 1 s
-        t_walk = clock.ticks_ms()
-    frames(1)
-    if r.robot.walker.state == walk.STOPPING or r.robot.walker.state == walk.STOPPED:
-        seen.append(clock.ticks_diff(clock.ticks_ms(), t_walk))
-        break
-print(repr(seen))
-"""
-    )
-    out = rt.run(src, heapsize="4m").splitlines()
-    assert ast.literal_eval(out[0]) == "ok walk 60.0 0.0 0.00 timeout_ms 1000"
-    (after,) = ast.literal_eval(out[1])
+    reply, seen = call(rt, "walk_expiry")
+    assert reply == "ok walk 60.0 0.0 0.00 timeout_ms 1000"
+    (after,) = seen
     assert 1000 <= after <= 1040  # stopping within two 20 ms frames after the 1 s deadline
 
 
 def test_idle_console_frame_allocates_nothing(mp):
-    from hexapod_host.testing.runtimes import HEAP_PROBE
-
-    src = (
-        RIG
-        + HEAP_PROBE
-        + """
-say("foot 2 130 0 -80")
-def idle(n):
-    for _ in range(n):
-        con.poll()
-def run(n):
-    frames(n)
-print((heap_bytes(idle, 200), heap_bytes(run, 50)))
-"""
-    )
-    assert mp.value(src, heapsize="4m") == (0, 0)
+    assert call(mp, "idle_heap") == [0, 0]
 
 
 @pytest.mark.parametrize("start", ["relaxed", "standing"])
 def test_jog_changes_only_that_legs_channels(rt, start):
-    src = (
-        RIG
-        + """
-from hexapod import tick
-if %r == "standing":
-    say("stand")
-    while r.robot.mode != tick.STANDING:
-        frames(1)
-frames(2)
-before = channels()
-print(repr(say("foot 2 140 10 -70")))
-frames(2)
-print(repr((before, channels(), unsafe())))
-"""
-        % (start,)
-    )
-    out = rt.run(src, heapsize="4m").splitlines()
-    m = LEG_LINE.match(ast.literal_eval(out[0]))
-    before, after, bad = ast.literal_eval(out[1])
+    reply, (before, after, bad) = call(rt, "jog_one_leg", start)
+    m = LEG_LINE.match(reply)
     assert bad == []
     changed = [k for k in range(18) if before[k] != after[k]]
     assert set(changed) <= {3, 4, 5} and after[3:6] != before[3:6]
@@ -335,13 +249,8 @@ print(repr((before, channels(), unsafe())))
 
 
 def test_while_following_a_wall_jogs_and_walks_are_refused_until_wall_off(rt):
-    out = transcript(
-        rt,
-        ["stand"],
-        "frames(120)\nfor line in %r:\n    print(repr(say(line)))\n"
-        % (["wall left 40", "foot 2 130 0 -80", "joint 1 coxa 5", "walk 50 0 0", "relax", "wall off", "stop"],),
-    ).splitlines()
-    r = [ast.literal_eval(x) for x in out]
+    lines = ["stand", "wall left 40", "foot 2 130 0 -80", "joint 1 coxa 5", "walk 50 0 0", "relax", "wall off", "stop"]
+    r = call(rt, "replies", lines, 120)[0]
     assert r[0] == "ok mode moving" and r[1] == "ok wall left setpoint 40.00"
     for reply, word in zip(r[2:6], ("foot", "joint", "walk", "relax"), strict=True):
         assert reply == "err %s: the robot is following a wall; 'wall off' first" % word
@@ -351,29 +260,18 @@ def test_while_following_a_wall_jogs_and_walks_are_refused_until_wall_off(rt):
 def test_backspace_and_echo(rt):
     """A person in a terminal: backspace (0x08 or 0x7f) takes back the line's last character,
     `echo on` sends typed characters back; tools (echo off, the default) see only replies."""
-    src = (
-        RIG
-        + """
-RAW = []
-con.write = RAW.append
-def run(data, n=3):
-    del REPLIES[:]
-    del RAW[:]
-    reader.feed(data)
-    frames(n)
-    return [list(REPLIES), "".join(RAW)]
-print(repr(run(b"get 2x\\x7f\\r")))
-print(repr(run(b"echo\\necho on\\n")))
-print(repr(run(b"gex\\x08t\\t1\\r\\n")))
-print(repr(run(b"\\x7f\\x7f\\n")))
-print(repr(run(b"get 3\\x01\\x7f\\n")))
-print(repr(run(b"get\\x01 3\\x7f\\n")))
-print(repr(run(b"x" * 96 + b"\\x7f\\n", 5)))
-print(repr(run(b"x" * 97 + b"\\x7f\\x7f\\x7f\\n", 5)))
-print(repr(run(b"echo off\\nget 4\\n")))
-"""
-    )
-    out = [ast.literal_eval(x) for x in rt.run(src, heapsize="4m").splitlines()]
+    chunks = [
+        (b"get 2x\x7f\r", 3),
+        (b"echo\necho on\n", 3),
+        (b"gex\x08t\t1\r\n", 3),
+        (b"\x7f\x7f\n", 3),
+        (b"get 3\x01\x7f\n", 3),
+        (b"get\x01 3\x7f\n", 3),
+        (b"x" * 96 + b"\x7f\n", 5),
+        (b"x" * 97 + b"\x7f\x7f\x7f\n", 5),
+        (b"echo off\nget 4\n", 3),
+    ]
+    out = call(rt, "backspace_and_echo", chunks)
     assert out[0][0][0].startswith("ok leg 2 ") and out[0][1] == ""  # the typo went; echo off: nothing raw
     assert out[1] == [["ok echo off", "ok echo on"], ""]
     (reply,), raw = out[2]
@@ -391,17 +289,8 @@ print(repr(run(b"echo off\\nget 4\\n")))
 
 
 def test_echo_refuses_bad_words(rt):
-    src = (
-        RIG
-        + """
-for line in ("echo maybe", "echo on off", "echo ON", "echo 1", "echo on"):
-    print(repr(say(line)))
-con.write = print
-print(repr(say("echo on off")))
-print(repr(con.echo))
-"""
-    )
-    out = [ast.literal_eval(x) for x in rt.run(src, heapsize="4m").splitlines()]
+    replies, again, echo = call(rt, "echo_words", ["echo maybe", "echo on off", "echo ON", "echo 1", "echo on"])
+    out = replies + [again, echo]
     need = "err echo: need on, off or nothing (ask), got %r"
     assert out[:4] == [need % "maybe", need % "on off", need % "ON", need % "1"]
     assert out[4] == "err echo: this console has no raw output to echo to"  # the rig's console has none
@@ -430,11 +319,10 @@ def test_tibia_trim_has_room_both_ways_at_its_reference(both_runtimes):
         "get 5",
         "joint 5 tibia -80",
     ]
-    src = RIG + "\nfor line in %r:\n    print(repr(say(line)))\nprint(unsafe())\n" % (lines,)
-    cp, mp = both_runtimes(src, heapsize="4m")
+    cp, mp = both_runtimes.with_heapsize("4m").call(SCENARIO + "replies", lines)
     assert cp == mp
-    r = [ast.literal_eval(x) for x in cp.splitlines()]
-    pulses = [LEG_LINE.match(x).group(7) if LEG_LINE.match(x) else x for x in r[:-1]]
+    r, _, unsafe = cp
+    pulses = [LEG_LINE.match(x).group(7) if LEG_LINE.match(x) else x for x in r]
     assert pulses[0] == "2400" and pulses[1] == "1500"
     assert r[2].endswith("trim 10 dir 1 min_us 600 max_us 2400") and pulses[3] == "1510"
     assert r[4].endswith("trim -10 dir 1 min_us 600 max_us 2400") and pulses[5] == "1490"
@@ -445,7 +333,7 @@ def test_tibia_trim_has_room_both_ways_at_its_reference(both_runtimes):
     assert pulses[9] == "1500" and pulses[11] == "1510"
     assert r[12].endswith("trim 10 dir 1 min_us 600 max_us 2400") and pulses[13] == "1510"
     assert pulses[14] == "1610"
-    assert r[-1] == []
+    assert unsafe == []
 
 
 WALL_D = re.compile(r" wall_d (\S+) ")
@@ -456,29 +344,7 @@ def test_status_shows_no_wall_distance_as_a_dash(rt):
     both left sonars hearing nothing (was -0.1, the follower's -1 sentinel); with both left
     sonars 120.0 mm from a wall parallel to the body, the distance: 120 mm within the driver's
     echo rounding (1 us of echo is 0.17 mm)."""
-    deaf = transcript(
-        rt,
-        ["status", "stand"],
-        """frames(120)
-SONAR[1].missing_echo = True
-SONAR[2].missing_echo = True
-print(repr(say("wall left 12")))
-frames(10)
-print(repr(say("status")))
-""",
-    ).splitlines()
-    heard = transcript(
-        rt,
-        ["stand"],
-        """frames(120)
-SONAR[1].set_distance(1200)
-SONAR[2].set_distance(1200)
-print(repr(say("wall left 12")))
-frames(30)
-print(repr(say("status")))
-""",
-    ).splitlines()
-    r = [ast.literal_eval(x) for x in deaf + heard]
+    r = call(rt, "wall_status", None) + call(rt, "wall_status", 1200)
     assert r[2] == "ok wall left setpoint 12.00" and r[5] == r[2]
     assert WALL_D.search(r[0]).group(1) == "-" and " wall off " in r[0]
     assert WALL_D.search(r[3]).group(1) == "-" and " wall left " in r[3]

@@ -7,76 +7,15 @@ without solving): the worst case, every gait change solved live. Bound per frame
 hand: two solves for the configure (tests/test_tick_configure.py) and none for the line.
 """
 
-from console_rig import RIG
+from tests.console_rig import clean_stubs  # noqa: F401 (autouse fixture)
 
-COUNT = """
-class Count:
-    n = 0
-    on = True
-
-def counted(inner):
-    def ik(x, y, z, out, i=0):
-        if Count.on:
-            Count.n += 1
-        return inner(x, y, z, out, i)
-    return ik
-
-for leg in r.robot.geometry.legs:
-    leg.ik = counted(leg.ik)
-inner_output = r.robot._output_plain
-
-def quiet():
-    # the frame's own six solves (the plain output calls leg.ik) are not the configure's
-    Count.on = False
-    code = inner_output()
-    Count.on = True
-    return code
-
-r.robot._output_plain = quiet
-r.robot._table = r.robot.walker.table = None  # no guard table: every gait solved live
-"""
-
-SCRIPT = """
-frames(150)
-print(repr(say("stand")))
-frames(150)
-print(repr(say("walk 40 0 0")))
-before = len(REPLIES)
-reader.feed(b"gait ripple\\n")
-Count.n = 0
-frames(1)
-print(repr([Count.n, len(REPLIES) - before, r.robot.configuring()]))
-reader.feed(b"status\\n")
-Count.n = 0
-frames(1)
-print(repr([Count.n, REPLIES[-1][:10], r.robot.configuring(), r.robot.gait]))
-worst = 0
-n = 0
-def gait_replied():
-    for line in REPLIES[before + 1:]:
-        if "gait" in line:
-            return True
-    return False
-
-while not gait_replied() and n < 4000:
-    Count.n = 0
-    frames(1)
-    n += 1
-    if Count.n > worst:
-        worst = Count.n
-    if n % 40 == 0:
-        reader.feed(b"walk 40 0 0\\n")  # the driver keeps walking (the console's walk timeout is 1 s)
-        frames(1)
-        n += 1
-print(repr([worst, n, REPLIES[before + 1:]]))
-print(repr(say("gait")))
-"""
+SCENARIO = "scenarios.console_gait:"
 
 
 def test_a_status_during_a_gait_change_is_answered_in_the_next_frame(both_runtimes):
-    cp, mp = both_runtimes(RIG + COUNT + SCRIPT, heapsize="4m")
+    cp, mp = both_runtimes.with_heapsize("4m").call(SCENARIO + "status_during_gait_change")
     assert cp == mp
-    rows = [eval(line) for line in cp.splitlines()]  # noqa: S307 (our own reprs)
+    rows = cp
     assert rows[0] == "ok mode moving" and rows[1].startswith("ok ")
     solves, replies, configuring = rows[2]
     assert solves <= 2 and replies == 0 and configuring  # taken, no reply yet: it is being checked
@@ -89,22 +28,8 @@ def test_a_status_during_a_gait_change_is_answered_in_the_next_frame(both_runtim
     assert rows[5] == "ok gait ripple"
 
 
-TAGGED = """
-frames(150)
-say("stand")
-frames(150)
-before = len(REPLIES)
-reader.feed(b"#5 gait ripple\\n")
-n = 0
-while not any(x.startswith("#5 ok") or x.startswith("#5 err") for x in REPLIES[before:]) and n < 4000:
-    frames(1)
-    n += 1
-print(repr(REPLIES[before:]))
-"""
-
-
 def test_a_tagged_gait_change_says_working_then_its_late_reply_carries_the_tag(both_runtimes):
     # The link (docs/console.md, "Request tags") pairs the reply checked over frames with its request.
-    cp, mp = both_runtimes(RIG + COUNT + TAGGED, heapsize="4m")
+    cp, mp = both_runtimes.with_heapsize("4m").call(SCENARIO + "tagged_gait_change")
     assert cp == mp
-    assert eval(cp.splitlines()[-1]) == ["#5 working", "#5 ok gait ripple"]  # noqa: S307 (our own repr)
+    assert cp == ["#5 working", "#5 ok gait ripple"]

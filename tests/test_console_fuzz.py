@@ -5,7 +5,6 @@ recalibrations in back-to-back pairs), each on a fresh rig from a known state (r
 jogged), the robot's pulses and the PCA9685 models checked after every line and a frame every 2
 lines; a smaller batch goes through the line reader in the MicroPython VM."""
 
-import ast
 import json
 import random
 import subprocess
@@ -15,7 +14,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from hexapod_host import ROOT
-from tests.console_rig import RIG, clean_stubs  # noqa: F401 (autouse fixture)
+from hexapod_host.testing import runtimes  # noqa: F401 (tests/ on sys.path: the scenarios, in the subprocess too)
+from tests.console_rig import clean_stubs  # noqa: F401 (autouse fixture)
 
 WORDS = [
     "help",
@@ -128,9 +128,13 @@ STARTS = ("relaxed", "standing", "jogged")
 def fresh_rig(start):
     """A new stub board, loop and console for one example, brought to a known state: relaxed
     (as built), standing (`stand` and the frames it takes) or jogged (the six feet placed by
-    `foot`). Nothing carries from one example to the next, so Hypothesis can replay a failure."""
-    ns = {}
-    exec(RIG, ns)  # noqa: S102 (the shared rig source)
+    `foot`). Nothing carries from one example to the next, so Hypothesis can replay a failure.
+    The rig by name (con, r, frames, unsafe): ten_thousand_lines' source is the seed of its
+    derandomized examples, kept as it was so the same 50 examples run."""
+    from scenarios.console_rig import Board
+
+    b = Board()
+    ns = {"con": b.con, "r": b.r, "frames": b.frames, "unsafe": b.unsafe}
     con = ns["con"]
     r = ns["r"]
     if start == "standing":
@@ -213,25 +217,7 @@ def _vm_batch(seed, n):
 
 def test_random_bytes_through_the_reader_in_the_vm(mp):
     data = _vm_batch(8, 600)
-    src = (
-        RIG
-        + """
-data = %r
-reader.feed(data)
-bad = []
-n0 = r.frames
-while reader.pos < len(data):
-    frames(1)
-    bad += unsafe()
-frames(2)
-def untagged(x):  # a random '#12 ' starts a tagged request: its reply is '#12 ok ...'
-    return x.split(" ", 1)[1] if x.startswith("#") and " " in x else x
-odd = [x for x in map(untagged, REPLIES) if not (x == "ok" or x.startswith("ok ") or x.startswith("err "))]
-print(repr((r.frames - n0 > 0, bad, odd, [x for x in REPLIES if "internal" in x], len(REPLIES))))
-"""
-        % (data,)
-    )
-    ran, bad, not_replies, internal, n = ast.literal_eval(mp.run(src, heapsize="4m").strip().splitlines()[-1])
+    ran, bad, not_replies, internal, n = mp.with_heapsize("4m").call("scenarios.console_lines:random_bytes", data)
     assert ran and bad == [] and not_replies == [] and internal == []
     assert n >= 300  # blank lines get no reply; a random \n or \r inside a line ends it
 

@@ -6,41 +6,14 @@ import ast
 
 import pytest
 
-from tests.console_rig import RIG, clean_stubs  # noqa: F401 (autouse fixture)
+from tests.console_rig import clean_stubs  # noqa: F401 (autouse fixture)
 
-CTRL_C = """
-class CtrlC(console.BufferReader):
-    def __init__(self, after):
-        console.BufferReader.__init__(self, b"get 1\\n")
-        self.after = after
-        self.calls = 0
-
-    def read_byte(self):
-        self.calls += 1
-        if self.calls > self.after:
-            raise KeyboardInterrupt
-        return console.BufferReader.read_byte(self)
-"""
+SCENARIO = "scenarios.console_main:"
 
 
 @pytest.mark.parametrize("on_exit", ["relax", "hold"])
 def test_ctrl_c_relaxes_or_holds_and_leaves_the_runner(rt, on_exit):
-    src = (
-        RIG
-        + CTRL_C
-        + """
-import boards.pico
-boards.pico.BOARD["on_exit"] = %r
-boards.pico.BOARD["watchdog_ms"] = 4000
-try:
-    r2 = main.main(clock=clock, reader=CtrlC(400), boot="stand", calibrated=True)
-finally:
-    del boards.pico.BOARD["on_exit"]
-    del boards.pico.BOARD["watchdog_ms"]
-print(repr((r2 is main.runner, r2.frames, channels(), r2.robot.mode, r2.watchdog.expired(), r2.watchdog.timeout_ms)))
-"""
-        % (on_exit,)
-    )
+    src = "from scenarios.console_main import ctrl_c\nctrl_c(%r)\n" % (on_exit,)
     out = rt.run(src, heapsize="4m").splitlines()
     assert out[0] == "cal: no hexapod_cal.txt; the robot file's calibration is in use"
     # boot="stand", calibrated=True: the host run vouches for the calibration the file would give
@@ -56,18 +29,7 @@ print(repr((r2 is main.runner, r2.frames, channels(), r2.robot.mode, r2.watchdog
 
 
 def test_watchdog_starves_when_the_loop_stops(rt):
-    src = (
-        RIG
-        + """
-from machine import WDT
-r.watchdog = WDT(timeout=1000)
-r.run(60)
-fed = r.watchdog.expired()
-clock.advance_us(1100000)   # a loop hung for 1.1 s
-print(repr((fed, r.watchdog.expired())))
-"""
-    )
-    assert rt.value(src, heapsize="4m") == (False, True)
+    assert rt.with_heapsize("4m").call(SCENARIO + "watchdog") == [False, True]
 
 
 @pytest.mark.parametrize(
@@ -123,23 +85,9 @@ def test_poll_reader_on_an_open_line_with_nothing_waiting_allocates_nothing(mp):
     import subprocess
 
     from hexapod_host import mpvm
-    from hexapod_host.testing.runtimes import HEAP_PROBE, TESTS
+    from hexapod_host.testing.runtimes import TESTS
 
-    src = (
-        RIG
-        + HEAP_PROBE
-        + """
-con.reader = console.PollReader()
-con.out = print
-def run(n):
-    frames(n)
-print(repr(heap_bytes(run, 100)))
-import sys
-sys.stdout.flush() if hasattr(sys.stdout, "flush") else None
-while not con.lines:
-    frames(1)
-"""
-    )
+    src = "from scenarios.console_main import poll_reader\npoll_reader()\n"
     proc = subprocess.Popen(
         [mpvm.executable(), "-X", "heapsize=4m", "-c", src],
         stdin=subprocess.PIPE,

@@ -5,109 +5,13 @@ gait, echo and the telemetry (rate, countdown, counts). Every command with bad a
 ones the robot's state refuses) in five
 states: relaxed, jogged, standing, walking and following a wall; on both runtimes.
 
-The console here has a calibration file on a stub filesystem (tests/scenarios/calstore.py): a
+The console here (tests/scenarios/console_refusals.py) has a calibration file on a stub filesystem: a
 file whose last row the present pose refuses (`load` must roll the other 17 back), a read-only
 filesystem and one that writes short while reporting success (`save` must keep the source)."""
 
-import ast
-
 import pytest
 
-from tests.console_rig import RIG, clean_stubs  # noqa: F401 (autouse fixture)
-
-SETUP = """
-import calstore
-from scenarios.calstore import StubFS, Writer
-
-class ShortWriter(Writer):
-    # A filesystem that drops the second half of each write yet reports every byte written
-    # (a full flash that says nothing): only save's read-back can notice.
-    def write(self, s):
-        self.fs.files[self.name] += s[: len(s) // 2]
-        return len(s)
-
-
-class FlakyFS(StubFS):
-    short = False  # writes come out short, reported whole
-
-    def open(self, name, mode="r"):
-        if mode == "r" or not self.short:
-            return StubFS.open(self, name, mode)
-        self.files[name] = ""
-        return ShortWriter(self, name)
-
-
-FS = FlakyFS()
-con = console.start(r, reader, FS, opener=FS.open, out=REPLIES.append)
-
-
-class Sink:  # the telemetry's output: every line taken (a refused `stream` must not start it)
-    def write(self, buf, n):
-        return n
-
-
-from drivers import stream
-
-con.telemetry = stream.Stream(Sink())
-
-
-def full_state():
-    f = r.follower
-    p = f.pid
-    rb = r.robot
-    return (
-        list(rb.pulses), list(rb.angles), rb.mode, rb.gait,
-        [(s.centre_us, s.direction, s.min_us, s.max_us) for s in SERVOS], list(con.trims), con.cal_source,
-        (p.kp, p.ki, p.kd), (f.mode, f.side, f.setpoint, f.speed),
-        (rb.asked_vx, rb.asked_vy, rb.asked_yaw, con._walking, con._deadline), con.echo,
-        (con.telemetry.hz, con.telemetry.every, con.telemetry.due, con.telemetry.sent, con.telemetry.dropped),
-        channels(), FS.files.get(calstore.FILE),  # (a cut save may leave a broken temp file: load skips it)
-    )
-
-
-def to(state):
-    # the five states; a walk renewed so it does not expire while the lines run (no frame runs
-    # between the snapshot before a line and the one after: con.do is the dispatcher itself)
-    if state == "relaxed":
-        return
-    if state == "jogged":
-        for leg in range(1, 7):
-            say("foot %d 130 0 -80" % leg)
-        say("pulse 2 femur 2350")  # near its top: a trim of +100 is refused by the pose
-        return
-    say("stand")
-    frames(120)
-    if state == "walking":
-        say("walk 50 0 0")
-        frames(5)
-    elif state == "following":
-        say("wall left 40")
-        frames(5)
-
-
-to(STATE)
-frames(2)  # the last reply's change reaches the chips (a line runs after its frame's tick)
-# A calibration file the pose refuses on its last row (leg 6 tibia's range excludes any tibia
-# angle but one far from the present one), the other 17 rows different from what is in force.
-rows = [(7, 1, 610, 2390)] * 17 + [(0, 1, 2480, 2500)]
-FS.files[calstore.FILE] = calstore.encode(rows)
-out = []
-for line in LINES:
-    typed = line
-    if line == "<short>":
-        FS.short = True
-        line = "save"
-    elif line == "<readonly>":
-        FS.short = False
-        FS.readonly = True
-        line = "save"
-    before = full_state()
-    reply = con.do(line)
-    after = full_state()
-    diff = [k for k in range(len(before)) if before[k] != after[k]]
-    out.append((typed, reply, diff))
-print(repr((r.robot.mode, r.follower.mode, out)))
-"""
+from tests.console_rig import clean_stubs  # noqa: F401 (autouse fixture)
 
 # Bad arguments for every command; then the lines a state refuses (checked per state below).
 BAD = [
@@ -180,8 +84,7 @@ STATES = ("relaxed", "jogged", "standing", "walking", "following")
 
 @pytest.mark.parametrize("state", STATES)
 def test_a_refused_command_changes_nothing_in_any_state(rt, state):
-    src = RIG + "STATE = %r\nLINES = %r\n" % (state, BAD + STATEFUL) + SETUP
-    mode, follow_mode, out = ast.literal_eval(rt.run(src, heapsize="4m").strip().splitlines()[-1])
+    mode, follow_mode, out = rt.with_heapsize("4m").call("scenarios.console_refusals:refused", state, BAD + STATEFUL)
     assert mode == {"relaxed": 0, "jogged": 5, "standing": 3, "walking": 4, "following": 4}[state]
     assert (follow_mode != 0) == (state == "following")
     by = {}

@@ -13,31 +13,10 @@ import pytest
 
 from hexapod_host.serial import telemetry
 from hexapod_host.testing import reference
-from tests.console_rig import RIG, clean_stubs  # noqa: F401 (autouse fixture)
+from tests.console_rig import clean_stubs  # noqa: F401 (autouse fixture)
 
-# The telemetry's writer in tests: keeps each line; `take` says which lines the output takes
-# (a line not taken is dropped by the console and counted).
-SINK = """
-from drivers import stream
-
-
-class Sink:
-    def __init__(self, take=None):
-        self.lines = []
-        self.take = take
-        self.asked = 0
-
-    def write(self, buf, n):
-        self.asked += 1
-        if self.take is not None and not self.take(self.asked):
-            return 0
-        self.lines.append(bytes(buf[:n]).decode())
-        return n
-
-
-sink = Sink()
-con.telemetry = stream.Stream(sink)
-"""
+# The console streaming to a sink that keeps each line: tests/scenarios/console_stream.py.
+SCENARIO = "scenarios.console_stream:"
 
 # seed 004's leg (robots/default.py), mm; the shipped robot stands with each foot 130 mm out from
 # its coxa axis and 80 mm below it (NEUTRAL_REACH, BODY_HEIGHT).
@@ -45,8 +24,8 @@ LEG = dict(coxa=30.0, femur=85.0, tibia=125.0, femur_offset=32.0)
 WALLS = [3000 + 1000 * k for k in range(5)]  # the rig's sonar walls, 0.1 mm, hexapod.sensors order
 
 
-def run(rt, body):
-    return rt.run(RIG + SINK + body, heapsize="4m")
+def call(rt, name, *args):
+    return rt.with_heapsize("4m").call(SCENARIO + name, *args)
 
 
 def fields(line):
@@ -55,13 +34,11 @@ def fields(line):
 
 
 def test_a_fresh_relaxed_board_streams_no_pulse_and_no_battery(rt):
-    out = run(rt, 'print(repr(say("stream on 25")))\nprint(repr(sink.lines))\n').splitlines()
-    assert ast.literal_eval(out[0]) == "ok stream 25"
-    lines = ast.literal_eval(out[1])
+    reply, lines = call(rt, "fresh", True)
+    assert reply == "ok stream 25"
     # say() ran frames until the reply: one frame here, the line comes every second frame
     assert lines == []
-    out = run(rt, 'con.do("stream on 25")\nframes(2)\nprint(repr(sink.lines))\n').splitlines()
-    (line,) = ast.literal_eval(out[-1])
+    (line,) = call(rt, "fresh", False)[1]
     f = fields(line)
     assert len(f) == 44
     # frame 2; relaxed, tripod, no phase; not following; no walk; no pulse sent (relaxed from
@@ -79,16 +56,8 @@ def test_a_fresh_relaxed_board_streams_no_pulse_and_no_battery(rt):
 
 
 def test_a_standing_board_streams_its_hand_worked_pulses(rt):
-    body = """
-say("stand")
-frames(150)
-con.do("stream on 25")
-frames(2)
-print(repr(sink.lines))
-print(repr(con.do("stream")))
-"""
-    out = run(rt, body).splitlines()
-    (line,) = ast.literal_eval(out[-2])
+    lines, reply = call(rt, "standing")
+    (line,) = lines
     f = fields(line)
     # Worked by hand: the foot (130, 0, -80) mm -> coxa 0, femur 8.11, tibia -90.83 deg; the
     # calibration (robots/default_cal.py): 1500 us at the reference (0, 0, -90 deg), 10 us a
@@ -105,27 +74,11 @@ print(repr(con.do("stream")))
     assert f[32:37] == ["0"] * 5  # every sonar read by now
     assert all(abs(int(f[27 + k]) - WALLS[k]) <= 2 for k in range(5)), f
     assert f[37:] == ["0", "0", "-", "0", "0", "0", "0"]
-    assert ast.literal_eval(out[-1]) == "ok stream 25 sent 1 dropped 0"
+    assert reply == "ok stream 25 sent 1 dropped 0"
 
 
 def test_walking_and_wall_following_fields_match_status(rt):
-    body = """
-say("stand")
-frames(150)
-say("walk 50 -20 10")
-con.do("stream on 25")
-frames(40)
-walk = list(sink.lines)
-del sink.lines[:]
-say("stop")
-frames(120)
-say("wall left 40")
-frames(40)
-print(repr(walk))
-print(repr((sink.lines[-1], con.do("status"))))
-"""
-    out = run(rt, body).splitlines()
-    walk = ast.literal_eval(out[-2])
+    walk, last = call(rt, "walking_then_following")
     assert len(walk) == 20
     phases = []
     for line in walk:
@@ -137,7 +90,7 @@ print(repr((sink.lines[-1], con.do("status"))))
     # the tripod's cycle is 1 s, 50 ticks: the phase goes 2 ticks from one line to the next, mod 50
     assert all(0 <= p < 50 for p in phases)
     assert [(b - a) % 50 for a, b in zip(phases, phases[1:], strict=False)] == [2] * 19
-    line, status = ast.literal_eval(out[-1])
+    line, status = last
     f = fields(line)
     words = status.split()
     s = dict(zip(words[1::2], words[2::2], strict=False))
@@ -155,19 +108,7 @@ RATES = {25: (2, 150), 17: (3, 100), 10: (5, 60), 7: (8, 37), 3: (17, 17), 1: (5
 
 
 def test_one_line_every_ceil_50_over_hz_frames(rt):
-    body = """
-out = {}
-for hz in %r:
-    con.do("stream on %%d" %% hz)
-    del sink.lines[:]
-    frames(300)
-    out[hz] = [int(line.split()[1]) for line in sink.lines]
-con.do("stream off")
-frames(100)
-out["off"] = len(sink.lines) - len(out[hz])  # after the last rate
-print(repr(out))
-""" % (sorted(RATES),)
-    out = ast.literal_eval(run(rt, body).splitlines()[-1])
+    out = call(rt, "rates", sorted(RATES))
     for hz, (every, count) in RATES.items():
         assert every == math.ceil(50 / hz)
         got = out[hz]
@@ -177,14 +118,8 @@ print(repr(out))
 
 
 def test_replies_tags_and_dropped_lines(rt):
-    body = """
-sink.take = lambda k: k % 3 != 0  # the output refuses every third line
-for line in ["stream", "#7 stream on 25", "#8 stream", "stream on", "stream", "stream off", "stream"]:
-    print(repr(say(line)))
-    if line == "#7 stream on 25":
-        frames(59)  # with say's frame: 60 frames, 30 lines due, 10 of them refused
-"""
-    out = [ast.literal_eval(x) for x in run(rt, body).splitlines()]
+    lines = ["stream", "#7 stream on 25", "#8 stream", "stream on", "stream", "stream off", "stream"]
+    out = call(rt, "replies", lines, 3)  # the output refuses every third line
     assert out == [
         "ok stream off",
         "#7 ok stream 25",
@@ -197,12 +132,7 @@ for line in ["stream", "#7 stream on 25", "#8 stream", "stream on", "stream", "s
 
 
 def test_no_raw_output_refuses_stream_and_makes_nothing(rt):
-    body = """
-con.telemetry = None
-for line in ["stream on x", "stream on 5", "stream", "stream off"]:
-    print(repr((con.do(line), con.telemetry is None)))
-"""
-    out = [ast.literal_eval(x) for x in run(rt, body).splitlines()]
+    out = call(rt, "no_output", ["stream on x", "stream on 5", "stream", "stream off"])
     assert out == [
         ("err stream: HZ 'x': allowed a whole number 1..25 (lines a second)", True),
         ("err stream: this console has no raw output to stream to", True),
@@ -212,40 +142,9 @@ for line in ["stream on x", "stream on 5", "stream", "stream off"]:
 
 
 def test_a_streaming_frame_allocates_nothing(mp):
-    from hexapod_host.testing.runtimes import HEAP_PROBE
-
     # Through a writer that keeps nothing, then through the board's own writer: select.poll (POLLOUT) on the VM's
-    # stdout and its stream.write(buf, n).
-    src = (
-        RIG
-        + SINK
-        + HEAP_PROBE
-        + """
-import sys
-
-
-class Null:  # takes every line, keeps none (the sink keeps them: that allocates)
-    n = 0
-
-    def write(self, buf, n):
-        self.n += 1
-        return n
-
-
-null = Null()
-con.telemetry = stream.Stream(null)
-say("stand")
-frames(150)
-print(repr(con.do("stream on 25")))
-a = heap_bytes(frames, 50)
-con.telemetry = None
-con.write = sys.stdout.write
-print(repr(con.do("stream on 25")))
-b = heap_bytes(frames, 50)
-print(repr((a, b, null.n, type(con.telemetry.out).__name__, stream._digits_fast is not None)))
-"""
-    )
-    out = mp.run(src, heapsize="4m").splitlines()
+    # stdout and its stream.write(buf, n). The scenario prints: the lines are the VM's stdout.
+    out = mp.run("from scenarios.console_stream import frame_heap\nframe_heap()\n", heapsize="4m").splitlines()
     a, b, n, writer, viper = ast.literal_eval(out[-1])
     assert (a, b) == (0, 0)
     assert n == 50 and writer == "PollWriter" and viper
@@ -267,75 +166,22 @@ def test_the_viper_writer_equals_the_plain_one(mp):
             for _ in range(44)
         ]
         rows.append(row)
-    src = """
-from array import array
-from drivers import stream
-rows = %r
-same = 0
-for row in rows:
-    v = array("i", row)
-    a = bytearray(531)
-    b = bytearray(531)
-    n = stream.digits(a, 2, v, 44)
-    m = stream._digits_fast(b, 2, v, 44)
-    same += n == m and a == b
-print(same, bytes(a[:n]).decode().split(" ")[1:4])
-""" % (rows,)
-    out = mp.run(src, heapsize="4m").split()
-    assert out[0] == "100"
+    same, first = mp.with_heapsize("4m").call("scenarios.stream_digits:digits_same", rows)
+    assert same == 100
     # the last row's first three fields, written by hand from the row
     last = ["-" if x == -0x3FFFFFFF else str(x) for x in rows[-1][:3]]
-    assert ast.literal_eval(" ".join(out[1:])) == last
+    assert first == last
 
 
 @pytest.mark.parametrize("hz", ["0", "26", "x", "-5", "1.5"])
 def test_a_refused_rate_names_the_range(rt, hz):
-    out = run(
-        rt, "print(repr(con.do(%r)))\nprint(repr((con.telemetry.hz, con.telemetry.every)))\n" % ("stream on " + hz)
-    )
-    reply, state = [ast.literal_eval(x) for x in out.splitlines()]
+    reply, state = call(rt, "refused_rate", "stream on " + hz)
     assert reply == "err stream: HZ %r: allowed a whole number 1..25 (lines a second)" % hz
     assert state == (0, 0)
 
 
-# A port for select.poll in the VM (io.IOBase with ioctl): POLLOUT only while it has room.
-PORT = """
-import io
-from drivers import stream
-
-
-class Port(io.IOBase):
-    def __init__(self):
-        self.room = False
-        self.got = []
-
-    def ioctl(self, req, arg):
-        if req == 3:  # MP_STREAM_POLL: POLLOUT (4) while there is room
-            return arg & 4 if self.room else 0
-        return -1  # no file descriptor: poll asks this method
-
-    def write(self, buf, n):
-        self.got.append(bytes(buf[:n]))
-        return n
-"""
-
-
 def test_a_line_goes_out_only_when_poll_says_the_output_takes_it(mp):
-    src = (
-        RIG
-        + PORT
-        + """
-port = Port()
-con.telemetry = stream.Stream(stream.PollWriter(port))
-con.do("stream on 25")
-frames(20)  # 10 lines due, no room: every one dropped, nothing written
-a = (len(port.got), con.do("stream"))
-port.room = True
-frames(20)
-print(repr((a, len(port.got), con.do("stream"), port.got[0][:3])))
-"""
-    )
-    a, written, reply, head = ast.literal_eval(mp.run(src, heapsize="4m").splitlines()[-1])
+    a, written, reply, head = call(mp, "poll_port")
     assert a == (0, "ok stream 25 sent 0 dropped 10")
     assert (written, reply, head) == (10, "ok stream 25 sent 10 dropped 10", b"~T ")
 
@@ -345,14 +191,8 @@ def test_stream_is_refused_where_there_is_no_select_poll_output():
     # output but no MicroPython stream to poll refuses `stream on` by name and makes nothing.
     from hexapod_host.testing.runtimes import CPythonRuntime
 
-    body = """
-import sys
-con.telemetry = None
-con.write = sys.stdout.write
-print(repr((con.do("stream on 5"), con.telemetry is None)))
-"""
-    out = CPythonRuntime().run(RIG + SINK + body).splitlines()[-1]
-    assert ast.literal_eval(out) == (
+    out = CPythonRuntime().call(SCENARIO + "no_output", ["stream on 5"], True)
+    assert out[0] == (
         "err stream: not on cpython: streaming needs MicroPython's select.poll on the console's output",
         True,
     )

@@ -4,11 +4,9 @@ inputs (messages written out by hand, identical on both runtimes); the sonar rin
 sensor; and a new kind of frame sensor plugged into the Runner beside the sonars, asked once a
 frame without a change to the loop, allocating nothing."""
 
-import ast
-
 import pytest
 
-from tests.console_rig import RIG, clean_stubs  # noqa: F401 (autouse fixture)
+from tests.console_rig import clean_stubs  # noqa: F401 (autouse fixture)
 
 SCENARIO = "scenarios.sensors:"
 
@@ -127,8 +125,7 @@ def test_a_frame_with_an_extra_sensor_allocates_nothing(mp):
 
 @pytest.mark.parametrize("name", ["front", "left_rear"])
 def test_the_console_names_the_sonars_by_the_contract(rt, name):
-    src = RIG + "frames(30)\nprint(repr(say('sonar')))\n"
-    reply = ast.literal_eval(rt.run(src, heapsize="4m").strip().splitlines()[-1])
+    reply = rt.with_heapsize("4m").call(SCENARIO + "console_sonar", 30)
     words = reply.split()
     assert words[0] == "ok" and words[1::3] == ORDER.split(", ")
     k = ORDER.split(", ").index(name)

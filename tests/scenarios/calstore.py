@@ -176,3 +176,29 @@ def short_write():
     except OSError as e:
         err = e.args[0]
     return err, fs.files[calstore.FILE] == calstore.encode(OLD), boot(fs) == OLD
+
+
+def versions():
+    """Version 2, 1 and 3 of one file: [[calstore.version of each and of ""], [decodes to its rows,
+    or the error, of each]]."""
+    rows = [(k - 9, -1 if k % 2 else 1, 700 + k, 2300 - k) for k in range(18)]
+    v2 = calstore.encode(rows)
+    body = v2[: v2.rfind("crc ")]
+    v1 = signed(body.replace("hexapod-cal 2", "hexapod-cal 1"))
+    v3 = signed(body.replace("hexapod-cal 2", "hexapod-cal 3"))
+
+    def why(t):
+        try:
+            return calstore.decode(t) == rows
+        except ValueError as e:
+            return str(e)
+
+    return [
+        [calstore.version(v2), calstore.version(v1), calstore.version(v3), calstore.version("")],
+        [why(v2), why(v1), why(v3)],
+    ]
+
+
+def signed(body):
+    """body (a calibration file without its checksum line) with its checksum line."""
+    return body + "crc %04x\n" % calstore.crc16(body.encode())

@@ -18,12 +18,8 @@ Frame bounds, from the robot file (robots/default.py) and the core's speeds:
 - HELD_FRAMES: no frame may be held (faults rising) for longer than the longest of the two.
 """
 
-import _stub_clock as clock
-import _stub_i2c
-import _stub_pins
 import console
-import main
-import stub_board
+from scenarios import console_rig
 from scenarios.rig import servo_state
 
 import robots.default as d
@@ -38,36 +34,10 @@ HELD_FRAMES = POSTURE_FRAMES if POSTURE_FRAMES > WALK_FRAMES else WALK_FRAMES
 MODES = tick.MODE_NAMES
 
 
-class Board:
-    """A fresh stub board with a console on a BufferReader; replies collected in `replies`."""
+class Board(console_rig.Board):
+    """The console bench (scenarios.console_rig.Board); a reply waited for at most 3 frames."""
 
-    def __init__(self):
-        _stub_i2c.reset()
-        _stub_pins.reset()
-        clock.reset(0)
-        board = stub_board.reset("pico")
-        stub_board.pca9685_models(board)
-        stub_board.sonar_models(board, [3000 + 1000 * k for k in range(5)])
-        self.r = main.build(clock=clock)
-        self.robot = self.r.robot
-        self.reader = console.BufferReader()
-        self.replies = []
-        self.con = console.start(self.r, self.reader, None, out=self.replies.append)
-
-    def frame(self):
-        self.r.step()
-        self.con.poll()
-        self.r.wait()
-
-    def say(self, line):
-        """Feed line, run frames until its reply (at most 3): the reply, or None."""
-        n = len(self.replies)
-        self.reader.feed(line.encode() + b"\n")
-        for _ in range(3):
-            self.frame()
-            if len(self.replies) > n:
-                return self.replies[-1]
-        return None
+    SAY_FRAMES = 3
 
 
 def sit_after_tibia_zero(frames=200):

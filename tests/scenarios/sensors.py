@@ -145,3 +145,12 @@ def extra_sensor_heap(settle, n):
             r.wait()
 
     return (heap_bytes(run, n), battery.frames)
+
+
+def console_sonar(frames):
+    """The console's `sonar` reply on the stub board (scenarios.console_rig) after `frames` frames."""
+    from scenarios.console_rig import Board
+
+    b = Board()
+    b.frames(frames)
+    return b.say("sonar")
