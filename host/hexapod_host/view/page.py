@@ -5,13 +5,12 @@ the background (player.py). Scene units are metres (the snapshot's mm / 1000).""
 import json
 import math
 
-import numpy as np
 from nicegui import ui
 
 from hexapod_host.view import player as player_mod
 from hexapod_host.view.drive import Driver
 from hexapod_host.view.drive_ui import DrivePanel
-from hexapod_host.view.scene import geometry, segment_poses
+from hexapod_host.view.scene import geometry, segment_pose
 from hexapod_host.view.support import support
 
 PLOT_DRAW_S = 0.25
@@ -90,30 +89,17 @@ def _m(p):
 
 
 def _place(obj, start, end):
-    """Pose a unit cylinder (or line) along y as the segment start -> end (mm)."""
-    _place_all([obj], [(start, end)])
-
-
-def _place_all(objs, segments):
-    """Pose each unit cylinder along y as its segment [start, end] (mm), the poses worked out in one
-    numpy pass (scene.segment_poses). A segment where it was at the last redraw is skipped: not
-    worked out again nor compared by NiceGUI's move, rotate and scale (a standing robot's links
-    and brackets cost nothing a redraw)."""
-    todo = []
-    for obj, (start, end) in zip(objs, segments, strict=True):
-        key = (*start, *end)
-        if getattr(obj, "hexapod_segment", None) != key:
-            obj.hexapod_segment = key
-            todo.append((obj, key))
-    if not todo:
+    """Pose a unit cylinder (or line) along y as the segment start -> end (mm). A segment where it
+    was at the last redraw is skipped: not worked out again nor compared by NiceGUI's move,
+    rotate and scale (a standing robot's links and brackets cost nothing a redraw)."""
+    key = (*start, *end)
+    if getattr(obj, "hexapod_segment", None) == key:
         return
-    centres, rots, lengths = segment_poses(np.array([key for _, key in todo]) / 1000)
-    # Python's round, not numpy's: numpy rounds 71.25 mm to 71.2 (its x * 10**4 lands on a half),
-    # round() to the decimal the float really is.
-    for (obj, _), centre, rot, length in zip(todo, centres.tolist(), rots.tolist(), lengths.tolist(), strict=True):
-        obj.move(*(round(v, DIGITS) for v in centre))
-        obj.rotate_R([[round(v, DIGITS) for v in row] for row in rot])
-        obj.scale(1.0, max(round(length, DIGITS), 1e-6), 1.0)
+    obj.hexapod_segment = key
+    centre, rot, length = segment_pose([v / 1000 for v in start], [v / 1000 for v in end])
+    obj.move(*(round(v, DIGITS) for v in centre))
+    obj.rotate_R([[round(v, DIGITS) for v in row] for row in rot])
+    obj.scale(1.0, max(round(length, DIGITS), 1e-6), 1.0)
 
 
 class View:
@@ -239,7 +225,8 @@ class View:
         objs = self.links + self.brackets + self.beams
         segments = g["links"] + g["brackets"] + [(beam["start"], beam["end"]) for beam in g["beams"]]
         support_objs, support_segments = self._draw_support(g["support"])
-        _place_all(objs + support_objs, segments + support_segments)
+        for obj, (start, end) in zip(objs + support_objs, segments + support_segments, strict=True):
+            _place(obj, start, end)
         self._draw_trail(p.trail)
         if self.follow_cam.value:
             cx, cy, _ = _m(b["centre"])

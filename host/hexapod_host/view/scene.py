@@ -3,8 +3,6 @@ it can be checked by hand. World frame: the room's x, y (mm), z up from the grou
 
 import math
 
-import numpy as np
-
 from hexapod_host.view.support import support
 
 NO_ECHO_MM = 150.0  # a beam with no reading is drawn this long, grey
@@ -70,29 +68,15 @@ def geometry(described, snap):
 def segment_pose(start, end):
     """Where a unit cylinder along y goes to stand for the segment start -> end: its centre,
     a rotation matrix taking y onto the segment, and the segment's length (the y scale)."""
-    centres, rots, lengths = segment_poses([[start, end]])
-    return centres[0].tolist(), rots[0].tolist(), float(lengths[0])
-
-
-def segment_poses(segments):
-    """segment_pose for many segments at once (n x [start, end], any unit): numpy arrays of the
-    centres (n x 3), rotations (n x 3 x 3) and lengths (n). One numpy pass for the 30-odd links,
-    brackets and beams a redraw places: a third of the Python loop's time."""
-    seg = np.asarray(segments, dtype=float).reshape(-1, 2, 3)
-    start, end = seg[:, 0], seg[:, 1]
-    d = end - start
-    n = np.sqrt((d * d).sum(axis=1))
-    centre = (start + end) / 2
-    y = np.divide(d, n[:, None], out=np.zeros_like(d), where=n[:, None] > 0.0)
+    d = [e - s for s, e in zip(start, end, strict=True)]
+    n = math.sqrt(sum(v * v for v in d))
+    centre = [(s + e) / 2 for s, e in zip(start, end, strict=True)]
+    if n == 0.0:
+        return centre, [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], 0.0
+    y = [v / n for v in d]
     # x: horizontal and square to the segment (any square axis will do for a round link); for a
     # vertical segment, the world's x.
-    h = np.hypot(y[:, 0], y[:, 1])
-    level = h > 1e-9
-    safe = np.where(level, h, 1.0)
-    x = np.zeros_like(d)
-    x[:, 0] = np.where(level, y[:, 1] / safe, 1.0)
-    x[:, 1] = np.where(level, -y[:, 0] / safe, 0.0)
-    z = np.cross(x, y)
-    rot = np.stack([x, y, z], axis=2)  # rot[i][k] = [x[k], y[k], z[k]]: the columns are x, y, z
-    rot[n == 0.0] = np.eye(3)  # a point: no direction to turn to
-    return centre, rot, n
+    h = math.hypot(y[0], y[1])
+    x = [y[1] / h, -y[0] / h, 0.0] if h > 1e-9 else [1.0, 0.0, 0.0]
+    z = [x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]]
+    return centre, [[x[k], y[k], z[k]] for k in range(3)], n
