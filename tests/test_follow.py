@@ -94,6 +94,7 @@ def test_the_pair_estimate_is_the_walks_prediction_corrected_by_a_32nd(side):
     # the forward travel at that angle (sum of the walked speed x 20 ms x sin angle); each sample then
     # pulls both 1/32 of the way toward what the sonars read. Readings 76 mm, parallel: the robot
     # turns away, the readings do not change.
+    assert (follow.EST_SHIFT, follow._EST_HALF) == (5, 16)  # 1/32, rounded half up
     rig = Rig(side)
     f = rig.f
     away = 1 if side == "right" else -1  # the walker's yaw sign that turns away from this wall
