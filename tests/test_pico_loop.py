@@ -26,8 +26,9 @@ def fs():
 
 @pytest.fixture(scope="module")
 def boot():
-    """`hexapod pico bench boot --json` (6 emulated s of the image's own main.py, no calibration file)
-    and what its boot_main run returned, (status, output, bursts): one boot for the two tests that read it."""
+    """`hexapod pico bench boot --json` (6 emulated s of the image's own main.py, without and then with
+    a calibration file) and what its two boot_main runs returned, each (status, output, bursts): one
+    pair of boots for the tests that read them."""
     from hexapod_host.commands import cli
 
     runs = []
@@ -41,8 +42,8 @@ def boot():
     with pytest.MonkeyPatch.context() as mp, contextlib.redirect_stdout(out):
         mp.setattr(pico_loop, "boot_main", recorded)
         code = cli.main(["pico", "bench", "boot", "--json"])
-    assert len(runs) == 1
-    return code, out.getvalue(), runs[0]
+    assert len(runs) == 2
+    return code, out.getvalue(), runs[0], runs[1]
 
 
 def test_stand_up_and_walk_bursts_equal_the_stub_machines(fs):
@@ -114,7 +115,7 @@ print((r.sonar_status, r.distances, r.sonar_faults))
 
 
 def test_boot_bench_reports_the_first_burst(boot):
-    code, out, _ = boot
+    code, out, _, _ = boot
     assert code == 0
     result = json.loads(out)
     # The first burst after imports (the guard's answers come from the robot's table); then 50 Hz
@@ -132,25 +133,30 @@ def test_boot_reaches_the_first_burst_within_1_s(boot):
     # (main.py: each import of array, time, machine, ... had searched the filesystem first, ~4 ms,
     # 24 times) and the boot's calibration load without consolecal when there is no file
     # (2026-11-27; the emulated clock is deterministic).
-    code, out, _ = boot
+    code, out, _, _ = boot
     assert code == 0
     assert json.loads(out)["first_burst_s"] <= 1.0
 
 
-def test_main_py_with_a_calibration_file_boots_relaxed_too(tmp_path):
-    # A valid hexapod_cal.txt on the board, the shipped board file (no "boot": "stand"): still
-    # no pulse before `stand` (issue 20), only the notice says why differently.
-    import calstore
+@pytest.mark.xfail(strict=True, reason="issue 22 with a calibration file: 1.0886 s (2026-11-27), goal 1 s")
+def test_boot_with_a_calibration_file_reaches_the_first_burst_within_1_s(boot):
+    # Issue 22's goal for a calibrated robot: the file's decode and its 18 rows put in force come
+    # before the first frame. 1.0886 s on main (766187f; 0.975 s without the file): consolecal's
+    # import (only to put the rows in force), the decode and the rows ~87 ms more. Strict: a boot
+    # that meets the goal fails here until the mark goes (docs/pico.md says what was tried).
+    code, out, _, _ = boot
+    assert code == 0
+    with_file = json.loads(out)["with_cal_file"]
+    assert abs(with_file["frame_period_ms"] - 20) < 0.4 and with_file["frames_in_6s"] > 50, with_file
+    assert with_file["first_burst_s"] <= 1.0, with_file
 
-    from hexapod import robotcal
 
-    # the robot's calibration rows (robots/default_cal.py), trim 0
-    rows = [(0, m.direction, m.min_us, m.max_us) for m in robotcal.servo_maps(robotcal.load("default"))]
-    cal = tmp_path / calstore.FILE
-    cal.write_text(calstore.encode(rows))
-    with pico.flashed(extra=[(str(cal), calstore.FILE)]) as fs:
-        status, out, bursts = pico_loop.boot_main(6, fs)
-    assert status == 0 and "Traceback" not in out, out
+def test_main_py_with_a_calibration_file_boots_relaxed_too(boot):
+    # A valid hexapod_cal.txt on the board (the bench's: robots/default_cal.py's rows, trim 0), the
+    # shipped board file (no "boot": "stand"): still no pulse before `stand` (issue 20), only the
+    # notice says why differently; the file loaded (no "cal:" line says it could not be used).
+    status, out, bursts = boot[3]
+    assert status == 0 and "Traceback" not in out and "cal:" not in out, out
     assert "boot: relaxed, no pulse until `stand` (the board file's boot setting)" in out, out
     assert len(bursts) > 100 and {c for _, counts in bursts for c in counts} == {-1}
 

@@ -180,11 +180,27 @@ def bench_frame(args, fs, tmp):
 
 def bench_boot(args, fs, tmp):
     """Power-up to main.py's first PCA9685 burst (imports, the board and robot files, the servo
-    guard's IK solves at the first configure), main.py unmodified, on the emulated clock."""
+    guard's IK solves at the first configure), main.py unmodified, on the emulated clock: without a
+    calibration file, then with one (with_cal_file)."""
 
     result = _boot(fs)
     result["bench"] = "boot"
+    # The same boot with a calibration file on the board (the robot file's rows, trim 0), as every
+    # calibrated robot boots: the file's decode and its rows put in force come before the first frame.
+    cal = _cal_file(tmp)
+    with pico.flashed(extra=[(cal, os.path.basename(cal))]) as cal_fs:
+        result["with_cal_file"] = _boot(cal_fs)
     return result
+
+
+def _cal_file(tmp):
+    """A valid calibration file (calstore's format) of robots/default_cal.py's rows, trim 0."""
+    import calstore
+
+    from hexapod import robotcal
+
+    rows = [(0, m.direction, m.min_us, m.max_us) for m in robotcal.servo_maps(robotcal.load("default"))]
+    return _write(tmp, calstore.FILE, calstore.encode(rows))
 
 
 def _boot(fs):
