@@ -13,16 +13,18 @@ existing file, FILE is removed first; load() then takes the complete TMP). So a 
 any point leaves the old calibration or the new one, never a broken one.
 
 Filesystem access is handed in (the `os` module and `open`) so tests can use a stub that
-loses power mid-write. Nothing here runs in the 50 Hz frame.
+loses power mid-write. Nothing here runs in the 50 Hz frame. Writing (encode, save) lives with the
+`save` command in consolecal: its code is on the heap only while a jog session lasts, not in the
+walking loop's (tests/test_pico.py's resident floor).
 """
 
-VERSION = 2  # what save() writes
+VERSION = 2  # what consolecal.save writes
 READS = (1, 2)  # what load() reads
 FILE = "hexapod_cal.txt"
 TMP = "hexapod_cal.tmp"
 JOINTS = ("coxa", "femur", "tibia")
 TRIM_MAX = 300  # largest |trim|, us
-_HEADER = "hexapod-cal %d\n"
+HEADER = "hexapod-cal %d\n"
 
 
 def crc16(data):
@@ -35,16 +37,6 @@ def crc16(data):
         x ^= x >> 4
         crc = ((crc << 8) ^ (x << 12) ^ (x << 5) ^ x) & 0xFFFF
     return crc
-
-
-def encode(rows):
-    """The file's text for 18 rows (trim, direction, min_us, max_us), leg/joint order."""
-    parts = [_HEADER % VERSION]
-    for k in range(18):
-        t, d, lo, hi = rows[k]
-        parts.append("%d %s %d %d %d %d\n" % (k // 3 + 1, JOINTS[k % 3], t, d, lo, hi))
-    body = "".join(parts)
-    return body + "crc %04x\n" % crc16(body.encode())
 
 
 def check_row(where, t, d, lo, hi):
@@ -70,7 +62,7 @@ def decode(text):
     if version(text) not in READS:
         raise ValueError(
             "version line %r, this firmware reads %s"
-            % (lines[0][:20], " or ".join(repr((_HEADER % v).strip()) for v in READS))
+            % (lines[0][:20], " or ".join(repr((HEADER % v).strip()) for v in READS))
         )
     if len(lines) != 20 or lines[19] != "":
         raise ValueError("%d rows, need 18" % (len(lines) - 2))
@@ -93,7 +85,7 @@ def version(text):
     """The version number of a calibration file's text (its first line), 0 when it has none."""
     head = text[: text.find("\n")] if "\n" in text else text
     for v in READS:
-        if head == (_HEADER % v).strip():
+        if head == (HEADER % v).strip():
             return v
     return 0
 
@@ -107,14 +99,14 @@ class Store:
         self.path = path
         self.tmp = tmp
 
-    def _read(self, name):
+    def read(self, name):
         f = self.open(name, "r")
         try:
             return f.read()
         finally:
             f.close()
 
-    def _exists(self, name):
+    def exists(self, name):
         try:
             self.os.stat(name)
             return True
@@ -124,14 +116,14 @@ class Store:
     def load(self):
         """(rows, where, version) from FILE, else from a complete TMP; ValueError says why neither."""
         try:
-            text = self._read(self.path)
+            text = self.read(self.path)
             return decode(text), self.path, version(text)
         except OSError as e:
             why = "no %s" % self.path if _errno(e) == 2 else "%s unreadable (%s)" % (self.path, e)
         except ValueError as e:
             why = "%s %s" % (self.path, e)
         try:
-            text = self._read(self.tmp)
+            text = self.read(self.tmp)
             return decode(text), self.tmp, version(text)
         except (OSError, ValueError):
             raise ValueError(why) from None
@@ -140,7 +132,7 @@ class Store:
         """The CRC of FILE as it is on the flash now (a self-test; the calibration in force is not
         touched); ValueError says why the file cannot be used."""
         try:
-            text = self._read(self.path)
+            text = self.read(self.path)
         except OSError as e:
             raise ValueError("no %s" % self.path if _errno(e) == 2 else "%s unreadable (%s)" % (self.path, e)) from None
         try:
@@ -148,34 +140,6 @@ class Store:
         except ValueError as e:
             raise ValueError("%s %s" % (self.path, e)) from None
         return int(text[text.rfind("crc ") + 4 :].strip(), 16)
-
-    def save(self, rows):
-        """Write rows atomically; OSError (the old file kept) when the filesystem refuses."""
-        text = encode(rows)
-        if not self._exists(self.path) and self._exists(self.tmp):
-            # A save cut between remove and rename left the good copy in TMP: make it FILE first,
-            # so writing TMP again never destroys the only good copy.
-            try:
-                decode(self._read(self.tmp))
-                self.os.rename(self.tmp, self.path)
-            except ValueError:
-                pass
-        f = self.open(self.tmp, "w")
-        try:
-            for line in text.split("\n")[:-1]:
-                f.write(line + "\n")
-        finally:
-            f.close()
-        if self._read(self.tmp) != text:
-            raise OSError(28, "written file reads back different (filesystem full?)")
-        try:
-            self.os.rename(self.tmp, self.path)
-        except OSError:
-            if not self._exists(self.path):
-                raise
-            self.os.remove(self.path)  # FAT cannot rename over a file: TMP is complete by now
-            self.os.rename(self.tmp, self.path)
-        return crc16(text[: text.rfind("crc ")].encode())
 
 
 def _errno(e):

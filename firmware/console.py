@@ -162,8 +162,7 @@ class Console:
         self.base = tuple((s.centre_us, s.direction, s.min_us, s.max_us) for s in self.robot.servos)
         self.trims = [0] * 18
         self.cal_source = "defaults"
-        self._cal_kept = False  # consolecal stays loaded for a jog session, until _cal_until (ticks_ms)
-        self._cal_until = 0
+        self._cal_until = -1  # consolecal stays loaded for a jog session until then (ticks_ms); -1: not loaded
         self._table = {
             "help": self._help,
             "status": self._status,
@@ -218,8 +217,8 @@ class Console:
                 self._walking = False
                 if self.robot.mode == tick.WALKING and not self.runner.follower.mode:
                     self.robot.stop()
-        if self._cal_kept and self._cal_over():
-            self._cal_kept = False
+        if self._cal_until >= 0 and self._cal_over():
+            self._cal_until = -1
             release(CAL)
         if self._job is not None:
             self._job_step()
@@ -688,7 +687,6 @@ class Console:
                 release(CAL)
             else:
                 clock = self.runner.clock
-                self._cal_kept = True
                 self._cal_until = clock.ticks_add(clock.ticks_ms(), CAL_KEEP_MS)
 
     def _cal_over(self):

@@ -5,6 +5,7 @@ their code's heap (docs/console.md). None runs while walking. The console names 
 err reply.
 """
 
+import calstore
 from calstore import JOINTS, TRIM_MAX
 
 from hexapod import tick
@@ -207,7 +208,7 @@ def _save(con):
     if store is None:
         raise ValueError("no calibration file on this board")
     try:
-        crc = store.save(rows(con))
+        crc = save(store, rows(con))
     except OSError as e:
         why = "the filesystem is read-only" if e.args and e.args[0] == 30 else "the filesystem refused"
         return "err save: %s (%s); the previous file is kept" % (why, e)
@@ -252,3 +253,42 @@ def _defaults(con):
         return con._refused(code)
     con.cal_source = "defaults"
     return "ok defaults"
+
+
+def encode(rows):
+    """The file's text for 18 rows (trim, direction, min_us, max_us), leg/joint order."""
+    parts = [calstore.HEADER % calstore.VERSION]
+    for k in range(18):
+        t, d, lo, hi = rows[k]
+        parts.append("%d %s %d %d %d %d\n" % (k // 3 + 1, JOINTS[k % 3], t, d, lo, hi))
+    body = "".join(parts)
+    return body + "crc %04x\n" % calstore.crc16(body.encode())
+
+
+def save(store, rows):
+    """Write rows atomically to store (calstore.Store); OSError (the old file kept) when the filesystem refuses."""
+    text = encode(rows)
+    if not store.exists(store.path) and store.exists(store.tmp):
+        # A save cut between remove and rename left the good copy in TMP: make it FILE first,
+        # so writing TMP again never destroys the only good copy.
+        try:
+            calstore.decode(store.read(store.tmp))
+            store.os.rename(store.tmp, store.path)
+        except ValueError:
+            pass
+    f = store.open(store.tmp, "w")
+    try:
+        for line in text.split("\n")[:-1]:
+            f.write(line + "\n")
+    finally:
+        f.close()
+    if store.read(store.tmp) != text:
+        raise OSError(28, "written file reads back different (filesystem full?)")
+    try:
+        store.os.rename(store.tmp, store.path)
+    except OSError:
+        if not store.exists(store.path):
+            raise
+        store.os.remove(store.path)  # FAT cannot rename over a file: TMP is complete by now
+        store.os.rename(store.tmp, store.path)
+    return calstore.crc16(text[: text.rfind("crc ")].encode())

@@ -17,6 +17,7 @@ if sys.platform in ("rp2", "esp32"):
         except ImportError:
             pass  # not in this port's image: imported from the files as before
     sys.path.extend(_path)
+    del _path, _name
 
 import time  # noqa: E402
 

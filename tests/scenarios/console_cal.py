@@ -5,7 +5,7 @@ jog and calibration module kept through a jog session. On the stub board (scenar
 import _stub_clock as clock
 import calstore
 import console
-from scenarios.calstore import StubFS, signed
+from scenarios.calstore import StubFS, cal_text, signed
 from scenarios.console_rig import Board
 
 
@@ -14,7 +14,7 @@ def read_only():
     Returns [trim's reply, save's, the file unchanged, save's, defaults', cal's, load's, cal's,
     status's two words from `cal`]."""
     b = Board()
-    rows = calstore.encode([(0, 1, 600, 2400)] * 18)
+    rows = cal_text([(0, 1, 600, 2400)] * 18)
     fs = StubFS({calstore.FILE: rows}, -1, True, True)
     b.con.store = calstore.Store(fs, fs.open)
     out = [b.say("trim 1 coxa 40"), b.say("save"), fs.files[calstore.FILE] == rows]
@@ -31,7 +31,7 @@ def boots():
     its centre_us]."""
     b = Board()
     r = b.r
-    good = calstore.encode([(25, 1, 600, 2400)] * 18)
+    good = cal_text([(25, 1, 600, 2400)] * 18)
     out = []
     for files in (
         {},
@@ -50,7 +50,7 @@ def boots():
 
 def version_1(rows):
     """rows as a version 1 file (written before the tibia's reference moved to -90 degrees)."""
-    body = calstore.encode(rows)
+    body = cal_text(rows)
     return signed(body[: body.rfind("crc ")].replace("hexapod-cal 2", "hexapod-cal 1"))
 
 
@@ -89,7 +89,7 @@ def cal_module_session():
 
     b = Board()
     r = b.r
-    fs = StubFS({calstore.FILE: calstore.encode([(0, 1, 600, 2400)] * 18)})
+    fs = StubFS({calstore.FILE: cal_text([(0, 1, 600, 2400)] * 18)})
     said = []
     c = console.start(r, None, fs, fs.open, out=said.append)
     r.console = c

@@ -4,7 +4,7 @@ short while reporting success, and a telemetry stream whose output takes every l
 
 import calstore
 import console
-from scenarios.calstore import StubFS, Writer
+from scenarios.calstore import StubFS, Writer, cal_text
 from scenarios.console_rig import Board
 
 from drivers import stream
@@ -97,7 +97,7 @@ def refused(state, lines):
     b.frames(2)  # the last reply's change reaches the chips (a line runs after its frame's tick)
     # A calibration file the pose refuses on its last row (leg 6 tibia's range excludes any tibia
     # angle but one far from the present one), the other 17 rows different from what is in force.
-    fs.files[calstore.FILE] = calstore.encode([(7, 1, 610, 2390)] * 17 + [(0, 1, 2480, 2500)])
+    fs.files[calstore.FILE] = cal_text([(7, 1, 610, 2390)] * 17 + [(0, 1, 2480, 2500)])
     out = []
     for typed in lines:
         line = typed

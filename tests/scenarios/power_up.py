@@ -8,6 +8,7 @@ import calstore
 import console
 import main
 import stub_board
+from scenarios.calstore import cal_text
 
 
 class Lines(console.BufferReader):
@@ -72,7 +73,7 @@ def boot(folder, cal, setting, frames, typed=(), every=50, calibrated=None):
                 os.remove(name)
         if cal != "none":
             rows = [(0, s[2].direction, s[2].min_us, s[2].max_us) for s in table]
-            text = calstore.encode(rows)
+            text = cal_text(rows)
             if cal == "corrupt":
                 text = text.replace("1 coxa 0", "1 coxa 9", 1)  # the checksum no longer matches
             with open(calstore.FILE, "w") as f:

@@ -11,7 +11,7 @@ import calstore
 import console
 import main
 import stub_board
-from scenarios.calstore import StubFS
+from scenarios.calstore import StubFS, cal_text
 from scenarios.rig import servo_state
 
 from hexapod import tick
@@ -34,9 +34,9 @@ class Board:
         self.sonars = stub_board.sonar_models(board, [3000 + 1000 * k for k in range(5)])
         self.fs = StubFS()
         if cal == "good":
-            self.fs.files[calstore.FILE] = calstore.encode(rows(board))
+            self.fs.files[calstore.FILE] = cal_text(rows(board))
         elif cal == "corrupt":  # one digit changed, the checksum line kept
-            self.fs.files[calstore.FILE] = calstore.encode(rows(board)).replace("2 femur 0", "2 femur 7")
+            self.fs.files[calstore.FILE] = cal_text(rows(board)).replace("2 femur 0", "2 femur 7")
         self.r = main.build(clock=clock)
         self.robot = self.r.robot
         self.reader = console.BufferReader()

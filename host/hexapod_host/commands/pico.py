@@ -196,11 +196,12 @@ def bench_boot(args, fs, tmp):
 def _cal_file(tmp):
     """A valid calibration file (calstore's format) of robots/default_cal.py's rows, trim 0."""
     import calstore
+    import consolecal
 
     from hexapod import robotcal
 
     rows = [(0, m.direction, m.min_us, m.max_us) for m in robotcal.servo_maps(robotcal.load("default"))]
-    return _write(tmp, calstore.FILE, calstore.encode(rows))
+    return _write(tmp, calstore.FILE, consolecal.encode(rows))
 
 
 def _boot(fs):
