@@ -55,10 +55,9 @@ def free_port():
 
 
 class Server:
-    """`hexapod view ARGS --no-browser` in a subprocess on 127.0.0.1:port (pythonpath: the
-    host package to import instead of this one); stop() ends it."""
+    """`hexapod view ARGS --no-browser` in a subprocess on 127.0.0.1:port; stop() ends it."""
 
-    def __init__(self, args=("--sim",), port=None, timeout=60, pythonpath=None):
+    def __init__(self, args=("--sim",), port=None, timeout=60):
         self.port = port or free_port()
         self.url = "http://127.0.0.1:%d/" % self.port
         self.output = None  # what the server printed, once stopped
@@ -74,8 +73,6 @@ class Server:
         ]
         # NiceGUI takes PYTEST_CURRENT_TEST as its own test mode (another port): the server is a plain run.
         env = {k: v for k, v in os.environ.items() if k != "PYTEST_CURRENT_TEST"}
-        if pythonpath:  # another tree's host package (the bench's before/after), ahead of this one
-            env["PYTHONPATH"] = pythonpath
         self.proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
         end = time.monotonic() + timeout
         while True:
