@@ -2,44 +2,23 @@
 test_console_configure.py): the stub board (scenarios.console_rig) with every leg's IK solve
 counted, the frame's own six solves left out, and no guard table, so every gait is solved live."""
 
+from scenarios.configure import Solves
 from scenarios.console_rig import Board
 
 
 class Counted(Board):
-    """A Board whose robot counts the IK solves a gait check makes in `solves`."""
+    """A Board whose robot counts the IK solves a gait check makes (scenarios.configure.Solves)."""
 
     def __init__(self):
         Board.__init__(self)
-        self.solves = 0
-        self.counting = True
-        robot = self.robot
-        for leg in robot.geometry.legs:
-            leg.ik = self._counted(leg.ik)
-        inner_output = robot._output_plain
-
-        def quiet():
-            # the frame's own six solves (the plain output calls leg.ik) are not the configure's
-            self.counting = False
-            code = inner_output()
-            self.counting = True
-            return code
-
-        robot._output_plain = quiet
-        robot._table = robot.walker.table = None  # no guard table: every gait solved live
-
-    def _counted(self, inner):
-        def ik(x, y, z, out, i=0):
-            if self.counting:
-                self.solves += 1
-            return inner(x, y, z, out, i)
-
-        return ik
+        self.solves = Solves(self.robot)
+        self.robot._table = self.robot.walker.table = None  # no guard table: every gait solved live
 
     def counted_frame(self):
         """One frame: the solves it made."""
-        self.solves = 0
+        self.solves.n = 0
         self.frame()
-        return self.solves
+        return self.solves.n
 
 
 def status_during_gait_change():

@@ -111,18 +111,6 @@ class Board:
             self.frame()
 
 
-def transcript(lines, wait_after_stand=0):
-    """A fresh board's replies to lines, then its unsafe servos; after a `stand`,
-    wait_after_stand frames."""
-    b = Board()
-    out = []
-    for line in lines:
-        out.append(b.say(line))
-        if line == "stand":
-            b.frames(wait_after_stand)
-    return [out, b.unsafe()]
-
-
 def steps(todo):
     """On a fresh board, each step: ("lines", bytes, frames) -> the reply lines the bytes brought,
     ("do", line) -> the console's reply to line run directly, ("mode",) -> the robot's mode."""
