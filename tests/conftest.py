@@ -1,4 +1,5 @@
 import os
+import sys
 
 import pytest
 from _pytest.nodeid import NodeId
@@ -107,3 +108,16 @@ def virtual_board():
         proc.wait(10)
         os.close(master)
         os.close(slave)
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item, call):
+    """A failed test with a view server or browser still open reports their logs (a socket lost
+    under load, a page reloaded): the failure's cause, which its own assertion cannot see."""
+    outcome = yield
+    report = outcome.get_result()
+    vb = sys.modules.get("hexapod_host.view.browser")
+    if report.failed and vb is not None:
+        why = vb.diagnose()
+        if why:
+            report.sections.append(("view servers and pages", why))

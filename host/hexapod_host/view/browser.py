@@ -8,7 +8,9 @@ import shutil
 import socket
 import subprocess
 import sys
+import tempfile
 import time
+import weakref
 
 CHROMIUM = ("chromium", "chromium-browser", "google-chrome")
 DRIVER = "chromedriver"
@@ -54,6 +56,27 @@ def free_port():
         return s.getsockname()[1]
 
 
+_LIVE = []  # the servers running now, for diagnose()
+_BROWSERS = weakref.WeakSet()  # the browsers opened, for diagnose()
+
+
+def diagnose(lines=30):
+    """What a failed browser test should show (tests/conftest.py adds it to the report): the last
+    lines of each live server's log and each open page's console, a test's only window on a
+    socket lost under load. Reading a console empties it: page_errors() sees only later entries."""
+    out = []
+    for server in _LIVE:
+        out.append("server %s:" % server.url)
+        out += ["  " + line for line in server.log().splitlines()[-lines:]]
+    for driver in list(_BROWSERS):
+        try:
+            entries = driver.get_log("browser")
+        except Exception:  # a browser that quit has nothing more to say
+            continue
+        out += ["console: %s %s" % (e["level"], e["message"]) for e in entries[-lines:]]
+    return "\n".join(out)
+
+
 class Server:
     """`hexapod view ARGS --no-browser` in a subprocess on 127.0.0.1:port; stop() ends it."""
 
@@ -61,6 +84,10 @@ class Server:
         self.port = port or free_port()
         self.url = "http://127.0.0.1:%d/" % self.port
         self.output = None  # what the server printed, once stopped
+        # A file, not a pipe: a pipe nobody reads until stop() fills (64 KiB) and then blocks the
+        # server's event loop in its next print, the page's socket with it.
+        fd, self._log_path = tempfile.mkstemp(prefix="hexapod-view-", suffix=".log")
+        os.close(fd)
         cmd = [
             sys.executable,
             "-m",
@@ -73,13 +100,13 @@ class Server:
         ]
         # NiceGUI takes PYTEST_CURRENT_TEST as its own test mode (another port): the server is a plain run.
         env = {k: v for k, v in os.environ.items() if k != "PYTEST_CURRENT_TEST"}
-        self.proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
+        with open(self._log_path, "a") as log:  # O_APPEND: the server's writes and log()'s reads never race
+            self.proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT, text=True, env=env)
+        _LIVE.append(self)
         end = time.monotonic() + timeout
         while True:
             if self.proc.poll() is not None:
-                raise RuntimeError(
-                    "hexapod view stopped (exit %s): %s" % (self.proc.returncode, self.proc.stdout.read())
-                )
+                raise RuntimeError("hexapod view stopped (exit %s): %s" % (self.proc.returncode, self.log()))
             try:
                 socket.create_connection(("127.0.0.1", self.port), timeout=1).close()
                 return
@@ -101,8 +128,17 @@ class Server:
                 self.proc.kill()
                 self.proc.wait(10)
         if self.output is None:
-            self.output = self.proc.stdout.read()
+            self.output = self.log()
+            os.unlink(self._log_path)
+            _LIVE.remove(self)
         return self.output
+
+    def log(self):
+        """What the server printed so far."""
+        if self.output is not None:
+            return self.output
+        with open(self._log_path) as f:
+            return f.read()
 
 
 def open_browser():
@@ -116,7 +152,9 @@ def open_browser():
     for flag in FLAGS + ("--window-size=%d,%d" % WINDOW,):
         options.add_argument(flag)
     options.set_capability("goog:loggingPrefs", {"browser": "ALL"})
-    return webdriver.Chrome(options=options, service=Service(driver, log_output=os.devnull))
+    browser = webdriver.Chrome(options=options, service=Service(driver, log_output=os.devnull))
+    _BROWSERS.add(browser)
+    return browser
 
 
 def page_errors(driver):

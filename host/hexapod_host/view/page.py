@@ -9,6 +9,7 @@ from nicegui import ui
 from hexapod_host.view import player as player_mod
 from hexapod_host.view.drive import Driver
 from hexapod_host.view.drive_ui import DrivePanel
+from hexapod_host.view.pace import Pace
 from hexapod_host.view.scene import geometry, segment_pose
 from hexapod_host.view.support import support
 
@@ -87,6 +88,9 @@ class View:
         with ui.row().classes("w-full"):
             self.plots = [(self._plot(title, [n for n, _ in series]), title, series) for title, series in PLOTS]
         self.drawn = 0
+        self.pace = Pace()
+        self.client = ui.context.client
+        ui.on("hexapod_drawn", lambda e: self.pace.shown(e.args))
         self._follow_player()
         ui.timer(PLOT_DRAW_S, self.draw_plots)
         self.draw()
@@ -158,12 +162,15 @@ class View:
         ).classes("w-[600px] h-56")
 
     def draw(self):
+        if not self.pace.ready():
+            return
         # One message for the whole scene instead of one per moved object (about 60): NiceGUI
         # 3.18.0's own batching (pinned), as its scene uses it to resend everything on a reconnect.
         with self.scene._batch_calls():
             self._draw_scene()
         self.drawn += 1
         self._status(self.player.snap)
+        self.client.run_javascript('emitEvent("hexapod_drawn", %d)' % self.pace.sending())
 
     def _draw_scene(self):
         snap, p = self.player.snap, self.player
@@ -211,8 +218,8 @@ class View:
             else ("done: %s" % (x.get("why") or "success") if self.player.done() else "paused")
         )
         self.status.set_text(
-            "trial %s  frame %d  t %.2f s  %s  robot %s  follower %s  updates %d"
-            % (x.get("trial", "-"), s["frame"], s["time_s"], state, s["mode"], f["mode"], self.drawn)
+            "trial %s  frame %d  t %.2f s  %s  robot %s  follower %s  updates %d  skipped %d"
+            % (x.get("trial", "-"), s["frame"], s["time_s"], state, s["mode"], f["mode"], self.drawn, self.pace.skipped)
         )
 
     def _readings(self, s):
@@ -238,7 +245,10 @@ class View:
         self.table.set_text("\n".join(lines))
 
     def draw_plots(self):
-        """The plots and the readings' table: 4 times a second is enough to read them."""
+        """The plots and the readings' table: 4 times a second is enough to read them (not while
+        the page is behind: its scene waits too)."""
+        if self.pace.sent - self.pace.seen >= self.pace.in_flight:
+            return
         self._readings(self.player.snap)
         h = list(self.player.history)
         t = [row[0] for row in h]
@@ -283,4 +293,23 @@ def build(player):
 
     @ui.page("/")
     def index():
+        _log_tab(ui.context.client)
         View(player, driver)
+
+
+def _log_tab(client):
+    """One line per tab event on the server's console: a tab that lost its socket and came back
+    (or was forgotten, server.RECONNECT_S later) explains a page that stopped answering."""
+
+    def say(what):
+        print("view: tab %s %s" % (client.id[:8], what), flush=True)
+
+    say("opened")
+    # The page's side: why its socket went (socket.io's reason: ping timeout, transport close, ...).
+    ui.add_body_html(
+        "<script>(function hook() { if (!window.socket) return setTimeout(hook, 100);"
+        ' window.socket.on("disconnect", (r) => console.log("socket lost: " + r)); })();</script>'
+    )
+    client.on_disconnect(lambda: say("lost its socket"))
+    client.on_connect(lambda: say("connected"))
+    client.on_delete(lambda: say("forgotten"))
