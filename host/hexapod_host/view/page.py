@@ -3,6 +3,7 @@ elements and redraws them from the player's latest snapshot; the player steps th
 the background (player.py). Scene units are metres (the snapshot's mm / 1000)."""
 
 import math
+import time
 
 from nicegui import ui
 
@@ -92,9 +93,8 @@ class View:
         self.client = ui.context.client
         ui.on("hexapod_drawn", lambda e: self.pace.shown(e.args))
         self._follow_player()
-        ui.timer(PLOT_DRAW_S, self.draw_plots)
+        self._plots_due = 0.0  # time.monotonic() of the next plots' redraw (in a scene's draw)
         self.draw()
-        self.draw_plots()
 
     def _follow_player(self):
         """Redraw on the player's beat, right after each snapshot it publishes (25 a second), until
@@ -170,6 +170,13 @@ class View:
             self._draw_scene()
         self.drawn += 1
         self._status(self.player.snap)
+        self._readings(self.player.snap)  # with the status line: one snapshot's frame and angles
+        # The plots ride on a scene's draw, not on a timer of their own: paced with it (a timer's
+        # redraws would queue behind a page that is behind).
+        now = time.monotonic()
+        if now >= self._plots_due:
+            self._plots_due = now + PLOT_DRAW_S
+            self.draw_plots()
         self.client.run_javascript('emitEvent("hexapod_drawn", %d)' % self.pace.sending())
 
     def _draw_scene(self):
@@ -245,11 +252,7 @@ class View:
         self.table.set_text("\n".join(lines))
 
     def draw_plots(self):
-        """The plots and the readings' table: 4 times a second is enough to read them (not while
-        the page is behind: its scene waits too)."""
-        if self.pace.sent - self.pace.seen >= self.pace.in_flight:
-            return
-        self._readings(self.player.snap)
+        """The plots: 4 times a second is enough to read them."""
         h = list(self.player.history)
         t = [row[0] for row in h]
         for chart, title, series in self.plots:
