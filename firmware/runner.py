@@ -78,6 +78,12 @@ class Runner:
         self.frames = 0
         self.held = 0  # ticks whose frame the robot held back (hexapod.tick reason codes)
         self.next_us = clock.ticks_us()  # the next frame's start
+        # The frame's own time, from step() to wait() (the console's work and a telemetry line
+        # included), us: the last whole frame's, and the most since the telemetry's last line
+        # (drivers/stream.py sets it back to 0 when it writes one).
+        self.frame_us = 0
+        self.frame_us_max = 0
+        self._frame_t0 = self.next_us
         self.follower = follow.Follower(self.robot, sensors.DEFAULT_MOUNTS if mounts is None else mounts)
         self._start = None  # a follow setting waiting for the robot to stand
         self.console = None  # console.Console: polled once a frame when set (console.start)
@@ -175,6 +181,7 @@ class Runner:
 
     def step(self):
         """One frame now: ping, tick, write. Returns the tick's code (0 = frame sent)."""
+        self._frame_t0 = self.clock.ticks_us()  # the frame's time runs to wait()
         now = self.clock.ticks_ms()  # the frame's start: a ping's variable length must not look like jitter
         b = self.battery
         if b is not None:
@@ -288,10 +295,16 @@ class Runner:
 
     def wait(self):
         """Sleep until the next 20 ms frame boundary, to the us: whole ms, then the rest in
-        sleep_us (at once when late: the tick counts overruns)."""
+        sleep_us (at once when late: the tick counts overruns). The frame's own time (since
+        step()) goes into frame_us and frame_us_max first."""
         clock = self.clock
+        now = clock.ticks_us()
+        us = clock.ticks_diff(now, self._frame_t0)
+        self.frame_us = us
+        if us > self.frame_us_max:
+            self.frame_us_max = us
         self.next_us = clock.ticks_add(self.next_us, FRAME_US)
-        left = clock.ticks_diff(self.next_us, clock.ticks_us())
+        left = clock.ticks_diff(self.next_us, now)
         if left < -FRAME_US:
             self.next_us = clock.ticks_us()  # far behind: start counting from now, never burst
             return

@@ -40,7 +40,7 @@ def test_a_fresh_relaxed_board_streams_no_pulse_and_no_battery(rt):
     assert lines == []
     (line,) = call(rt, "fresh", False)[1]
     f = fields(line)
-    assert len(f) == 44
+    assert len(f) == 46
     # frame 2; relaxed, tripod, no phase; not following; no walk; no pulse sent (relaxed from
     # power-up: 18 zeros)
     assert f[:27] == ["2", "0", "0", "0", "0", "0", "0", "0", "0"] + ["0"] * 18
@@ -52,7 +52,7 @@ def test_a_fresh_relaxed_board_streams_no_pulse_and_no_battery(rt):
         else:
             assert f[27 + k] == "-" and 1 <= int(f[32 + k]) <= 6, (k, f)
     # no follower: 0 0; the pico board file has no battery: '-'; the counters 0
-    assert f[37:] == ["0", "0", "-", "0", "0", "0", "0"]
+    assert f[37:44] == ["0", "0", "-", "0", "0", "0", "0"]
 
 
 def test_a_standing_board_streams_its_hand_worked_pulses(rt):
@@ -73,7 +73,9 @@ def test_a_standing_board_streams_its_hand_worked_pulses(rt):
     assert f[1:9] == ["3", "0", "0", "0", "0", "0", "0", "0"]  # standing, tripod, still
     assert f[32:37] == ["0"] * 5  # every sonar read by now
     assert all(abs(int(f[27 + k]) - WALLS[k]) <= 2 for k in range(5)), f
-    assert f[37:] == ["0", "0", "-", "0", "0", "0", "0"]
+    assert f[37:44] == ["0", "0", "-", "0", "0", "0", "0"]
+    # each frame's time on the virtual clock: the sonar trigger's 2 + 10 us (docs/console.md's example)
+    assert f[44:] == ["12", "12"]
     assert reply == "ok stream 25 sent 1 dropped 0"
 
 
@@ -100,7 +102,19 @@ def test_walking_and_wall_following_fields_match_status(rt):
     # status prints them in mm (1 decimal) and deg/s (2 decimals); the line has the raw integers
     assert int(f[37]) == round(float(s["wall_error"]) * 10)
     assert int(f[38]) == round(float(s["wall_out"]) * 100)
-    assert f[40:] == [s["held"], s["overruns"], s["bus_failed"], s["sonar_faults"]]
+    assert f[40:44] == [s["held"], s["overruns"], s["bus_failed"], s["sonar_faults"]]
+
+
+def test_the_frame_times_are_the_last_frame_and_the_worst_since_the_line_before(rt):
+    # Six frames, each kept busy a known time on the virtual clock between its step and its wait
+    # (where the console's work goes), streaming at 25 Hz: a line in every second frame's poll.
+    lines = call(rt, "frame_times", [3000, 1000, 5000, 2000, 1000, 4000])
+    # Worked by hand: a frame takes its busy time plus the sonar's trigger, 2 us low and 10 us high
+    # (drivers/hcsr04.py, the HC-SR04 datasheet's 10 us pulse), on the virtual clock. The line in
+    # frame 2 says frame 1's time (the last whole one; its own is not over) and the worst since
+    # `stream on`; frame 4's, frame 3's and the worst of frames 2-3; frame 6's, frame 5's (1,012 us)
+    # and the worst of frames 4-5 (2,012 us).
+    assert lines == [["3012", "3012"], ["5012", "5012"], ["1012", "2012"]]
 
 
 # HZ -> ceil(50 / HZ) frames from line to line, and the lines in 300 frames, worked by hand.

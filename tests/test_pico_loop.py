@@ -179,3 +179,16 @@ def test_stream_on_25_writes_parseable_lines_and_allocates_nothing(fs):
     s = pico_loop.summary(lines)
     assert s["stream_sent_dropped"] == [FRAMES // 2, 0]
     assert s["heap_bytes_per_frame"] == 0
+    # The firmware's frame times (runner.wait: step to wait) against the script's own clock
+    # around each frame (step and console poll). A line says the frame before it, one that wrote
+    # no line (0.5-1.5 ms cheaper here): their median is under the script's median of all frames.
+    # Its worst since the line before covers the frame that wrote that line: over the run, the
+    # worst of every frame but the last, the script's own worst (its readings start a little
+    # earlier and end a little sooner; in five frames its walk commands come after its reading).
+    times = sorted(t["frame_us"] for t in got)
+    assert 0 < times[len(times) // 2] <= s["frame_median_us"], (times, s)
+    assert all(0 < t["frame_us"] <= t["frame_us_max"] < 20000 for t in got)
+    worst = max(t["frame_us_max"] for t in got)
+    assert worst <= s["frame_max_us"] + max(s["commands_us"]) + 500, (worst, s)
+    if s["frame_max_at"] < FRAMES - 1:  # the last frame's time is in no line
+        assert worst >= s["frame_max_us"] - 500, (worst, s)

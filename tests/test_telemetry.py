@@ -8,13 +8,15 @@ from hexapod_host.serial.link import Link
 
 # A standing robot (docs/console.md's example), and a walking, wall-following one with a battery,
 # a faulted sonar and a held frame: written by hand, field by field.
-STANDING = (
+# The frame times last: 2870 us the frame before the line, 3120 us the most since the line before.
+OLD_STANDING = (
     "~T 153 3 0 0 0 0 0 0 0 1500 1581 1492 1500 1581 1492 1500 1581 1492 1500 1419 1508 1500 1419 1508 "
     "1500 1419 1508 3000 4001 5000 6000 7001 0 0 0 0 0 0 0 - 0 0 0 0\n"
 )
+STANDING = OLD_STANDING.replace("\n", " 2870 3120\n")
 WALKING = (
     "~T 9001 4 2 17 1 1 1200 -300 -1500 1490 1600 1400 1510 1620 1380 1500 1590 1410 1505 1415 1590 "
-    "1495 1400 1600 1500 1420 1580 - 812 795 - 6000 2 0 0 1 0 -17 -352 7410 1 3 0 12\r\n"
+    "1495 1400 1600 1500 1420 1580 - 812 795 - 6000 2 0 0 1 0 -17 -352 7410 1 3 0 12 21004 23950\r\n"
 )
 
 
@@ -40,9 +42,17 @@ def test_a_standing_line():
         "overruns": 0,
         "bus_failed": 0,
         "sonar_faults": 0,
+        "frame_us": 2870,
+        "frame_us_max": 3120,
     }
     assert telemetry.parse(STANDING.encode()) == t  # bytes from a port too
-    assert telemetry.COUNT == 44 and len(telemetry.NAMES) == 44
+    assert telemetry.COUNT == 46 and len(telemetry.NAMES) == 46
+
+
+def test_a_line_from_firmware_before_the_frame_times():
+    t = telemetry.parse(OLD_STANDING)  # 44 fields: read, the frame times None
+    assert (t["frame"], t["pulses"][1], t["sonar_faults"]) == (153, 1581, 0)
+    assert (t["frame_us"], t["frame_us_max"]) == (None, None)
 
 
 def test_a_walking_line_with_negatives_dashes_and_crlf():
@@ -54,6 +64,7 @@ def test_a_walking_line_with_negatives_dashes_and_crlf():
     assert t["sonar_status"] == [2, 0, 0, 1, 0]
     assert (t["wall_error"], t["wall_out"], t["battery_mv"]) == (-17, -352, 7410)
     assert (t["held"], t["overruns"], t["bus_failed"], t["sonar_faults"]) == (1, 3, 0, 12)
+    assert (t["frame_us"], t["frame_us_max"]) == (21004, 23950)  # an overrun's frame
 
 
 def _swap(line, k, word):
@@ -69,9 +80,10 @@ BAD = [
     ("~X 1 2\n", "prefix"),
     ("~T\n", "prefix"),
     (STANDING.replace("~T ", "~T  ", 1), r"field 1 \(frame\)"),
-    (STANDING.replace(" 0 0 0 0\n", " 0 0 0\n"), r"field 44 \(sonar_faults\): missing"),
+    (OLD_STANDING.replace(" 0 0 0 0\n", " 0 0 0\n"), r"field 44 \(sonar_faults\): missing \(43 of 46"),
+    (STANDING.replace(" 3120\n", "\n"), r"field 46 \(frame_us_max\): missing \(45 of 46 fields, or 44 from older"),
     (STANDING[: STANDING.index(" 1500")] + "\n", r"field 10 \(pulses\[0\]\): missing"),
-    (STANDING.replace("\n", " 5\n"), "45 fields, expected 44"),
+    (STANDING.replace("\n", " 5\n"), r"47 fields, expected 46 \(extra after frame_us_max\)"),
     (_swap(STANDING, 1, "x"), r"field 1 \(frame\): 'x' is not a decimal integer"),
     (_swap(STANDING, 1, "-"), r"field 1 \(frame\): '-', allowed only an integer"),
     (_swap(STANDING, 1, "-5"), r"field 1 \(frame\): -5 is outside 0\.\."),
@@ -93,6 +105,8 @@ BAD = [
     (_swap(STANDING, 42, "007"), r"field 42 \(overruns\): '007' is not a decimal integer"),
     (_swap(STANDING, 43, "\u0663"), r"field 43 \(bus_failed\): .* is not a decimal integer"),
     (_swap(STANDING, 44, ""), r"field 44 \(sonar_faults\): '' is not a decimal integer"),
+    (_swap(STANDING, 45, "-"), r"field 45 \(frame_us\): '-', allowed only an integer"),
+    (_swap(STANDING, 46, "-3"), r"field 46 \(frame_us_max\): -3 is outside 0\.\."),
     (STANDING.encode().replace(b"153", b"1\xff3"), "not ASCII"),
 ]
 

@@ -89,7 +89,7 @@ def board():
 
 def test_the_18_cal_lines_are_read_at_connect_and_the_pulses_drawn_through_them(board):
     src, port = board
-    assert port.sent() == ["stream on 25"] + ["cal %d %s" % (k // 3 + 1, JOINTS[k % 3]) for k in range(18)]
+    assert port.sent() == ["stream on 25", "selftest"] + ["cal %d %s" % (k // 3 + 1, JOINTS[k % 3]) for k in range(18)]
     port.put(LINE)
     until(lambda: src.snapshot()["frame"] == 1234, "the telemetry line")
     s = src.snapshot()
@@ -130,7 +130,7 @@ def test_a_board_without_cal_keeps_the_robot_files_maps_and_says_why():
     port = FakePort({"stream on 25": "ok stream 25", "cal 1 coxa": "err unknown command 'cal' (help lists them)"})
     src = BoardSource(BoardLink(port, "fake").start(), "pico")
     try:
-        assert len(port.written) == 2  # asked once, not 18 times
+        assert len(port.written) == 3  # stream, selftest, then cal asked once, not 18 times
         port.put(LINE)
         until(lambda: src.snapshot()["frame"] == 1234, "the telemetry line")
         s = src.snapshot()

@@ -5,6 +5,7 @@ player is given its time (advance) and its clock: no wall-clock time."""
 import pytest
 from test_view import Counter
 
+from hexapod_host.view import page
 from hexapod_host.view import player as player_mod
 from hexapod_host.view.page import live_text
 
@@ -77,7 +78,8 @@ def test_a_source_without_room_battery_or_counters_gives_none_not_zero():
     assert r["frames_per_s"] == 50.0  # every source has frames
     text = live_text(played(Counter(), 1.0).history[-1])
     assert text == (
-        "speed asked - mm/s, body - mm/s  battery - V  frames/s 50  overruns -  held -  bus_failed -  sonar_faults -"
+        "speed asked - mm/s, body - mm/s  battery - V  frames/s 50  frame - us (worst -)  overruns -  held -  "
+        "bus_failed -  sonar_faults -"
     )
 
 
@@ -90,3 +92,46 @@ def test_the_first_row_has_nothing_to_measure_yet():
 def test_live_text_shows_dash_only_for_none(v, shown):
     row = [v] * len(player_mod.COLUMNS)
     assert live_text(row).startswith("speed asked %s mm/s, body %s mm/s  battery %s V" % (shown, shown, shown))
+
+
+def test_a_plot_gets_only_the_rows_added_since_its_last_look():
+    p = played(Counter(), 0.2)  # the row published at start (frame 0) and one 0.2 s on (frame 10)
+    fresh, rows, mark = p.new_rows(None)  # a new tab: everything
+    assert fresh and [r[0] for r in rows] == [0.0, pytest.approx(0.2)]
+    fresh, rows, mark = p.new_rows(mark)
+    assert (fresh, rows) == (False, [])  # nothing published since
+    for _ in range(3):
+        p.clock.t += 0.2
+        p.advance(0.2)
+    fresh, rows, mark = p.new_rows(mark)
+    assert not fresh and [r[0] for r in rows] == pytest.approx([0.4, 0.6, 0.8])  # the three, oldest first
+    assert rows == list(p.history)[-3:]
+
+
+def test_a_plot_starts_over_with_the_history():
+    p = played(Counter(end=20), 1.0)  # done at frame 20
+    _, _, mark = p.new_rows(None)
+    p.start()  # a finished trial gives way to the next: the history starts over
+    fresh, rows, mark = p.new_rows(mark)
+    assert fresh and [r[0] for r in rows] == [0.0]
+    keep = p.history.maxlen
+    for _ in range(keep + 5):  # more rows than the history keeps since the last look
+        p.advance(0.02)
+    fresh, rows, _ = p.new_rows(mark)
+    assert fresh and len(rows) == keep == 500 and rows == list(p.history)
+
+
+class Timed(Counter):
+    """Counter whose board reports its frame time (telemetry's frame_us, frame_us_max)."""
+
+    def snapshot(self):
+        s = super().snapshot()
+        s["extra"] = {"frame_us": 3395, "frame_us_max": 4431}
+        return s
+
+
+def test_the_firmware_frame_time_is_plotted():
+    r = row(played(Timed(), 0.4))
+    assert (r["frame_us"], r["frame_us_max"]) == (3395, 4431)
+    assert "frame 3395 us (worst 4431)" in live_text(played(Timed(), 0.4).history[-1])
+    assert ("firmware frame time (us)", (("last", "frame_us"), ("worst", "frame_us_max"))) in page.PLOTS

@@ -108,11 +108,13 @@ def test_the_port_is_held_while_served_and_its_telemetry_drawn(board_factory):
     source, speed, _, _, record = parse("--port", board.path)
     try:
         assert (source.name, source.stream_reply, speed, record) == ("port", "ok stream 25", 1.0, None)
-        # `stream on 25`, then `cal 1 coxa` (the board's servo maps, view/boardcal.py), which this
-        # pretend board answers with a bare ok: no cal line, so nothing more is asked
+        # `stream on 25`, `selftest` (what the board is), then `cal 1 coxa` (the board's servo
+        # maps, view/boardcal.py), which this pretend board answers with a bare ok: no board line,
+        # no cal line, so nothing more is asked
         sent = [line.split(" ", 1)[1] for line in board.read.decode().splitlines()]
-        assert sent == ["stream on 25", "cal 1 coxa"]
+        assert sent == ["stream on 25", "selftest", "cal 1 coxa"]
         assert source.cal.source == "robot file ('cal 1 coxa' answered 'ok')"
+        assert source.board_text() == "board unknown ('selftest' answered 'ok')"
         with pytest.raises(PortBusy):
             Link.open(board.path)  # nobody else types on the robot's line while the page drives
         for _ in range(500):

@@ -55,3 +55,44 @@ def test_scene_numbers_are_rounded_to_a_tenth_of_a_millimetre():
     assert a.rot == b.rot
     assert all(v == round(v, 4) for row in a.rot for v in row)
     assert page._m([1234.56789, -0.04, 80.0]) == [1.2346, -0.0, 0.08]
+
+
+class Cloud:
+    """A point cloud that keeps what it was sent."""
+
+    def __init__(self):
+        self.sent = []
+
+    def set_points(self, points):
+        self.sent.append(points)
+
+    def material(self, *_):
+        return self
+
+
+class Scene:
+    def __init__(self):
+        self.clouds = []
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *_):
+        pass
+
+    def point_cloud(self, points, point_size):
+        self.clouds.append(Cloud())
+        return self.clouds[-1]
+
+
+def test_a_growing_trail_resends_only_its_newest_cloud():
+    view = type("V", (), {"trails": [], "trail_n": 0, "scene": Scene()})()
+    trail = [(float(k), 0.0) for k in range(120)]  # 120 points, 1 mm apart
+    page.View._draw_trail(view, trail)
+    clouds = view.scene.clouds
+    assert [len(c.sent[-1]) for c in clouds] == [50, 50, 20]  # TRAIL_CHUNK points each
+    assert clouds[2].sent[-1][0] == [0.1, 0.0, 0.002] and clouds[2].sent[-1][-1] == [0.119, 0.0, 0.002]
+    page.View._draw_trail(view, trail + [(120.0, 0.0)])
+    assert [len(c.sent) for c in clouds] == [1, 1, 2] and len(clouds[2].sent[-1]) == 21  # only the third again
+    page.View._draw_trail(view, trail[:10])  # a new trial: the trail starts over
+    assert [c.sent[-1] for c in clouds[1:]] == [[], []] and len(clouds[0].sent[-1]) == 10

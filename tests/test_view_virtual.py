@@ -30,6 +30,7 @@ class FakePort:
 
     def __init__(self, replies=None):
         self.replies = replies or {}
+        self.after = {}
         self.written = []
         self.lines = queue.Queue()
         self.closed = False
@@ -39,6 +40,8 @@ class FakePort:
         self.written.append(text)
         tag, _, line = text.strip().partition(" ")
         self.put("%s %s" % (tag, self.replies.get(line, "ok")))
+        for more in self.after.get(line, ()):  # a multi-line reply's other lines
+            self.put("%s %s" % (tag, more))
 
     def flush(self):
         pass
@@ -84,6 +87,41 @@ def test_a_board_without_the_stream_command_still_serves_a_resting_robot():
         src.close()
 
 
+def test_the_board_is_what_its_selftest_says():
+    # selftest's first line names the board (docs/console.md); the rest of its lines come later
+    port = FakePort({"stream on 25": "ok stream 25", "selftest": "ok board esp32_devkit robot default"})
+    port.after = {"selftest": ["ok version 0.1.0", "ok selftest 14 checks, 0 failed"]}
+    src = BoardSource(BoardLink(port, "fake").start(), "pico")
+    try:
+        assert [w.split(" ", 1)[1] for w in port.written[:2]] == ["stream on 25\n", "selftest\n"]
+        assert src.board == "esp32_devkit"  # drawn through its own board file, not pico's
+        d = src.describe()
+        assert (d["board"], d["board_said"]) == ("esp32_devkit", "board esp32_devkit, robot default")
+        assert src.snapshot()["extra"]["board"] == "board esp32_devkit, robot default"
+    finally:
+        src.close()
+
+
+def test_a_board_this_host_has_no_file_for_is_named_and_drawn_as_pico():
+    src, _ = source({"selftest": "ok board hexbot9 robot big"})
+    try:
+        assert src.board == "pico"
+        assert src.board_text() == "board hexbot9, robot big, drawn with boards/pico.py"
+    finally:
+        src.close()
+
+
+def test_firmware_without_selftest_leaves_the_board_unknown():
+    src, _ = source({"selftest": "err unknown command 'selftest' (help lists them)"})
+    try:
+        assert src.board == "pico"
+        assert src.describe()["board_said"] == (
+            "board unknown ('selftest' answered \"err unknown command 'selftest' (help lists them)\")"
+        )
+    finally:
+        src.close()
+
+
 def wait(predicate, n=500):
     """predicate() true within n tries of the fake line's 10 ms read (the reader thread's pace)."""
     for _ in range(n):
@@ -119,6 +157,11 @@ def test_a_telemetry_line_as_the_snapshot():
         assert s["counters"] == {"frames": 1234, "held": 0, "overruns": 2, "bus_failed": 1, "sonar_faults": 3}
         x = s["extra"]
         assert (x["gait"], x["phase"], x["walk"], x["battery_mv"]) == ("tetrapod", 7, [80.0, 0.0, 5.0], None)
+        assert (x["frame_us"], x["frame_us_max"]) == (None, None)  # a line from before the frame times
+        port.put(LINE.replace("~T 1234", "~T 1236") + " 3395 4431")  # the firmware's frame times, us
+        assert wait(lambda: src.link.telemetry_lines == 2)
+        x = src.snapshot()["extra"]
+        assert (x["frame_us"], x["frame_us_max"]) == (3395, 4431)
     finally:
         src.close()
 
@@ -134,7 +177,7 @@ def test_replies_pair_with_their_tags_among_telemetry_lines():
     assert link.reply("#7") == "ok late"  # another request's: kept under its own tag
     assert link.reply("#42") is None
     assert link.telemetry["frame"] == 1236 and link.telemetry_lines == 2
-    assert link.malformed == 1 and "telemetry field 4 (phase): missing (3 of 44 fields)" in link.last_error
+    assert link.malformed == 1 and "telemetry field 4 (phase): missing (3 of 46 fields" in link.last_error
     assert list(link.notices) == ["held: leg 2: too far"]
 
 

@@ -1,5 +1,5 @@
 """stream.digits compiled by MicroPython's viper emitter: the same integer steps, as machine code
-(docs/viper.md lists every viper twin). A telemetry line's 44 fields: 2.1 ms as plain bytecode on
+(docs/viper.md lists every viper twin). A telemetry line's 46 fields: 2.1 ms as plain bytecode on
 the emulated Pico, far over the frame budget a line may take.
 
 Viper integers are machine words; a field is a 32-bit array("i") value (ptr32). stream's no-value

@@ -1,5 +1,5 @@
 """Telemetry lines for the console's `stream on [HZ] | off` (docs/console.md, "Telemetry"):
-every ceil(50/HZ)-th frame, after the frame's work, one line '~T' and 44 integers about the
+every ceil(50/HZ)-th frame, after the frame's work, one line '~T' and 46 integers about the
 loop, made in a buffer made once by an integer writer of its own (no str formatting: nothing
 allocated a frame), written only when the output can take it now, else dropped and counted.
 
@@ -21,9 +21,9 @@ if sys.implementation.name == "micropython":
     except Exception:  # no viper emitter on this build
         _digits_fast = None
 
-_FIELDS = const(44)
+_FIELDS = const(46)
 _NONE = const(-0x3FFFFFFF)  # a field with no value, written '-' (no reading is ever this; _stream_viper copies it)
-_SIZE = const(531)  # '~T', 44 fields of a space and at most 11 characters (-1073741823), '\n'
+_SIZE = const(555)  # '~T', 46 fields of a space and at most 11 characters (-1073741823), '\n'
 FRAME_HZ = 50
 HZ_MAX = 25
 HZ_DEFAULT = 10
@@ -92,6 +92,9 @@ class Stream:
         v[41] = r.overruns
         v[42] = runner.bank.failed_frames
         v[43] = runner.sonar_faults
+        v[44] = runner.frame_us  # the last whole frame's time, us (runner.wait)
+        v[45] = runner.frame_us_max  # the most since the last line
+        runner.frame_us_max = 0
         if _digits_fast is not None:
             return _digits_fast(self.buf, 2, v, _FIELDS)
         return digits(self.buf, 2, v, _FIELDS)
@@ -174,6 +177,7 @@ def command(con, args):
         con.telemetry = t
     t.hz = hz
     t.every = t.due = -(-FRAME_HZ // hz)
+    con.runner.frame_us_max = 0  # the first line's worst: the frames since this command
     t.sent = t.dropped = 0
     return "ok stream %d" % hz
 

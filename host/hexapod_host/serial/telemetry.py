@@ -2,10 +2,12 @@
 
     parse("~T 120 3 0 0 0 0 0 0 0 1500 ...")  -> {"frame": 120, "mode": 3, ..., "pulses": [18 us], ...}
 
-A line is '~T' and 44 ASCII decimal integers separated by one space, '-' where there is no value
+A line is '~T' and 46 ASCII decimal integers separated by one space, '-' where there is no value
 (a sonar's distance while its status is not ok, the battery when none is configured). parse()
 gives a dict with the format's field names (pulses, distances and sonar_status as lists; '-' as
-None) and raises ValueError naming the field for a line that does not follow the format.
+None) and raises ValueError naming the field for a line that does not follow the format. A line
+of the first 44 alone (firmware from before the frame time, 2026-11-27) is read too, its frame
+times None.
 """
 
 from hexapod import follow, gait, sensors, tick
@@ -35,8 +37,11 @@ FIELDS = (
     ("overruns", 1, 0, None, False),
     ("bus_failed", 1, 0, None, False),
     ("sonar_faults", 1, 0, None, False),
+    ("frame_us", 1, 0, None, False),  # the last whole frame's time (runner.wait), us
+    ("frame_us_max", 1, 0, None, False),  # the most since the line before, us
 )
-COUNT = sum(f[1] for f in FIELDS)  # 44
+COUNT = sum(f[1] for f in FIELDS)  # 46
+OLD_COUNT = COUNT - 2  # a line without the frame times (older firmware)
 
 
 def is_telemetry(line):
@@ -68,14 +73,19 @@ def parse(line):
         raise ValueError("telemetry line: prefix %r, expected %r and a space" % (line[:3], TAG))
     words = line[len(TAG) + 1 :].split(" ")
     values = [_value(k, w) for k, w in enumerate(words[:COUNT])]  # the first bad word names its field
-    if len(words) < COUNT:
+    if len(words) < COUNT and len(words) != OLD_COUNT:
         k = len(words)
-        raise ValueError("telemetry field %d (%s): missing (%d of %d fields)" % (k + 1, NAMES[k], k, COUNT))
+        raise ValueError(
+            "telemetry field %d (%s): missing (%d of %d fields, or %d from older firmware)"
+            % (k + 1, NAMES[k], k, COUNT, OLD_COUNT)
+        )
     if len(words) > COUNT:
-        raise ValueError("telemetry: %d fields, expected %d (extra after sonar_faults)" % (len(words), COUNT))
-    out = {}
+        raise ValueError("telemetry: %d fields, expected %d (extra after frame_us_max)" % (len(words), COUNT))
+    out = {"frame_us": None, "frame_us_max": None}  # an older firmware's line has none
     at = 0
     for name, n, lo, hi, dash in FIELDS:
+        if at >= len(values):
+            break
         part = values[at : at + n]
         for k, v in enumerate(part):
             if v is None:

@@ -21,8 +21,11 @@ follow it.
 """
 
 import asyncio
+import json
 import os
 import re
+import subprocess
+import sys
 import time
 
 from hexapod_host.view import browser as vb
@@ -35,6 +38,61 @@ FRAMES = 500
 PLAYER_S = 5.0
 PAGE_S = 10.0
 DRIVE_TRIES = 10
+PARTS_UPDATES = 1000
+COMPARE_ROUNDS = 3
+# Where the server's CPU goes per update, without a browser or a websocket: one tab built by
+# NiceGUI's simulated user on the simulator's corridor trial at 1x, each part's own CPU time
+# (time.process_time, which the machine's load does not stretch) over N updates after 600 frames:
+# the simulator's two frames, the snapshot (the player's publish), the tab's 3-D redraw and its
+# plots and readings (4 times a second: every 6.25th update, so their cost / 6.25 an update). A
+# script, not an import: `compare` runs it on another tree's host package as well.
+PARTS_SCRIPT = r"""
+import asyncio, json, os, sys, time
+os.environ["PYTEST_CURRENT_TEST"] = "bench"  # NiceGUI's user simulation outside pytest takes its root for a script
+from nicegui.testing.user_simulation import user_simulation
+from hexapod_host.view import page
+from hexapod_host.view.player import Player
+from hexapod_host.view.sim import SimSource
+from hexapod_host.wall.world import load
+
+N = int(sys.argv[1])
+views = []
+
+def root():
+    player = Player(SimSource(load("corridor"), 12, seed=0))
+    views.append(page.View(player, page.Driver(player.source)))
+
+async def main():
+    async with user_simulation(root=root) as user:
+        await user.open("/")
+        view = views[0]
+        player = view.player
+        player.listeners.clear()  # each part timed on its own below
+        for _ in range(600):
+            player.source.step()
+        cpu = time.process_time
+        step = snap = draw = plots = 0.0
+        for k in range(N):
+            t0 = cpu()
+            player.source.step()
+            player.source.step()
+            t1 = cpu()
+            player.publish()
+            t2 = cpu()
+            view.draw()
+            t3 = cpu()
+            if k % 25 in (0, 6, 12, 19):  # 4 of 25 updates: 4 times a second at 25 updates a second
+                view.draw_plots()
+            t4 = cpu()
+            step, snap, draw, plots = step + t1 - t0, snap + t2 - t1, draw + t3 - t2, plots + t4 - t3
+            await asyncio.sleep(0)  # NiceGUI's outbox and tasks run between updates, as in the server
+        ms = lambda v: round(1000 * v / N, 3)
+        print(json.dumps({"updates": N, "step_ms": ms(step), "snapshot_ms": ms(snap), "draw_ms": ms(draw),
+                          "plots_ms": ms(plots), "update_ms": ms(step + snap + draw + plots)}))
+        player.stop()
+
+asyncio.run(main())
+"""
 
 
 def _cost():
@@ -95,11 +153,12 @@ def _cpu_s(pid):
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
-def _page():
+def _page(pythonpath=None):
     why = vb.missing()
     if why:
         return {"skipped": why}
-    server = vb.Server(("--sim", "--world", "corridor"))  # a long trial: it runs on for the whole window
+    # a long trial: it runs on for the whole window
+    server = vb.Server(("--sim", "--world", "corridor"), pythonpath=pythonpath)
     driver = vb.open_browser()
     try:
         driver.get(server.url)
@@ -116,6 +175,7 @@ def _page():
         return {"failed": "the page reloaded or lost its status during the window"}
     dt, redraws = t1 - t0, b[1] - a[1]
     out = {
+        "load_average_1min": round(os.getloadavg()[0], 2),
         "seconds": round(dt, 2),
         "redraws_per_s": round(redraws / dt, 1),
         "sim_speed": round((b[0] - a[0]) * 0.02 / dt, 3),
@@ -192,8 +252,67 @@ def _drive():
     }
 
 
+def _parts(pythonpath=None):
+    """PARTS_SCRIPT in its own process on the host package at pythonpath (None: this one)."""
+    env = dict(os.environ)
+    if pythonpath:
+        env["PYTHONPATH"] = pythonpath
+    out = subprocess.run(
+        [sys.executable, "-c", PARTS_SCRIPT, str(PARTS_UPDATES)], env=env, capture_output=True, text=True, timeout=600
+    )
+    if out.returncode:
+        return {"failed": out.stderr.strip().splitlines()[-1:]}
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def _tree(ref, into):
+    """The repository's tree at git ref `ref`, written out under into; its host package's path."""
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+    archive = subprocess.run(["git", "-C", root, "archive", ref], capture_output=True, check=True).stdout
+    subprocess.run(["tar", "-x", "-C", into], input=archive, check=True)
+    return os.path.join(into, "host")
+
+
+def _ratio(after, before):
+    return round(after / before, 2) if before else None
+
+
+def compare(ref, rounds=COMPARE_ROUNDS):
+    """This tree against git ref `ref` in one run: the page and the per-update parts, `rounds`
+    times each, before and after alternated so both see the same load. The ratios are after /
+    before of the means."""
+    import tempfile
+
+    with tempfile.TemporaryDirectory(prefix="hexapod-bench-before-") as tmp:
+        before_path = _tree(ref, tmp)
+        runs = {"before": [], "after": []}
+        parts = {"before": [], "after": []}
+        for _ in range(rounds):
+            for name, path in (("before", before_path), ("after", None)):
+                runs[name].append(_page(path))
+                parts[name].append(_parts(path))
+    out = {"before_ref": ref, "rounds": rounds, "page": runs, "parts": parts}
+
+    def mean(rows, key):
+        vals = [r[key] for r in rows if key in r]
+        return sum(vals) / len(vals) if vals else None
+
+    for key in ("redraws_per_s", "server_cpu_ms_per_redraw", "sim_speed"):
+        b, a = mean(runs["before"], key), mean(runs["after"], key)
+        out["page_" + key] = {"before": b and round(b, 2), "after": a and round(a, 2), "ratio": _ratio(a, b)}
+        out["page_" + key]["after_min"] = min((r[key] for r in runs["after"] if key in r), default=None)
+    for key in ("step_ms", "draw_ms", "plots_ms", "snapshot_ms", "update_ms"):
+        b, a = mean(parts["before"], key), mean(parts["after"], key)
+        out["parts_" + key] = {"before": b and round(b, 3), "after": a and round(a, 3), "ratio": _ratio(a, b)}
+    return out
+
+
 def bench_view(args=None):
-    out = {"load_average_1min": round(os.getloadavg()[0], 2), "cost": _cost(), "player": _player(), "page": _page()}
-    out["drive"] = _drive()
+    before = getattr(args, "before", None)
+    out = {"load_average_1min": round(os.getloadavg()[0], 2)}
+    if before:
+        out["compare"] = compare(before)
+    else:
+        out.update(cost=_cost(), player=_player(), parts=_parts(), page=_page(), drive=_drive())
     out["load_average_1min_after"] = round(os.getloadavg()[0], 2)
     return out

@@ -11,7 +11,9 @@ followed after every calibration command), so a trimmed or flipped servo is draw
 the board drove it to. There is no room: the body stays at the origin (x, y, yaw 0); its height
 is the coxa plane's above the lowest foot."""
 
+from hexapod import board as boards
 from hexapod import follow, gait, sensors, tick
+from hexapod_host.commands.doctor import board_line
 from hexapod_host.view.boardcal import BoardCal
 from hexapod_host.view.source import Source, pose
 from hexapod_host.wall.room import BODY_HALF, Body, grounded
@@ -38,22 +40,49 @@ class BoardSource(Source):
 
     def __init__(self, link, board="pico", name=None, on_close=None, hz=STREAM_HZ, reply_s=10.0):
         self.link = link
-        self.body = Body(board)
-        self.board = board
         if name:
             self.name = name
         self.on_close = on_close
         self.setpoint_mm = None
         self._wall_tags = []
-        self._rest = self._rest_pose()
         # reply_s: a hang guard (the emulated Pico answers in wall-clock seconds, not a frame)
         stream = link.request("stream on %d" % hz, reply_s)
         self.stream_reply = stream or "no reply to 'stream on %d'" % hz
+        # What the board says it is (its selftest's first line), and the board file it is drawn
+        # with: its own when this host has it, else `board`.
+        self.said, self.board = None, board
+        self.said_why = "the board answered nothing"
+        if stream is not None:
+            self._ask_board(reply_s)
+        self.body = Body(self.board)
+        self._rest = self._rest_pose()
         self.cal = BoardCal(link, self.body)
         if stream is None:
             self.cal.why = "the board answered nothing"  # not 18 more hang guards long
         else:
             self.cal.read_all(reply_s)
+
+    def _ask_board(self, reply_s):
+        """The board's own name and robot: `selftest`'s first line, `ok board NAME robot ROBOT`
+        (docs/console.md; what `hexapod doctor` reports). Its other lines come later and are not
+        waited for (the sonars' take 6 frames); selftest moves nothing."""
+        first = self.link.request("selftest", reply_s, first=True)
+        self.said = board_line(first) if first else None
+        if self.said is None:
+            self.said_why = "'selftest' answered %r" % first if first else "no reply to 'selftest'"
+            return
+        try:
+            boards.load(self.said[0])
+        except ValueError:
+            return  # a board file this host does not have: drawn with `board`'s
+        self.board = self.said[0]
+
+    def board_text(self):
+        """The page's board label: what the board said it is, or why it is not known."""
+        if self.said is None:
+            return "board unknown (%s)" % self.said_why
+        drawn = "" if self.said[0] == self.board else ", drawn with boards/%s.py" % self.board
+        return "board %s, robot %s%s" % (*self.said, drawn)
 
     def _rest_pose(self):
         angles = list(REST_CDEG) * 6
@@ -69,7 +98,8 @@ class BoardSource(Source):
         b = self.body
         return {
             "source": self.name,
-            "board": self.board,
+            "board": self.board,  # the board file the pulses are drawn through (a replay's too)
+            "board_said": self.board_text(),
             "sensors": [[x, y, h] for x, y, h in b.sensors],
             "body_half": list(BODY_HALF),
             "brackets": [list(seg) for seg in b.outline[4:]],
@@ -107,6 +137,7 @@ class BoardSource(Source):
         setpoint = self._setpoint()
         self.cal.follow()
         extra = {
+            "board": self.board_text(),
             "stream": self.stream_reply,
             "servo_maps": self.cal.source,
             "telemetry_lines": self.link.telemetry_lines,
@@ -157,6 +188,9 @@ class BoardSource(Source):
                 "phase": t["phase"],
                 "walk": [t["vx"] / 10, t["vy"] / 10, t["yaw"] / 100],  # mm/s, mm/s, deg/s
                 "battery_mv": t["battery_mv"],
+                # the firmware's own frame time, us (None from firmware before it: telemetry.parse)
+                "frame_us": t.get("frame_us"),
+                "frame_us_max": t.get("frame_us_max"),
             },
         }
 

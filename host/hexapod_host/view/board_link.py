@@ -39,6 +39,7 @@ class BoardLink:
         self.last_error = ""
         self.notices = deque(maxlen=50)
         self.replies = OrderedDict()  # '#N' -> 'ok ...' / 'err ...' / 'working'
+        self.first = {}  # '#N' -> the first 'ok'/'err' line under it (a multi-line reply's first)
         self.lost = ""  # why the line went away ('' while it works)
         self._tag = random.randrange(1, TAG_MAX // 2) if first_tag is None else first_tag - 1
         self._write = threading.Lock()
@@ -68,13 +69,14 @@ class BoardLink:
         """The reply to the request under tag so far: None (nothing yet), 'working', 'ok ...', 'err ...'."""
         return self.replies.get(tag)
 
-    def request(self, line, timeout=10.0):
-        """Send line and wait for its reply (not 'working'); None when none came within timeout s."""
+    def request(self, line, timeout=10.0, first=False):
+        """Send line and wait for its reply (not 'working'); None when none came within timeout s.
+        first: a multi-line reply's first line (selftest's `ok board ...`), not its latest."""
         tag = self.send(line)
         end = time.monotonic() + timeout
         with self._changed:
             while True:
-                r = self.replies.get(tag)
+                r = (self.first if first else self.replies).get(tag)
                 if r is not None and r != "working":
                     return r
                 left = end - time.monotonic()
@@ -102,8 +104,10 @@ class BoardLink:
         if head.startswith("#") and head[1:].isdigit() and is_reply:
             with self._changed:
                 self.replies[head] = rest
+                if rest != "working":
+                    self.first.setdefault(head, rest)
                 while len(self.replies) > REPLIES_KEPT:
-                    self.replies.popitem(last=False)
+                    self.first.pop(self.replies.popitem(last=False)[0], None)
                 self._changed.notify_all()
             return
         self.notices.append(text)

@@ -78,9 +78,10 @@ def diagnose(lines=30):
 
 
 class Server:
-    """`hexapod view ARGS --no-browser` in a subprocess on 127.0.0.1:port; stop() ends it."""
+    """`hexapod view ARGS --no-browser` in a subprocess on 127.0.0.1:port (pythonpath: the
+    host package to import instead of this one); stop() ends it."""
 
-    def __init__(self, args=("--sim",), port=None, timeout=60):
+    def __init__(self, args=("--sim",), port=None, timeout=60, pythonpath=None):
         self.port = port or free_port()
         self.url = "http://127.0.0.1:%d/" % self.port
         self.output = None  # what the server printed, once stopped
@@ -100,6 +101,8 @@ class Server:
         ]
         # NiceGUI takes PYTEST_CURRENT_TEST as its own test mode (another port): the server is a plain run.
         env = {k: v for k, v in os.environ.items() if k != "PYTEST_CURRENT_TEST"}
+        if pythonpath:  # another tree's host package (the bench's before/after), ahead of this one
+            env["PYTHONPATH"] = pythonpath
         with open(self._log_path, "a") as log:  # O_APPEND: the server's writes and log()'s reads never race
             self.proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT, text=True, env=env)
         _LIVE.append(self)

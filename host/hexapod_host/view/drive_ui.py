@@ -163,8 +163,8 @@ class DrivePanel:
             v = x.get("walk") or [0, 0, 0]
             lost = "; " + x["lost"] if x.get("lost") else ""
             self.board.set_text(
-                "board: gait %s, walk %g %g %g, telemetry lines %d (%s)%s"
-                % (x.get("gait"), *v, x.get("telemetry_lines", 0), x["stream"], lost)
+                "%s: gait %s, walk %g %g %g, telemetry lines %d (%s)%s"
+                % (x.get("board", "board"), x.get("gait"), *v, x.get("telemetry_lines", 0), x["stream"], lost)
             )
         lines = []
         if owns:

@@ -2,6 +2,7 @@
 elements and redraws them from the player's latest snapshot; the player steps the source in
 the background (player.py). Scene units are metres (the snapshot's mm / 1000)."""
 
+import json
 import math
 import time
 
@@ -39,10 +40,38 @@ PLOTS = (
     ("walking speed (mm/s)", (("asked", "asked_mm_s"), ("body", "body_mm_s"))),
     ("battery (V)", (("battery", "battery_v"),)),
     ("frames per second (host clock)", (("frames/s", "frames_per_s"),)),
+    ("firmware frame time (us)", (("last", "frame_us"), ("worst", "frame_us_max"))),
     ("loop counters", tuple((k, k) for k in player_mod.COUNTERS)),
 )
 COLUMN = {name: k for k, name in enumerate(player_mod.COLUMNS)}
+# The plots' points live in the page: each look sends only the history rows added since the last
+# (Player.new_rows), which the page appends to each series (x = the row's time, y = its column),
+# dropping the oldest beyond `keep` (the history's length). Sending the whole window each time
+# was ~2,500 points a look, and assigning into ui.echart's options wraps every point in NiceGUI's
+# observable lists (5-90 ms a redraw on the shared machine). A chart not mounted yet is drawn
+# once it is.
+PLOTS_JS = """<script>
+window.hexapodPlots = (charts, rows, fresh, keep) => {
+  const store = (window.hexapodPlotData ||= {});
+  const draw = (id) => {
+    const el = getElement(id);
+    if (!el) return; // gone with its page
+    if (!el.chart) return setTimeout(() => draw(id), 50); // ECharts not set up yet
+    const s = store[id];
+    el.chart.setOption({ title: { text: s.title }, series: s.data.map((d) => ({ data: d.slice() })) });
+  };
+  for (const [id, title, cols] of charts) {
+    if (fresh || !store[id]) store[id] = { data: cols.map(() => []) };
+    const s = store[id];
+    s.title = title;
+    for (const row of rows) cols.forEach((c, k) => s.data[k].push([row[0], row[c]]));
+    for (const d of s.data) if (d.length > keep) d.splice(0, d.length - keep);
+    draw(id);
+  }
+};
+</script>"""
 LINK_RADIUS = 0.006
+TRAIL_CHUNK = 50  # trail points a point cloud holds (page.View._draw_trail)
 BEAM_RADIUS = 0.004
 CAMERA_BACK = (-0.55, -0.45, 0.45)  # the follow camera's place from the body centre, m (world axes)
 SENSOR_NAMES = ("front", "left front", "left rear", "right front", "right rear")
@@ -62,7 +91,13 @@ def _m(p):
 
 
 def _place(obj, start, end):
-    """Pose a unit cylinder (or line) along y as the segment start -> end (mm)."""
+    """Pose a unit cylinder (or line) along y as the segment start -> end (mm). A segment where it
+    was at the last redraw is skipped: not worked out again nor compared by NiceGUI's move,
+    rotate and scale (a standing robot's links and brackets cost nothing a redraw)."""
+    key = (*start, *end)
+    if getattr(obj, "hexapod_segment", None) == key:
+        return
+    obj.hexapod_segment = key
     centre, rot, length = segment_pose([v / 1000 for v in start], [v / 1000 for v in end])
     obj.move(*(round(v, DIGITS) for v in centre))
     obj.rotate_R([[round(v, DIGITS) for v in row] for row in rot])
@@ -74,8 +109,15 @@ class View:
 
     def __init__(self, player, driver):
         self.player = player
+        self.client = ui.context.client
+        ui.add_body_html(PLOTS_JS)
         d = player.described
-        ui.label("hexapod view: %s, world %s" % (d["source"], d.get("world", "-"))).classes("text-lg")
+        # a board source's own name (board.py), the room's world, or both (a board's replay in a room)
+        where = [d["board_said"]] if "board_said" in d else []
+        if "world" in d or not where:
+            where.append("world %s" % d.get("world", "-"))
+        where = ", ".join(where)
+        ui.label("hexapod view: %s, %s" % (d["source"], where)).classes("text-lg").props("id=title")
         self.status = ui.label().props("id=status")
         with ui.row().classes("w-full no-wrap"):
             self._scene(d)
@@ -92,6 +134,7 @@ class View:
         self.pace = Pace()
         self.client = ui.context.client
         ui.on("hexapod_drawn", lambda e: self.pace.shown(e.args))
+        self._plotted = None  # Player.new_rows' mark: what this tab's plots have
         self._follow_player()
         self._plots_due = 0.0  # time.monotonic() of the next plots' redraw (in a scene's draw)
         self.draw()
@@ -135,8 +178,10 @@ class View:
             self.com_ground = scene.cylinder(0.014, 0.014, 0.002).rotate(math.pi / 2, 0, 0)  # a flat disc
             self.com_plumb = scene.cylinder(0.0015, 0.0015, 1.0)  # from the centre of mass down
             self.com = scene.sphere(0.008)
-            self.trail = scene.point_cloud([[0, 0, 0]], point_size=0.01).material(COLOURS["trail"])
+            self.trails = []  # the trail's point clouds, TRAIL_CHUNK points each (_draw_trail)
             self.trail_n = 0
+            self._camera = None  # where the follow camera was last put
+            self._body_at = None  # the body's centre (mm) and yaw when last moved
 
     def _controls(self):
         p = self.player
@@ -183,39 +228,66 @@ class View:
         snap, p = self.player.snap, self.player
         g = geometry(p.described, snap)
         b = g["body"]
-        self.body.move(*_m(b["centre"])).rotate(0, 0, round(b["yaw"], DIGITS))
-        for obj, (start, end) in zip(self.links + self.brackets, g["links"] + g["brackets"], strict=True):
-            _place(obj, start, end)
+        yaw = round(b["yaw"], DIGITS)
+        if (b["centre"], yaw) != self._body_at:  # rotate() works out a matrix before comparing
+            self._body_at = (b["centre"], yaw)
+            self.body.move(*_m(b["centre"])).rotate(0, 0, yaw)
         for obj, foot, down in zip(self.feet, g["feet"], g["stance"], strict=True):
             obj.move(*_m(foot)).material(COLOURS["stance" if down else "swing"])
         for obj, beam in zip(self.beams, g["beams"], strict=True):
-            _place(obj, beam["start"], beam["end"])
             obj.material(COLOURS[beam["state"]], 0.8)
-        self._draw_support(g["support"])
-        if len(p.trail) != self.trail_n:
-            self.trail_n = len(p.trail)
-            self.trail.set_points([[x / 1000, y / 1000, 0.002] for x, y in p.trail])
+        objs = self.links + self.brackets + self.beams
+        segments = g["links"] + g["brackets"] + [(beam["start"], beam["end"]) for beam in g["beams"]]
+        support_objs, support_segments = self._draw_support(g["support"])
+        for obj, (start, end) in zip(objs + support_objs, segments + support_segments, strict=True):
+            _place(obj, start, end)
+        self._draw_trail(p.trail)
         if self.follow_cam.value:
             cx, cy, _ = _m(b["centre"])
             dx, dy, dz = CAMERA_BACK
-            self.scene.move_camera(round(cx + dx, DIGITS), round(cy + dy, DIGITS), dz, cx, cy, 0.0, duration=0)
+            camera = (round(cx + dx, DIGITS), round(cy + dy, DIGITS), dz, cx, cy, 0.0)
+            if camera != self._camera:  # NiceGUI sends every move_camera, moved or not
+                self._camera = camera
+                self.scene.move_camera(*camera, duration=0)
+        else:
+            self._camera = None  # turned on again: the camera goes behind the body at once
+
+    def _draw_trail(self, trail):
+        """The body's trail (mm) in point clouds of TRAIL_CHUNK points: a new point resends only
+        its own cloud. One cloud for the whole trail resent every point (every 5 mm, several
+        times a second) grew with the trial: 400 points, ~25 kB a time, a minute in."""
+        n, old = len(trail), self.trail_n
+        if n == old:
+            return
+        if n < old:  # a new trial or a jump: it starts over
+            old = 0
+            for cloud in self.trails:
+                cloud.set_points([])
+        self.trail_n = n
+        for k in range(old // TRAIL_CHUNK, (n - 1) // TRAIL_CHUNK + 1):
+            if k == len(self.trails):
+                with self.scene:
+                    self.trails.append(self.scene.point_cloud([], point_size=0.01).material(COLOURS["trail"]))
+            chunk = trail[k * TRAIL_CHUNK : (k + 1) * TRAIL_CHUNK]
+            self.trails[k].set_points([[round(x / 1000, DIGITS), round(y / 1000, DIGITS), 0.002] for x, y in chunk])
 
     def _draw_support(self, sup):
         """The stance feet's polygon on the ground (edges 1 mm up, over the grid) and the centre of
-        mass with its plumb line down to the ground, coloured by how far inside it is."""
+        mass with its plumb line down to the ground, coloured by how far inside it is. The
+        cylinders to place and their segments (the caller places them with the rest)."""
         colour = SUPPORT_COLOURS[sup["state"]]
         poly = [[x, y, 1.0] for x, y, _ in sup["polygon"]]
         n = len(poly) if len(poly) >= 3 else 0
         for k, edge in enumerate(self.support_edges):
             if k < n:
-                _place(edge, poly[k], poly[(k + 1) % n])
                 edge.material(colour)
             edge.visible(k < n)
         down = sup["com_ground"][:2] + [1.0]
         self.com_ground.move(*_m(down)).material(colour)
         self.com.move(*_m(sup["com"])).material(colour)
-        _place(self.com_plumb, sup["com"], down)
         self.com_plumb.material(colour)
+        segments = [(poly[k], poly[(k + 1) % n]) for k in range(n)] + [(sup["com"], down)]
+        return self.support_edges[:n] + [self.com_plumb], segments
 
     def _status(self, s):
         f, x = s["follow"], s.get("extra", {})
@@ -252,18 +324,22 @@ class View:
         self.table.set_text("\n".join(lines))
 
     def draw_plots(self):
-        """The plots: 4 times a second is enough to read them."""
-        h = list(self.player.history)
-        t = [row[0] for row in h]
+        """The plots: 4 times a second is enough to read them. Only the rows added since this tab's
+        last look go out (Player.new_rows); the page keeps the points (PLOTS_JS); nothing when no
+        row was added since."""
+        h = self.player.history
+        fresh, rows, self._plotted = self.player.new_rows(self._plotted)
+        if not (fresh or rows):
+            return
+        last = h[-1] if h else None
+        charts = []
         for chart, title, series in self.plots:
             cols = [COLUMN[c] for _, c in series]
-            # Straight to the chart (ECharts merges series by index): assigning into chart.options
-            # wraps every point in NiceGUI's observable lists, 5-90 ms a redraw here.
-            data = [{"data": [[ti, row[c]] for ti, row in zip(t, h, strict=True)]} for c in cols]
             # The newest values in the title: "-" where the source has none (never a made-up 0).
-            now = "  ".join(_value(h[-1][c] if h else None) for c in cols)
-            chart.run_chart_method("setOption", {"title": {"text": "%s: %s" % (title, now)}, "series": data})
-        self.live.set_text(live_text(h[-1] if h else None))
+            now = "  ".join(_value(last[c] if last else None) for c in cols)
+            charts.append([chart.id, "%s: %s" % (title, now), cols])
+        self.client.run_javascript("hexapodPlots(...%s)" % json.dumps([charts, rows, fresh, h.maxlen]))
+        self.live.set_text(live_text(last))
 
 
 def _value(v):
@@ -276,7 +352,8 @@ def live_text(row):
     v = dict(zip(player_mod.COLUMNS, map(_value, row), strict=True))
     return (
         "speed asked %(asked_mm_s)s mm/s, body %(body_mm_s)s mm/s  battery %(battery_v)s V  "
-        "frames/s %(frames_per_s)s  overruns %(overruns)s  held %(held)s  bus_failed %(bus_failed)s  "
+        "frames/s %(frames_per_s)s  frame %(frame_us)s us (worst %(frame_us_max)s)  "
+        "overruns %(overruns)s  held %(held)s  bus_failed %(bus_failed)s  "
         "sonar_faults %(sonar_faults)s" % v
     )
 

@@ -7,6 +7,7 @@ import sys
 import time
 import traceback
 from collections import deque
+from itertools import islice
 
 UPDATE_S = 0.04  # the background task publishes a snapshot this often: 25 updates a second
 SPEEDS = (0.25, 0.5, 1.0, 2.0, 4.0, 8.0)  # simulated seconds per real second
@@ -20,7 +21,8 @@ COUNTERS = ("overruns", "held", "bus_failed", "sonar_faults")
 # "-"): time s; the followed side's front and rear readings, the set point, the PID's error (mm) and
 # output (deg/s); the walk asked (mm/s, the telemetry's vx vy) and the body's own speed (mm/s, a
 # source with a room); the battery (V); the source's frames per second of the host's clock; the
-# loop's counters.
+# firmware's frame time, the last frame's and the worst since the line before (us, a board's
+# telemetry); the loop's counters.
 COLUMNS = (
     "time_s",
     "front_mm",
@@ -32,6 +34,8 @@ COLUMNS = (
     "body_mm_s",
     "battery_v",
     "frames_per_s",
+    "frame_us",
+    "frame_us_max",
 ) + COUNTERS
 
 
@@ -48,6 +52,10 @@ class Player:
         self.updates = 0  # snapshots published
         self.frames = 0  # frames stepped
         self.history = deque(maxlen=int(PLOT_S / UPDATE_S))
+        # The tabs' plots take only the rows added since their last look (new_rows): rows counts
+        # every row ever added, epoch every time the history starts over.
+        self.rows = 0
+        self.epoch = 0
         self.trail = []
         self.clock = clock  # the host's clock (s), for the frame rate; tests give their own
         self._moves = deque()  # (time_s, x, y) of the body over the last SPEED_S
@@ -93,6 +101,7 @@ class Player:
         """A new trial or a jump: the trail, the plots and the rates begin again."""
         self.trail, self._due = [], 0.0
         self.history.clear()
+        self.epoch += 1
         self._moves.clear()
         self._frames.clear()
         self.publish()
@@ -138,9 +147,24 @@ class Player:
                 self._body_speed(s) if "walls" in self.described else None,  # no room: no odometry
                 None if mv is None else mv / 1000,
                 self._frame_rate(s["frame"]),
+                x.get("frame_us"),
+                x.get("frame_us_max"),
                 *(counters.get(k) for k in COUNTERS),
             )
         )
+        self.rows += 1
+
+    def new_rows(self, seen):
+        """What a plot that has seen `seen` (this function's last mark, None for nothing yet) lacks:
+        (fresh, rows, mark). fresh: start over with rows (a new tab, the history started over, or
+        more rows added than the history keeps); otherwise rows are the ones added since, oldest
+        first (none when nothing was added). mark: what to pass next time."""
+        mark = (self.epoch, self.rows)
+        h = self.history
+        if seen is None or seen[0] != self.epoch or self.rows - seen[1] > len(h):
+            return True, list(h), mark
+        n = self.rows - seen[1]
+        return False, list(islice(h, len(h) - n, len(h))), mark
 
     def _body_speed(self, s):
         """The body's travel (mm) over the last SPEED_S of the source's time, per second; None
