@@ -56,8 +56,13 @@ window.hexapodPlots = (charts, rows, fresh, keep) => {
   const draw = (id) => {
     const el = getElement(id);
     if (!el) return; // gone with its page
-    if (!el.chart) return setTimeout(() => draw(id), 50); // ECharts not set up yet
     const s = store[id];
+    if (!el.chart) { // ECharts not set up yet (a chart in a closed panel may never be): one retry
+      // pending per chart, not one more chain of them at every look (those piled up to thousands
+      // of timers a second and starved the page: WebDriver timeouts in the CI)
+      if (!s.waiting) s.waiting = setTimeout(() => { s.waiting = 0; draw(id); }, 50);
+      return;
+    }
     el.chart.setOption({ title: { text: s.title }, series: s.data.map((d) => ({ data: d.slice() })) });
   };
   for (const [id, title, cols] of charts) {
