@@ -191,6 +191,7 @@ def wait_grid(start, busy_us):
         def __init__(self):
             self.clock = clock
             self.next_us = clock.ticks_us()
+            self._frame_t0 = self.next_us  # as Runner.__init__
 
     _reset(start)
     r = Waiter()
