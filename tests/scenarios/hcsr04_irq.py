@@ -191,7 +191,8 @@ def wait_grid(start, busy_us):
         def __init__(self):
             self.clock = clock
             self.next_us = clock.ticks_us()
-            self._frame_t0 = self.next_us  # as Runner.__init__
+            self.frame_us = self.frame_us_max = 0  # as Runner.__init__
+            self._frame_t0 = self.next_us
 
     _reset(start)
     r = Waiter()

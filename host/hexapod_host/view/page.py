@@ -137,7 +137,6 @@ class View:
             self.plots = [(self._plot(title, [n for n, _ in series]), title, series) for title, series in PLOTS]
         self.drawn = 0
         self.pace = Pace()
-        self.client = ui.context.client
         ui.on("hexapod_drawn", lambda e: self.pace.shown(e.args))
         self._plotted = None  # Player.new_rows' mark: what this tab's plots have
         self._follow_player()
