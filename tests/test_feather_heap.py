@@ -21,6 +21,7 @@ The caps (docs/flashing.md, "CircuitPython's heap"):
 """
 
 import json
+import os
 
 import pytest
 
@@ -114,6 +115,30 @@ def test_every_module_the_run_loads_is_shipped_and_boot_only_ones_are_let_go(run
     # the console drops selftest when the command is done
     for gone in ("hexapod.board", "hexapod.robotfile", "robots.default", "selftest"):
         assert gone in shipped and gone not in loaded, gone
+
+
+def test_folder_spread_copies_one_drive_per_folder_and_takes_the_worst(monkeypatch):
+    staged = []
+
+    def fake_stage(dest, libs_as):
+        os.makedirs(dest)
+        with open(os.path.join(dest, "code.py"), "w") as f:
+            f.write("print(1)\n")
+        staged.append(libs_as)
+
+    def fake_robust(dest, cfg):
+        with open(os.path.join(dest, "code.py")) as f:  # the staged drive, copied
+            assert f.read() == "print(1)\n"
+        n = len(os.path.basename(os.path.dirname(dest)))
+        return 300000 + 1024 * n, {"free": 240000 + 1024 * n}
+
+    monkeypatch.setattr(feather, "stage", fake_stage)
+    monkeypatch.setattr(feather, "robust_heap", fake_robust)
+    out = feather.folder_spread(("ab", "abcdef", "abc"))
+    assert staged == ["mpy"]  # staged once
+    assert out["folders"] == {"ab": [302048, 242048], "abcdef": [306144, 246144], "abc": [303072, 243072]}
+    assert out["free_needed_64_least"] == 242048 and out["free_needed_64_most"] == 246144
+    assert out["margin_32_worst"] == 175104 - 196915  # 246,144 x 0.80 = 196,915.2, by hand
 
 
 def test_bench_feather_is_a_bench_with_json_out(monkeypatch, capsys):
