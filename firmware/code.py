@@ -76,13 +76,21 @@ def _release(robot_name):
 # Import order matters where the board compiles .py at import (CircuitPython cannot load
 # MicroPython's .mpy): compiling a module needs several times its source in free heap, every module
 # loaded before it leaves less, and the compiles' garbage left between the modules that stay cuts
-# the heap into holes. So on a board: the board and robot files first, read and let go before
-# anything else loads (their checks are not alive while the loop is built); then the largest
-# compile on the emptiest heap, console (it loads the core as it runs); then the biggest driver,
-# drivers.pca9685, alone; a collection after each. A board file refused stops code.py here, with
-# the message build() gave before. `hexapod bench feather` (docs/flashing.md) has the figures.
+# the heap into holes. So on a board the largest compiles come first, on the emptiest heap: the
+# biggest driver, drivers.pca9685 (left last, it was what failed once tick came first), then
+# hexapod.tick (which compiles walk); then the board and robot files, read and let go before
+# the console loads (their checks are not alive while the loop is built); then console (it loads
+# runner and the wall follower as it runs); a collection after each. A board file refused stops
+# code.py here, with the message build() gave before. `hexapod bench feather` (docs/flashing.md)
+# has the figures.
 _settings = None  # settings(BOARD, ROBOT), read at import on a board; build() takes it once
 if sys.implementation.name != "cpython":  # CPython: the tests install fake modules first (and pdb imports a `code`)
+    from drivers import pca9685  # noqa: F401
+
+    gc.collect()
+    import hexapod.tick  # noqa: F401
+
+    gc.collect()
     _settings = settings()
     _release(ROBOT)
     gc.collect()
@@ -96,9 +104,6 @@ if sys.implementation.name != "cpython":
     import consolecal  # noqa: F401
 
     console.Console.keep_cal = True
-    gc.collect()
-    from drivers import pca9685  # noqa: F401
-
     gc.collect()
     from drivers import cp_clock, cp_hcsr04_pulsein, cp_pca9685  # noqa: F401
 from runner import FRAME_MS, Runner  # noqa: E402

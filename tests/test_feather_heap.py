@@ -10,8 +10,10 @@ The caps (docs/flashing.md, "CircuitPython's heap"):
   is 64-bit, and the same .py imports allocate 0.80 as many bytes on the 32-bit emulated Pico as in
   the VM (bench.feather.PICO_RATIO, measured per module: 0.68-1.05, the largest five 0.75-0.80). So
   the VM stands for a Feather when it gives the deploy 171 KB / 0.80 = 218,880 B free (FIT_FREE).
-  The deploy needs 249,760 B there on 2026-11-27 (284,064 before the board's files were read first,
-  the Adafruit start-up let go and the docstrings stripped): it does not fit yet
+  The deploy needs 242,336-251,552 B there on 2026-11-27 evening, by the staging folder (284,064
+  before the board's files were read first, the Adafruit start-up let go and the docstrings
+  stripped; 248,480-251,552 before code.py compiled drivers.pca9685 and hexapod.tick first): it
+  does not fit yet
   (test_deploy_fits_a_feather, a strict xfail: it turns into a failure, to be made a plain test,
   the day it fits).
 - GROWTH_HEAP: today's need (the robust -X heapsize, bench.feather.robust_heap) plus 8 KB, so that
@@ -19,6 +21,7 @@ The caps (docs/flashing.md, "CircuitPython's heap"):
 """
 
 import json
+import os
 
 import pytest
 
@@ -34,8 +37,11 @@ FIT_HEAP = 278 * 1024
 # main that afternoon; 317,440 (249,760 B free) with the board's files read and let go before the
 # loop's modules compile, a collection after drivers.pca9685, Adafruit's start-up modules let go
 # after it, and the drive's docstrings stripped: the gap to a Feather from 50.9 to 24.1 KB (32-bit).
-# This guard holds it there.
-TODAY_HEAP = 317440
+# In the evening, over six staging folders (the folder's name moves the need by up to 9 KB): main
+# 316,416-319,488 (248,480-251,552 B free); with code.py compiling drivers.pca9685 and hexapod.tick
+# before anything else 310,272-319,488 (242,336-251,552 B free; 0 to 8 KB less, never more). This
+# guard holds the worst folder's figure, which pytest's own folder may be.
+TODAY_HEAP = 319488
 GROWTH_HEAP = TODAY_HEAP + 8 * 1024
 
 
@@ -71,9 +77,19 @@ def test_fit_heap_gives_the_deploy_what_a_feather_has(drive):
     assert FIT_FREE - 2048 <= free <= FIT_FREE, (free, FIT_FREE)
 
 
-@pytest.mark.xfail(strict=True, raises=MemoryError, reason="the deploy needs 249,760 B free in the VM, 218,880 fit")
+@pytest.mark.xfail(strict=True, raises=MemoryError, reason="the deploy needs 242,336-251,552 B free, 218,880 fit")
 def test_deploy_fits_a_feather(drive):
     feather.vm(drive, feather.run_cfg(), FIT_HEAP)
+
+
+def test_code_py_compiles_the_largest_modules_first(drive):
+    # code.py's board-only start (docs/flashing.md): the driver, then the tick (which compiles walk),
+    # then the board and robot files, then the console (which loads runner and the wall follower);
+    # with the board files first the tick's compile, then the driver's, bound at up to 8 KB more heap
+    # (0-8 KB by the staging folder: docs/flashing.md)
+    order = feather.vm(drive, dict(feather.rig(), mode="order"), "2m")["order"]
+    firsts = ["drivers.pca9685", "hexapod.tick", "hexapod.walk", "hexapod.board", "console", "runner", "hexapod.follow"]
+    assert sorted(firsts, key=order.index) == firsts, order
 
 
 def test_deploy_ships_no_micropython_only_module():
@@ -99,6 +115,30 @@ def test_every_module_the_run_loads_is_shipped_and_boot_only_ones_are_let_go(run
     # the console drops selftest when the command is done
     for gone in ("hexapod.board", "hexapod.robotfile", "robots.default", "selftest"):
         assert gone in shipped and gone not in loaded, gone
+
+
+def test_folder_spread_copies_one_drive_per_folder_and_takes_the_worst(monkeypatch):
+    staged = []
+
+    def fake_stage(dest, libs_as):
+        os.makedirs(dest)
+        with open(os.path.join(dest, "code.py"), "w") as f:
+            f.write("print(1)\n")
+        staged.append(libs_as)
+
+    def fake_robust(dest, cfg):
+        with open(os.path.join(dest, "code.py")) as f:  # the staged drive, copied
+            assert f.read() == "print(1)\n"
+        n = len(os.path.basename(os.path.dirname(dest)))
+        return 300000 + 1024 * n, {"free": 240000 + 1024 * n}
+
+    monkeypatch.setattr(feather, "stage", fake_stage)
+    monkeypatch.setattr(feather, "robust_heap", fake_robust)
+    out = feather.folder_spread(("ab", "abcdef", "abc"))
+    assert staged == ["mpy"]  # staged once
+    assert out["folders"] == {"ab": [302048, 242048], "abcdef": [306144, 246144], "abc": [303072, 243072]}
+    assert out["free_needed_64_least"] == 242048 and out["free_needed_64_most"] == 246144
+    assert out["margin_32_worst"] == 175104 - 196915  # 246,144 x 0.80 = 196,915.2, by hand
 
 
 def test_bench_feather_is_a_bench_with_json_out(monkeypatch, capsys):

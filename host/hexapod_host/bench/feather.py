@@ -216,6 +216,34 @@ def measure(libs_as="mpy", per_module=True):
     return result
 
 
+# folder_spread's staging folders, 2 to 40 characters: the drive's folder name alone moves the need by up
+# to 9 KB (2026-11-27: 242,336-251,552 B free over six folders, the same drive), so one figure says little.
+FOLDERS = ("f2", "tmpabcdefgh", "feather2_base", "feather_folder_26_xxxxxxxx", "feather_folder_40_" + "x" * 22)
+
+
+def folder_spread(names=FOLDERS, libs_as="mpy"):
+    """robust_heap's figures for one staged drive copied into each folder name under one temporary
+    folder (minutes: one robust_heap each): {"folders": {name: [heapsize, free heap needed]}, the
+    least and most free heap needed (64-bit) and the margin of the most against FEATHER_FREE (32-bit)}."""
+    rows = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        first = os.path.join(tmp, names[0], "drive")
+        stage(first, libs_as)
+        for name in names:
+            dest = os.path.join(tmp, name, "drive")
+            if dest != first:
+                shutil.copytree(first, dest)
+            heap, best = robust_heap(dest, run_cfg())
+            rows[name] = [heap, best["free"]]
+    most = max(r[1] for r in rows.values())
+    return {
+        "folders": rows,
+        "free_needed_64_least": min(r[1] for r in rows.values()),
+        "free_needed_64_most": most,
+        "margin_32_worst": FEATHER_FREE - to_32bit(most),
+    }
+
+
 def bench_feather(args):
     return measure(libs_as=getattr(args, "libs", "mpy"))
 
@@ -268,5 +296,7 @@ def pico_ratio(min_bytes=1024):
 if __name__ == "__main__":
     if sys.argv[1:2] == ["ratio"]:
         json.dump(pico_ratio(), sys.stdout, indent=1)
+    elif sys.argv[1:2] == ["folders"]:
+        json.dump(folder_spread(), sys.stdout, indent=1)
     else:
         json.dump(measure(*sys.argv[1:2]), sys.stdout, indent=1)

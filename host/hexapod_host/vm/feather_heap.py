@@ -8,6 +8,9 @@
 #   mode "modules": imports "modules" one by one in the order given (leaves first), printing for
 #     each the bytes allocated while it imported with the collector off, and what stays after a
 #     collection (both gc.mem_alloc differences).
+#   mode "order": imports code.py (its board-only start) with __import__ wrapped, and prints
+#     {"order": the deploy's modules in the order their imports began}. The wrapper allocates: the
+#     heap figures of this mode mean nothing.
 # Rig: "chips" [[address, osc_hz], ...] on the bus, "sonars" [[trigger, echo, distance], ...].
 import gc
 import json
@@ -95,10 +98,29 @@ def modules():
     return {"modules": rows}
 
 
+def order():
+    import builtins
+
+    began = []
+    plain = builtins.__import__
+
+    def record(name, *args):
+        if name not in sys.modules and name not in began:
+            began.append(name)
+        return plain(name, *args)
+
+    builtins.__import__ = record  # the VM calls an overriding builtins.__import__ for import statements
+    try:
+        import code  # noqa: F401
+    finally:
+        builtins.__import__ = plain
+    return {"order": began}
+
+
 gc.collect()
 base = gc.mem_alloc()
 free = gc.mem_free()
-out = run() if cfg["mode"] == "run" else modules()
+out = {"run": run, "modules": modules, "order": order}[cfg["mode"]]()
 out["base"] = base
 out["free"] = free  # what the deploy starts with
 print(json.dumps(out))
