@@ -13,8 +13,22 @@ from scenarios import on_board
 
 from hexapod_host.pico import emulator as pico
 
-# draw(bits): the LCG both runtimes share (tests/scenarios/lcg.py), for the VM sources below
-LCG = "from scenarios.lcg import Lcg\n\ndraw = Lcg().draw\n"
+# draw(bits): the LCG both runtimes share (tests/scenarios/lcg.py), for the sources below. Each
+# source runs with CASES and SIDE: "both" compares the viper twin with its plain code case by case
+# (the VM); "plain" or "viper" runs one side alone and prints, last, the digest (scenarios/digest.py)
+# of every value the comparison uses, in order: the plain side's digest is what the viper's must
+# be. Both sides make the same draws, so the Pico runs only the viper side (its Thumb code) and the
+# host VM the plain code, whose results are the same on every MicroPython VM.
+LCG = """from scenarios.digest import fold
+from scenarios.lcg import drawer
+
+draw = drawer()
+PLAIN = SIDE != "viper"
+VIPER = SIDE != "plain"
+BOTH = PLAIN and VIPER
+assert SIDE in ("both", "plain", "viper"), "SIDE %r: one of both, plain, viper" % SIDE
+h = 0
+"""
 
 CASES = (
     LCG
@@ -51,24 +65,24 @@ def pick(n):
         r.body.jump()
 
 
-def plain():
-    before = (list(r.angles), list(r.pulses), r.faults)
-    code = r._output_plain()
-    return code, list(r.angles), list(r.pulses), before
-
-
+for k in range(18):
+    r.servos[k].min_us = 500
+    r.servos[k].max_us = 2500
+moved = r.servos[0]
 for n in range(CASES):
     pick(n)
-    for k in range(18):
-        s = r.servos[k]
-        s.min_us = 500
-        s.max_us = 2500
+    # Every range at 500-2500 us again: a case moves one at most (setting all 18 a case was
+    # bytecode the Pico ran for nothing).
+    moved.min_us = 500
+    moved.max_us = 2500
     edge = n % 4
     if edge:
-        # The plain frame's pulse of one servo becomes its range's end: exactly on it, or 1 us past.
-        if r._output_plain() == tick.OK:
+        # The frame's pulse of one servo becomes its range's end: exactly on it, or 1 us past. A
+        # side alone places it with its own frame: were viper and plain ever to differ there, the
+        # cases would part and so would the digests (nothing lost).
+        if (r._output_plain() == tick.OK) if PLAIN else (output(r) == 0):
             k = draw(10) % 18
-            s = r.servos[k]
+            s = moved = r.servos[k]
             on = r.pulses[k]
             if edge == 1:
                 s.min_us = on
@@ -79,27 +93,31 @@ for n in range(CASES):
                 s.max_us = on - 1 if s.min_us == 500 else 2500
     old_a = list(r.angles)
     old_p = list(r.pulses)
-    fast = output(r)
-    fa = list(r.angles)
-    fp = list(r.pulses)
-    r.angles[:] = old_a
-    r.pulses[:] = old_p
-    code, pa, pp, _ = plain()
-    if fast == 0:
-        same = code == tick.OK and fa == pa and fp == pp
-        taken += 1
-        edge_taken += edge in (1, 2)
-    else:
-        same = code != tick.OK and fa == old_a and fp == old_p
-        limit_held += code == tick.FRAME_IK and 3 <= r.fault_code <= 8
-        range_held += code == tick.FRAME_SERVO
-        edge_held += edge == 3 and code == tick.FRAME_SERVO
-    if not same:
+    if VIPER:
+        fast = (output(r) == 0, list(r.angles), list(r.pulses))
+    if BOTH:
+        r.angles[:] = old_a
+        r.pulses[:] = old_p
+    if PLAIN:
+        code = r._output_plain()
+        # What the viper twin must give: the plain frame's angles and pulses when it is taken, the
+        # last frame's left as they were when it is refused.
+        if code == tick.OK:
+            plain = (True, list(r.angles), list(r.pulses))
+            taken += 1
+            edge_taken += edge in (1, 2)
+        else:
+            plain = (False, old_a, old_p)
+            limit_held += code == tick.FRAME_IK and 3 <= r.fault_code <= 8
+            range_held += code == tick.FRAME_SERVO
+            edge_held += edge == 3 and code == tick.FRAME_SERVO
+    if BOTH and plain != fast:
         differ += 1
         if differ < 4:
-            print("differ", n, fast, code, fa, pa, fp, pp)
+            print("differ", n, code, plain, fast)
+    h = fold(h, plain if PLAIN else fast)
     count += 1
-print((count, taken, limit_held, range_held, edge_taken, edge_held, differ))
+print((count, taken, limit_held, range_held, edge_taken, edge_held, differ, h))
 """
 )
 
@@ -130,6 +148,16 @@ walk.in_budget = counted
 
 def state(i):
     return (w.su[i], w.fx[i], w.fy[i], w.fz[i], list(w._xy), w.px[i], w.py[i], w.done[i])
+
+
+def start(i, su, fx, fy):
+    # Either side's swing starts from the same state: the foot where it was last tick, what the
+    # swing writes cleared.
+    w.su[i] = su
+    w.fx[i] = fx
+    w.fy[i] = fy
+    w.fz[i] = w.px[i] = w.py[i] = w.done[i] = 0
+    w._xy[0] = w._xy[1] = 0
 
 
 for n in range(CASES):
@@ -183,23 +211,23 @@ for n in range(CASES):
         fx = w.fx[i] = w.sx[i] + draw(14) % (2 * spread + 1) - spread
         fy = w.fy[i] = w.sy[i] + draw(14) % (2 * spread + 1) - spread
     su = w.su[i]
-    w.px[i] = w.py[i] = 0
-    plain = (w._swings(i, i + 1, wt, still),) + state(i)
-    w.su[i] = su
-    w.fx[i] = fx
-    w.fy[i] = fy
-    w.fz[i] = w.px[i] = w.py[i] = w.done[i] = 0
-    w._xy[0] = w._xy[1] = 0
-    fast = (swings(w, i, i + 1, wt, still),) + state(i)
-    clamped += (plain[5][0] - w.nx[i]) ** 2 + (plain[5][1] - w.ny[i]) ** 2 >= (w.rho[i] << 4) ** 2 - (64 * w.rho[i])
-    landed += plain[1] < 0
-    done += plain[8]
-    if plain != fast:
+    if PLAIN:
+        start(i, su, fx, fy)
+        plain = (w._swings(i, i + 1, wt, still),) + state(i)
+        rim = (w.rho[i] << 4) ** 2 - (64 * w.rho[i])  # the reach disc's rim squared (fine), ~2 in
+        clamped += (plain[5][0] - w.nx[i]) ** 2 + (plain[5][1] - w.ny[i]) ** 2 >= rim
+        landed += plain[1] < 0
+        done += plain[8]
+    if VIPER:
+        start(i, su, fx, fy)
+        fast = (swings(w, i, i + 1, wt, still),) + state(i)
+    if BOTH and plain != fast:
         differ += 1
         if differ < 4:
             print("differ", n, plain, fast)
+    h = fold(h, plain if PLAIN else fast)
     count += 1
-print((count, clamped, landed, done, short, differ))
+print((count, clamped, landed, done, short, differ, h))
 """
 )
 
@@ -233,19 +261,23 @@ for n in range(CASES):
         w.px[i] += bx
         w.py[i] += by
     cd = draw(16) % 72001 - 36000 if n % 4 == 0 else draw(10) % 1001 - 500  # turned a little, or anywhere
-    h1 = w._stance(bx, by, cd)
-    plain = (h1, list(w.ax), list(w.ay))
-    for i in range(6):
-        w.ax[i] = w.ay[i] = 0
-    fast = (stance(w, bx, by, cd), list(w.ax), list(w.ay))
-    held += h1
-    banded += h1 and n % 2 == 0
-    if plain != fast:
+    if PLAIN:
+        h1 = w._stance(bx, by, cd)
+        plain = (h1, list(w.ax), list(w.ay))
+        held += h1
+        banded += h1 and n % 2 == 0
+    if BOTH:
+        for i in range(6):
+            w.ax[i] = w.ay[i] = 0
+    if VIPER:
+        fast = (stance(w, bx, by, cd), list(w.ax), list(w.ay))
+    if BOTH and plain != fast:
         differ += 1
         if differ < 4:
             print("differ", n, plain, fast)
+    h = fold(h, plain if PLAIN else fast)
     count += 1
-print((count, held, banded, differ))
+print((count, held, banded, differ, h))
 """
 )
 
@@ -301,24 +333,28 @@ for n in range(CASES):
         y = w.ny[i] + draw(14) % 14001 - 7000
         w.px[i] = w.bx + mul_q15(x, c) - mul_q15(y, s)
         w.py[i] = w.by + mul_q15(x, s) + mul_q15(y, c)
-    before = state()
-    w._move_body()
-    plain = state()
-    for f, v in zip(FIELDS, before[: len(FIELDS)]):
-        setattr(w, f, v)
-    for f, v in zip(LISTS, before[len(FIELDS) :]):
-        put(getattr(w, f), v)
-    move(w)
-    fast = state()
-    held += plain[0] != before[0]
-    still += plain[1:3] == before[1:3] and plain[0] == before[0]
-    anchored += plain[1] == 0 and before[1] != 0
-    if plain != fast:
+    before = state() if PLAIN else None  # the plain side's counters, the VM's rewind
+    if PLAIN:
+        w._move_body()
+        plain = state()
+        held += plain[0] != before[0]
+        still += plain[1:3] == before[1:3] and plain[0] == before[0]
+        anchored += plain[1] == 0 and before[1] != 0
+    if BOTH:
+        for f, v in zip(FIELDS, before[: len(FIELDS)]):
+            setattr(w, f, v)
+        for f, v in zip(LISTS, before[len(FIELDS) :]):
+            put(getattr(w, f), v)
+    if VIPER:
+        move(w)
+        fast = state()
+    if BOTH and plain != fast:
         differ += 1
         if differ < 4:
             print("differ", n, before, plain, fast)
+    h = fold(h, plain if PLAIN else fast)
     count += 1
-print((count, held, still, anchored, differ))
+print((count, held, still, anchored, differ, h))
 """
 )
 
@@ -376,40 +412,46 @@ for n in range(CASES):
         w._aim_key[1] = w.cmd[1]
         w._aim_key[2] = w.cmd[2]
         w._aim_key[3] = w.clock.stance_ticks
-    key = list(w._aim_key)
-    before = state()
-    w._ramp()
-    v = w.vel
-    s1 = not (v[0] or v[1] or v[2])
-    w._lift_all(s1)
-    w._aim_swings()
-    plain = state()
-    for f, v in zip(FIELDS, before):
-        put(getattr(w, f), v)
-    r = begin(w)
-    s2 = r & 1
-    if r > 1:
-        w._lift_due(r, s2)
-    aim(w)
-    fast = state()
-    still += s1
-    lifted += plain[1] != before[1]
-    made += plain[6] != key
-    same = plain == fast and bool(s2) == s1
+    if PLAIN:
+        key = list(w._aim_key)
+        before = state()  # the plain side's counters, the VM's rewind
+        w._ramp()
+        v = w.vel
+        s1 = not (v[0] or v[1] or v[2])
+        w._lift_all(s1)
+        w._aim_swings()
+        plain = state() + [s1]
+        still += s1
+        lifted += plain[1] != before[1]
+        made += plain[6] != key
+    if BOTH:
+        for f, v in zip(FIELDS, before):
+            put(getattr(w, f), v)
+    if VIPER:
+        r = begin(w)
+        s2 = r & 1
+        if r > 1:
+            w._lift_due(r, s2)
+        aim(w)
+        fast = state() + [bool(s2)]
     # The pose check: settled or one value off.
     for k in range(9):
         b.pose[k] = b.target[k] = draw(10) % 401 - 200
     if n % 2:
         k = draw(4) % 9
         b.pose[k] += 1 if draw(1) else -1
-    same = same and bool(settled(b)) == b.settled()
-    level += b.settled()
-    if not same:
+    if PLAIN:
+        plain.append(bool(b.settled()))
+        level += b.settled()
+    if VIPER:
+        fast.append(bool(settled(b)))
+    if BOTH and plain != fast:
         differ += 1
         if differ < 4:
-            print("differ", n, before, plain, fast, s1, s2)
+            print("differ", n, before, plain, fast)
+    h = fold(h, plain if PLAIN else fast)
     count += 1
-print((count, still, lifted, made, level, differ))
+print((count, still, lifted, made, level, differ, h))
 """
 )
 
@@ -446,7 +488,7 @@ def check(result, cases):
 
 
 # Each viper path against its plain code: the script, its checks, the cases on the host VM and on
-# the emulated Pico (~1 min there).
+# the emulated Pico.
 PATHS = {
     "frame": (CASES, check, 4000, 1000),
     "swings": (SWINGS, check_swings, 20000, 2000),
@@ -456,10 +498,14 @@ PATHS = {
 }
 
 
+def source(path, cases, side):
+    return "CASES = %d\nSIDE = %r\n" % (cases, side) + PATHS[path][0]
+
+
 @pytest.mark.parametrize("path", sorted(PATHS))
 def test_viper_path_equals_plain_code_on_the_vm(mp, path):
-    script, checks, cases, _ = PATHS[path]
-    checks(mp.value("CASES = %d\n" % cases + script, heapsize="1m"), cases)
+    _, checks, cases, _ = PATHS[path]
+    checks(mp.value(source(path, cases, "both"), heapsize="1m")[:-1], cases)
 
 
 def test_robot_on_the_vm_uses_the_viper_frame_swing_and_stance(mp):
@@ -471,11 +517,16 @@ def test_robot_on_the_vm_uses_the_viper_frame_swing_and_stance(mp):
 
 
 @pytest.mark.skipif(pico.missing() is not None, reason=pico.missing() or "")
-def test_viper_paths_equal_plain_code_on_the_emulated_pico():
-    # 1,000 frames (6,000 leg solves, 18,000 pulses), 2,000 swings, 1,000 stances, moves and starts.
-    with pico.flashed(extra=on_board("lcg.py")) as fs:
+def test_viper_paths_equal_plain_code_on_the_emulated_pico(mp):
+    # 1,000 frames (6,000 leg solves, 18,000 pulses), 2,000 swings, 1,000 stances, moves and starts:
+    # the viper twins (Thumb code) on the Pico, their plain code on the host VM (the same on every
+    # MicroPython VM), the digests of their results equal.
+    with pico.flashed(extra=on_board("_lcg_viper.py", "digest.py", "lcg.py")) as fs:
         for path in sorted(PATHS):
-            script, checks, _, cases = PATHS[path]
-            status, out, err, _ = pico.run_source("CASES = %d\n" % cases + script, fs=fs, timeout=600)
+            _, checks, _, cases = PATHS[path]
+            status, out, err, _ = pico.run_source(source(path, cases, "viper"), fs=fs, timeout=600)
             assert status == 0, (path, out + err)
-            checks(ast.literal_eval(out.strip().splitlines()[-1]), cases)
+            board = ast.literal_eval(out.strip().splitlines()[-1])
+            plain = mp.value(source(path, cases, "plain"), heapsize="1m")
+            checks(plain[:-1], cases)
+            assert board[0] == cases and board[-1] == plain[-1], (path, board, plain)
