@@ -7,7 +7,7 @@ queued the websocket's keepalive ping behind it until uvicorn closed the socket,
 too far behind for NiceGUI's history to replay, reloaded (a click in flight was lost with it).
 """
 
-IN_FLIGHT = 2  # draws sent that the page has not yet shown: the next one waits
+IN_FLIGHT = 4  # draws sent that the page has not yet shown: the next one waits
 PATIENCE = 125  # beats skipped waiting for a mark (5 s at the player's 25): then draw anyway,
 # in case a mark was lost with a socket; a page still behind gets one draw per PATIENCE beats
 
