@@ -5,11 +5,11 @@ import pytest
 from hexapod_host.view.pace import Pace
 
 
-def beats(p, n, marks=()):
-    """n beats of the player; the marks the page sends back arrive before beat k (k: mark)."""
+def beats(p, n, marks=None):
+    """n beats of the player; the marks the page sends back arrive before beat k ({k: marks})."""
     drawn = []
     for k in range(n):
-        for mark in marks.get(k, ()) if marks else ():
+        for mark in (marks or {}).get(k, ()):
             p.shown(mark)
         if p.ready():
             drawn.append((k, p.sending()))
