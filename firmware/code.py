@@ -152,7 +152,7 @@ def main(frames=-1, clock=None, board_name=BOARD, robot_name=ROBOT, reader=None,
     "stand") overrides the board file's; calibrated (True/False) says whether the servos are
     calibrated where no calibration file is read (host runs; None: the file, loaded by the
     console). With a console reader (the
-    board entry: console.SerialReader) the console and the calibration file take over from
+    board entry: SerialReader) the console and the calibration file take over from
     the status line (docs/console.md); Ctrl-C relaxes the servos (or holds, on_exit)."""
     global runner
     r = runner = build(board_name, robot_name, clock)
@@ -169,7 +169,29 @@ def main(frames=-1, clock=None, board_name=BOARD, robot_name=ROBOT, reader=None,
     return r
 
 
+class SerialReader:
+    """The console's reader on CircuitPython (here, not in console.py: a Pico's heap keeps no
+    CircuitPython code): supervisor.runtime.serial_bytes_available, then sys.stdin.read(1)."""
+
+    def __init__(self):
+        import sys
+
+        import supervisor
+
+        self._rt = supervisor.runtime
+        self._in = sys.stdin
+
+    def read_byte(self):
+        if not self._rt.serial_bytes_available:
+            return -1
+        c = self._in.read(1)
+        if not c:
+            return -1
+        n = ord(c)
+        return n if n < 256 else 255  # a multi-byte character is not text the console takes
+
+
 runner = None  # the Runner main() built: the REPL's handle after Ctrl-C
 
 if __name__ == "__main__":
-    main(reader=console.SerialReader())
+    main(reader=SerialReader())

@@ -7,7 +7,7 @@ call (the REPL, tests): it returns the reply and never raises. Units at the cons
 degrees, us, mm/s, deg/s, cm (hexapod.units parses them without floats).
 
 Readers hand over one byte at a time: PollReader (MicroPython: select.poll on sys.stdin),
-SerialReader (CircuitPython: supervisor.runtime.serial_bytes_available), BufferReader (tests).
+BufferReader (tests); CircuitPython's SerialReader lives in code.py.
 """
 
 import sys
@@ -17,6 +17,7 @@ from runner import BOOT_WORDS, counters
 
 from hexapod import battery as batteries
 from hexapod import faultlog, follow, gait, limits, release, sensors, tick
+from hexapod.body import FINE_SHIFT
 from hexapod.leg import describe as leg_describe
 from hexapod.units import format_fixed, parse_fixed
 
@@ -25,14 +26,14 @@ MAX_BYTES = const(64)  # bytes taken per frame: a flood cannot stretch a frame
 WALK_TIMEOUT_MS = const(1000)
 JOINTS = ("coxa", "femur", "tibia")
 COMMANDS = (
-    "help status stand sit relax foot nudge joint pulse get walk stop gait sonar wall pid "
+    "help status stand sit relax foot nudge joint pulse get walk stop gait height sonar wall pid "
     "cal trim dir range save load defaults echo selftest faults stream"
 )
 TAG_DIGITS = const(9)  # a request tag: '#' and 1..9 digits (docs/console.md, "Request tags")
 # Commands that may take longer than a frame (a gait's servo speed guard: 1.5-1.8 s on a Pico; a
 # posture move's trial of all its frames; a flash write): a tagged request of one of them gets
 # '#TAG working' before the command runs, so a client waits for its reply without a fixed timeout.
-SLOW = ("gait", "stand", "sit", "relax", "save", "load", "defaults")
+SLOW = ("gait", "height", "stand", "sit", "relax", "save", "load", "defaults")
 # The jog and calibration commands' module (consolecal.py): imported at a jog session's first
 # command and kept while the session goes on (each import took 24-45 ms on a Pico: the frame
 # overran), let go (hexapod.release) CAL_KEEP_MS after its last command or once the robot walks or
@@ -81,27 +82,6 @@ class PollReader:
                 return self._one[0]
             return -1
         return -1
-
-
-class SerialReader:
-    """CircuitPython: supervisor.runtime.serial_bytes_available, then sys.stdin.read(1)."""
-
-    def __init__(self):
-        import sys
-
-        import supervisor
-
-        self._rt = supervisor.runtime
-        self._in = sys.stdin
-
-    def read_byte(self):
-        if not self._rt.serial_bytes_available:
-            return -1
-        c = self._in.read(1)
-        if not c:
-            return -1
-        n = ord(c)
-        return n if n < 256 else 255  # a multi-byte character is not text the console takes
 
 
 class BufferReader:
@@ -154,8 +134,8 @@ class Console:
         self.lines = 0  # lines answered
         self._job = None  # a multi-line reply under way (selftest): step() once a frame, abort(), done
         self._job_tag = None  # its request's tag: each of its lines carries it
-        self._gait_reply = -1  # a gait being checked over frames (Robot.set_gait wait=False): its reply waits
-        self._gait_tag = None  # that request's tag: its late reply carries it
+        self._late = None  # "gait"/"height" being checked over frames (wait=False): its reply waits
+        self._late_tag = None  # that request's tag: its late reply carries it
         self.telemetry = None  # stream.Stream once `stream on` made one (tests hand theirs in)
         # The robot file's calibration (robots/<robot>_cal.py): (centre_us, direction, min_us,
         # max_us) per servo; centre_us is the pulse at the servo's reference angle (ref_cdeg).
@@ -177,6 +157,7 @@ class Console:
             "walk": self._walk,
             "stop": self._stop,
             "gait": self._gait,
+            "height": self._height,
             "sonar": self._sonar,
             "wall": self._wall,
             "pid": self._pid,
@@ -222,8 +203,8 @@ class Console:
             release(CAL)
         if self._job is not None:
             self._job_step()
-        if self._gait_reply >= 0 and not self.robot.configuring():
-            self._gait_done()
+        if self._late is not None and not self.robot.configuring():
+            self._late_done()
         reader = self.reader
         if reader is None:
             return
@@ -355,8 +336,8 @@ class Console:
         except Exception as e:  # the loop must go on whatever a command hits
             return "err %s: internal error %s %s" % (word, type(e).__name__, e)
         if reply is None:  # a multi-line reply started, or a gait's check: poll() prints the rest
-            if word == "gait":
-                self._gait_tag = tag
+            if word == self._late:
+                self._late_tag = tag
             else:
                 self._job_tag = tag
             return None
@@ -591,26 +572,45 @@ class Console:
             self._args(args, 1, "a gait name (%s)" % ", ".join(gait.NAMES))
             if args[0] not in gait.NAMES:
                 raise ValueError("%r, allowed %s" % (args[0][:20], ", ".join(gait.NAMES)))
-            g = gait.NAMES.index(args[0])
             # Checked over the next frames (the servo guard's solves), the robot walking on
             # meanwhile and the console answering other lines: the reply comes when it is done.
-            code = self.robot.set_gait(g, wait=False)
-            if code:
-                return self._refused(code)
-            if self.robot.configuring():
-                self._gait_reply = g
-                return None
-        return "ok gait " + gait.NAMES[self.robot.gait]
+            return self._later("gait", self.robot.set_gait(gait.NAMES.index(args[0]), wait=False))
+        return self._ok_late("gait")
 
-    def _gait_done(self):
-        self._gait_reply = -1
+    def _height(self, args):
+        if args:
+            self._args(args, 1, "MM (the body's standing height)")
+            g = self.robot.geometry
+            h = self._num("height", args[0], 1, g.body_height_min, g.body_height_max, "mm")
+            # Standing: the feet move there (checked over the next frames, like a gait); else the
+            # next stand goes to it.
+            return self._later("height", self.robot.set_height(h, wait=False))
+        return self._ok_late("height")
+
+    def _later(self, word, code):
+        if code:
+            return self._refused(code)
+        if self.robot.configuring():
+            self._late = word
+            return None
+        return self._ok_late(word)
+
+    def _ok_late(self, word):
+        r = self.robot
+        if word == "gait":
+            return "ok gait " + gait.NAMES[r.gait]
+        return "ok height " + format_fixed(-(r.walker.ground >> FINE_SHIFT), 1)
+
+    def _late_done(self):
+        word = self._late
+        self._late = None
         code = self.robot.job_code
-        reply = self._refused(code) if code else "ok gait " + gait.NAMES[self.robot.gait]
-        if reply[:4] == "err " and not reply.startswith("err gait:"):
-            reply = "err gait: " + reply[4:]
+        reply = self._refused(code) if code else self._ok_late(word)
+        if reply[:4] == "err " and not reply.startswith("err %s:" % word):
+            reply = "err %s: %s" % (word, reply[4:])
         self.lines += 1
-        self._say(self._gait_tag, reply)
-        self._gait_tag = None
+        self._say(self._late_tag, reply)
+        self._late_tag = None
 
     def _sonar(self, args):
         self._args(args, 0, "no arguments")

@@ -73,7 +73,7 @@ def test_commands_reply_one_line_each_on_both_runtimes(both_runtimes):
     assert unsafe == []
     assert len(replies) == len(lines)
     assert replies[0] == (
-        "ok help status stand sit relax foot nudge joint pulse get walk stop gait sonar wall pid "
+        "ok help status stand sit relax foot nudge joint pulse get walk stop gait height sonar wall pid "
         "cal trim dir range save load defaults echo selftest faults stream"
     )
     assert replies[3].startswith("ok leg 2 angles 0.00 12.50 ") and " pulses 1500 1625 " in replies[3]

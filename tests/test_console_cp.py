@@ -4,8 +4,6 @@ through `os` (a temporary directory), replies on stdout (CPython only)."""
 
 import sys
 
-import console
-
 from tests.test_cp_code import rig  # noqa: F401 (fixture)
 
 
@@ -37,7 +35,7 @@ def test_console_runs_in_code_py_and_saves_through_os(rig, monkeypatch, tmp_path
     monkeypatch.setattr(sys, "stdin", stdin)
     monkeypatch.chdir(tmp_path)
     stdin.feed("get 2\r\nfoot 2 130 0 -80\r\ntrim 2 femur 15\r\nsave\r\n\xff\r\n")
-    r = g.code.main(frames=200, clock=g.clock, reader=console.SerialReader(), boot="stand", calibrated=True)
+    r = g.code.main(frames=200, clock=g.clock, reader=g.code.SerialReader(), boot="stand", calibrated=True)
     out = capsys.readouterr().out.splitlines()
     assert out.pop(0) == "cal: no hexapod_cal.txt; the robot file's calibration is in use"
     assert out[0] == "boot: standing up (the board file's boot setting is stand, the servos are calibrated)"

@@ -37,7 +37,7 @@ class Sink:
 
 
 def full_state(b, fs):
-    """All the console's state: pulses, angles, mode, gait, calibration rows, trims and source,
+    """All the console's state: pulses, angles, mode, gait, the standing height, calibration rows, trims and source,
     PID gains, the follower, the walk command and its deadline, echo, the telemetry, the PCA9685
     outputs and the calibration file (a cut save may leave a broken temp file: load skips it)."""
     r = b.r
@@ -51,6 +51,7 @@ def full_state(b, fs):
         list(rb.angles),
         rb.mode,
         rb.gait,
+        rb.walker.ground,
         [(s.centre_us, s.direction, s.min_us, s.max_us) for s in rb.servos],
         list(con.trims),
         con.cal_source,

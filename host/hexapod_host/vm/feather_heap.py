@@ -1,7 +1,7 @@
 # Runs inside the MicroPython VM: the CircuitPython deploy's heap, from its .py sources, on the fake
 # CircuitPython modules (stubs/circuitpython_vm). Prints JSON lines. Reads a JSON object on stdin
 # (not argv: the unix VM stops with "uncaught NLR" on an argument longer than 255 characters):
-#   mode "run": the rig, then code.py's __main__ (import code, console; main(reader=SerialReader()))
+#   mode "run": the rig, then code.py's __main__ (import code, console; main(reader=code.SerialReader()))
 #     for "frames" frames, with "commands" [[at_ms, line], ...] typed on the serial line; prints
 #     {"base", "free", "after_import", "peak", "end", "frames", ...} (gc.mem_alloc bytes above the
 #     rig's, base; free: gc.mem_free() when the deploy starts).
@@ -59,12 +59,10 @@ def run():
     sample()
     import code  # noqa: F401  (the deploy's entry, as CircuitPython runs it)
 
-    import console
-
     sample()
     gc.collect()
     after_import = gc.mem_alloc()
-    reader = console.SerialReader()
+    reader = code.SerialReader()
     reader._in = _cp_vm.SERIAL  # the VM's sys.stdin cannot be swapped
     _cp_vm.SERIAL.watch = sample  # polled once a frame, by the console
     r = code.main(frames=cfg["frames"], reader=reader)

@@ -24,7 +24,7 @@ class Serial:
     """The USB serial line: bytes a run schedules at virtual instants (ms), read one at a time.
 
     supervisor.runtime.serial_bytes_available and a stand-in for sys.stdin.read(1) (the VM cannot
-    swap sys.stdin): console.SerialReader reads this as it reads the board's."""
+    swap sys.stdin): code.SerialReader reads this as it reads the board's."""
 
     def __init__(self):
         self.lines = []  # [(at_ms, text)], in time order
