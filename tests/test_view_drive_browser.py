@@ -100,6 +100,8 @@ def test_the_page_loads_without_console_errors(drive):
     frames_pass(board, 50)
     assert vb.page_errors(driver) == []
     assert driver.execute_script("return document.querySelector('#popup').getAttribute('aria-hidden')") == "true"
+    # a live board runs on its own clock: no start, pause, step or speed (the simulator's, test_view_browser)
+    assert driver.execute_script("return ['start', 'pause', 'step'].filter(i => document.getElementById(i))") == []
     # The board streams: the page shows `stream on 25`'s reply and counts telemetry lines.
     assert vb.wait_for(lambda: "(ok stream 25)" in text(driver, "drive-board"), timeout=30), text(driver, "drive-board")
     assert vb.wait_for(lambda: "telemetry lines 0 " not in text(driver, "drive-board"), timeout=30)
@@ -298,3 +300,32 @@ def test_a_gamepad_walks_while_off_centre_and_stops_centred_or_gone(drive):
         assert vb.page_errors(driver) == []
     finally:
         driver.execute_script(NO_PAD)
+
+
+def test_the_height_control_refuses_outside_the_range_and_sends_a_height_inside(drive):
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.common.keys import Keys
+
+    driver, board, _ = drive
+    stand(driver, board)
+    field = driver.find_element(By.CSS_SELECTOR, "input#drive-height")
+    n0 = len(vb.commands(board.trace(), "height"))
+    for bad in ("100.5", "59"):
+        field.send_keys(Keys.CONTROL, "a")
+        field.send_keys(bad)
+        click(driver, "drive-height-set")
+        assert vb.wait_for(
+            lambda: "allowed 60..100 (the robot file's range)" in text(driver, "drive-log"), timeout=30
+        ), text(driver, "drive-log")
+    # The standing height the board has (the robot file's 80.0 mm): the guard table answers it,
+    # so the board's reply comes within a few frames (another height is checked for ~40 s of frames:
+    # tests/test_console_height.py moves the feet).
+    field.send_keys(Keys.CONTROL, "a")
+    field.send_keys("80")
+    click(driver, "drive-height-set")
+    assert vb.wait_for(lambda: len(vb.commands(board.trace(), "height")) > n0, timeout=30), (
+        "no height reached the board"
+    )
+    assert [w for _, _, w in vb.commands(board.trace(), "height")[n0:]] == [["height", "80.0"]]
+    assert vb.wait_for(lambda: "ok height 80.0" in text(driver, "drive-log"), timeout=60), text(driver, "drive-log")
+    assert vb.page_errors(driver) == []

@@ -269,6 +269,7 @@ def test_only_the_owning_tab_drives_and_its_going_stops_the_robot():
         lambda: d.command("tab2", "stand"),
         lambda: d.stick_move("tab2", 0, 1),
         lambda: d.wall("tab2", "left", 12),
+        lambda: d.height("tab2", 70),
     ):
         with pytest.raises(NotOwner, match="another tab drives; this one is view-only"):
             act()
@@ -296,6 +297,20 @@ def test_buttons_gait_and_wall_following():
         with pytest.raises(ValueError, match=re.escape(why)):
             d.wall("t", side, cm)
     assert src.lines == ["stand", "gait ripple", "wall right 12.50", "wall off"]
+
+
+def test_the_height_control_sends_the_consoles_height_within_the_robot_files_range():
+    src = Recorder()
+    d = Driver(src)
+    d.claim("t")
+    assert d.heights_mm == (60.0, 100.0)  # robots/default.py: BODY_HEIGHT_MIN 600, _MAX 1000 (0.1 mm)
+    d.height("t", 60)
+    d.height("t", 100.0)
+    d.height("t", 72.25)  # the console takes tenths: rounded half to even by %.1f
+    for bad in (59.9, 100.01, -80, None, "70", True, float("nan"), float("inf")):
+        with pytest.raises(ValueError, match=re.escape("mm: allowed 60..100 (the robot file's range)")):
+            d.height("t", bad)
+    assert src.lines == ["height 60.0", "height 100.0", "height 72.2"]
 
 
 def test_a_source_that_cannot_be_driven_refuses_every_tab():

@@ -22,6 +22,9 @@ with any id. The source must have `drivable` true and command(line) -> tag, repl
 
 import math
 
+import robots.default
+from hexapod import geometry
+
 SPEED_MM_S = 80.0  # a key's walking speed: two thirds of the tripod's 120 mm/s
 TURN_DPS = 20.0  # a key's turn rate, deg/s
 RENEW_S = 0.25  # the walk is renewed this often while held: 4 times within the board's 1000 ms
@@ -39,6 +42,7 @@ BUTTONS = ("stand", "sit", "relax", "stop", "wall off")
 PAD_DEADZONE = 0.15  # a stick within this of centre is centred (worn sticks rest off zero)
 PAD_STALE = 12  # renewals (RENEW_S apart: 3 s) with no report from an off-centre pad: the page went quiet
 WALL_CM = (4.0, 50.0)  # the console's set point range
+HEIGHT_STEP_MM = 0.1  # the console's height is in tenths of a mm
 
 
 class NotOwner(Exception):
@@ -46,9 +50,11 @@ class NotOwner(Exception):
 
 
 class Driver:
-    def __init__(self, source):
+    def __init__(self, source, heights_mm=None):
         self.source = source
         self.drivable = bool(getattr(source, "drivable", False))
+        # The robot file's body height range (mm): the console's `height` takes nothing else.
+        self.heights_mm = heights_mm if heights_mm is not None else robot_heights_mm()
         self.owner = None  # the client id that may drive
         self.keys = set()  # keys held
         self.stick = None  # (x, y) in -1..1 while the stick is held
@@ -112,6 +118,15 @@ class Driver:
         if cm is None or not WALL_CM[0] <= cm <= WALL_CM[1]:
             raise ValueError("set point %r cm: allowed %g..%g" % (cm, *WALL_CM))
         return self._send("wall %s %.2f" % (side, cm))
+
+    def height(self, client, mm):
+        """The body's standing height, mm (standing: the feet move there once the board has
+        checked it; else the next stand goes there)."""
+        self._check(client)
+        lo, hi = self.heights_mm
+        if isinstance(mm, bool) or not isinstance(mm, (int, float)) or not lo <= mm <= hi:
+            raise ValueError("height %r mm: allowed %g..%g (the robot file's range)" % (mm, lo, hi))
+        return self._send("height %.1f" % mm)
 
     def key(self, client, name, down):
         """A key went down or up (W A S D Q E, space); repeats of a held key change nothing."""
@@ -249,3 +264,9 @@ def _pad_velocity(state):
 
 def _number(v, lo):
     return isinstance(v, (int, float)) and not isinstance(v, bool) and lo <= v <= 1.0
+
+
+def robot_heights_mm(robot=None):
+    """(lowest, highest) body height the robot file allows, mm."""
+    g = geometry.load(robot if robot is not None else robots.default)
+    return (g.body_height_min / 10, g.body_height_max / 10)

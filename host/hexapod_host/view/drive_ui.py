@@ -69,6 +69,11 @@ class DrivePanel:
                 self.gait = ui.select(list(gait.NAMES), value=None, label="gait").classes("w-32").props("id=drive-gait")
                 self.gait.on_value_change(lambda e: e.value and self._do(driver.command, "gait " + e.value))
                 self.widgets.append(self.gait)
+                lo, hi = driver.heights_mm
+                self.height = ui.number("height (mm)", value=None, min=lo, max=hi, step=5, format="%.1f")
+                self.height.classes("w-28").props("for=drive-height")  # QInput gives its input this id
+                set_height = ui.button("set", on_click=lambda: self._do(driver.height, self.height.value))
+                self.widgets += [self.height, set_height.props("id=drive-height-set")]
             with ui.row().classes("items-center"):
                 self.side = ui.select(["left", "right"], value="left", label="wall side").classes("w-28")
                 self.cm = ui.number("set point (cm)", value=12, min=WALL_CM[0], max=WALL_CM[1], step=0.5)

@@ -127,7 +127,7 @@ class View:
         with ui.row().classes("w-full no-wrap"):
             self._scene(d)
             with ui.column():
-                self._controls()
+                self._controls(live=driver.drivable)
                 self.drive = DrivePanel(driver, lambda: self.player.snap)
                 self.jog = _jog_panel(driver)
                 self.table = ui.label().style("white-space: pre; font-family: monospace").props("id=readings")
@@ -187,14 +187,17 @@ class View:
             self._camera = None  # where the follow camera was last put
             self._body_at = None  # the body's centre (mm) and yaw when last moved
 
-    def _controls(self):
+    def _controls(self, live):
+        """Start, pause, step and speed for a source the player steps (the simulator, a replay);
+        a live board runs on its own clock: it has none of them."""
         p = self.player
-        with ui.row():
-            ui.button("start", on_click=p.start).props("id=start")
-            ui.button("pause", on_click=p.pause).props("id=pause")
-            ui.button("step", on_click=p.step).props("id=step")
-        speeds = {s: "%gx" % s for s in player_mod.SPEEDS}
-        ui.toggle(speeds, value=p.speed, on_change=lambda e: p.set_speed(e.value))
+        if not live:
+            with ui.row():
+                ui.button("start", on_click=p.start).props("id=start")
+                ui.button("pause", on_click=p.pause).props("id=pause")
+                ui.button("step", on_click=p.step).props("id=step")
+            speeds = {s: "%gx" % s for s in player_mod.SPEEDS}
+            ui.toggle(speeds, value=p.speed, on_change=lambda e: p.set_speed(e.value))
         self.follow_cam = ui.checkbox("follow camera", value=True)
 
     def _plot(self, title, names):
