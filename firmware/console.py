@@ -681,11 +681,9 @@ class Console:
         try:
             return consolecal.command(self, word, args)
         finally:
-            if self.keep_cal:
-                pass
-            elif word == "boot":
+            if word == "boot" and not self.keep_cal:
                 release(CAL)
-            else:
+            elif not self.keep_cal:
                 clock = self.runner.clock
                 self._cal_until = clock.ticks_add(clock.ticks_ms(), CAL_KEEP_MS)
 

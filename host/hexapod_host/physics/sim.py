@@ -18,6 +18,7 @@ import sys
 from hexapod import geometry as geometry_mod
 from hexapod import tick
 from hexapod.gait import NAMES, RIPPLE, TICK_MS, TRIPOD, WAVE, gait_number
+from hexapod.stability import NO_SUPPORT, support_margin
 from hexapod_host.physics import mjcf
 
 STEPS_PER_TICK = int(round(TICK_MS / 1000.0 / mjcf.TIMESTEP_S))
@@ -285,19 +286,16 @@ class Run:
 
 
 def _margin(xy, down, com):
-    """Signed distance (mm) of com inside the polygon of the down feet (legs clockwise from above)."""
-    idx = [i for i in range(6) if down[i]]
-    if len(idx) < 3:
-        return None
-    best = None
-    for a, b in zip(idx, idx[1:] + idx[:1], strict=True):
-        ex, ey = xy[b, 0] - xy[a, 0], xy[b, 1] - xy[a, 1]
-        length = math.hypot(ex, ey)
-        if length == 0:
-            continue
-        dist = -(ex * (com[1] - xy[a, 1]) - ey * (com[0] - xy[a, 0])) / length * 1000
-        best = dist if best is None or dist < best else best
-    return best
+    """Distance (mm) of com inside the polygon of the down feet (xy, com in m): the firmware's own
+    hexapod.stability.support_margin on the feet rounded to 0.1 mm; None with fewer than three down."""
+    m = support_margin(
+        [round(float(x) * 10000) for x in xy[:, 0]],
+        [round(float(y) * 10000) for y in xy[:, 1]],
+        [bool(d) for d in down],
+        round(float(com[0]) * 10000),
+        round(float(com[1]) * 10000),
+    )
+    return None if m == NO_SUPPORT else m / 10
 
 
 def simulate(
