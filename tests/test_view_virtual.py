@@ -74,6 +74,41 @@ def test_stream_on_25_is_asked_first_and_its_reply_kept():
     assert port.closed
 
 
+def _until(cond, timeout=10.0):
+    # The link's reader thread takes the fake port's lines: wait for it, not for a time.
+    end = time.monotonic() + timeout
+    while not cond() and time.monotonic() < end:
+        time.sleep(0.005)
+    return cond()
+
+
+def test_a_board_that_powers_up_again_is_asked_for_its_stream_and_maps_again():
+    src, port = source()
+    try:
+        asked = [w.split(" ", 1)[1].strip() for w in port.written]
+        # the fake answers `cal 1 coxa` with a bare ok: the reading stops there (test_view_boardcal)
+        assert asked == ["stream on 25", "selftest", "cal 1 coxa"]
+        src.step()  # no power-up line: nothing asked
+        assert len(port.written) == 3 and src.restarts == 0
+        port.put("hello")  # a notice that is not a power-up line
+        port.put("boot: relaxed, no pulse until `stand` (the board file's boot setting)")
+        assert _until(lambda: src.link.boots == 1)
+        src.step()
+        again = [w.split(" ", 1)[1].strip() for w in port.written[3:]]
+        assert again == ["stream on 25"] + [
+            "cal %d %s" % (k // 3 + 1, j) for k, j in enumerate(["coxa", "femur", "tibia"] * 6)
+        ]
+        assert src.restarts == 1
+        assert _until(lambda: (src.step(), src.stream_reply)[1] == "ok stream 25 (again, after power-up 1)")
+        n = len(port.written)
+        src.step()
+        src.step()
+        assert len(port.written) == n  # asked once per power-up line
+        assert src.snapshot()["extra"]["stream"] == "ok stream 25 (again, after power-up 1)"
+    finally:
+        src.close()
+
+
 def test_a_board_without_the_stream_command_still_serves_a_resting_robot():
     src, _ = source({"stream on 25": "err unknown command 'stream' (help lists them)"})
     try:

@@ -14,7 +14,7 @@ is the coxa plane's above the lowest foot."""
 from hexapod import board as boards
 from hexapod import follow, gait, sensors, tick
 from hexapod_host.commands.doctor import board_line
-from hexapod_host.view.boardcal import BoardCal
+from hexapod_host.view.boardcal import BoardCal, cal_lines
 from hexapod_host.view.source import Source, pose
 from hexapod_host.wall.room import BODY_HALF, Body, grounded
 
@@ -43,6 +43,10 @@ class BoardSource(Source):
         if name:
             self.name = name
         self.on_close = on_close
+        self.hz = hz
+        self.restarts = 0  # power-ups seen since the page connected (a reset, a brownout, plugged in)
+        self._boots = link.boots  # a power-up line from here on: the board (re)started after this
+        self._stream_tag = None  # `stream on` asked again after a power-up, its reply awaited
         self.setpoint_mm = None
         self._wall_tags = []
         # reply_s: a hang guard (the emulated Pico answers in wall-clock seconds, not a frame)
@@ -107,7 +111,22 @@ class BoardSource(Source):
         }
 
     def step(self):
-        """Nothing to do: the link's thread takes lines in as they arrive."""
+        """The link's thread takes lines in as they arrive. A board that powered up again (its
+        `boot:` line: reset, brownout, watchdog, or plugged in after the page was served) has no
+        stream and its calibration file's maps: ask both again, without waiting (the page's loop)."""
+        boots = self.link.boots
+        if boots != self._boots:
+            self._boots = boots
+            self.restarts += 1
+            self.stream_reply = "stream asked again after the board's power-up line"
+            self._stream_tag = self.link.send("stream on %d" % self.hz)
+            for line in cal_lines():
+                self.cal.watch(line, self.link.send(line))
+        if self._stream_tag is not None:
+            r = self.link.reply(self._stream_tag)
+            if r is not None and r != "working":
+                self.stream_reply = "%s (again, after power-up %d)" % (r, self.restarts)
+                self._stream_tag = None
 
     def command(self, line):
         """Send one console line to the board now; its tag, for reply(tag)."""

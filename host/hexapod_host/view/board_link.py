@@ -38,6 +38,7 @@ class BoardLink:
         self.malformed = 0  # telemetry lines the parser refused
         self.last_error = ""
         self.notices = deque(maxlen=50)
+        self.boots = 0  # the board's power-up lines seen (`boot: ...`, docs/console.md): it restarted
         self.replies = OrderedDict()  # '#N' -> 'ok ...' / 'err ...' / 'working'
         self.first = {}  # '#N' -> the first 'ok'/'err' line under it (a multi-line reply's first)
         self.lost = ""  # why the line went away ('' while it works)
@@ -110,6 +111,8 @@ class BoardLink:
                     self.first.pop(self.replies.popitem(last=False)[0], None)
                 self._changed.notify_all()
             return
+        if text.startswith("boot: "):
+            self.boots += 1
         self.notices.append(text)
 
     def _read_loop(self):
