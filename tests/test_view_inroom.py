@@ -169,3 +169,73 @@ def test_the_file_is_not_changed_by_a_replay_in_a_room(tmp_path):
     src = ReplaySource(path, world.load("wall"))
     assert json.loads(src.data[1])["body"]["x"] == 0.0  # the recorded message as it was
     assert Path(path).read_bytes() == before
+
+
+def _telemetry_line(s):
+    """A snapshot's pulses as the board's telemetry line (docs/console.md's format): walking,
+    tripod, no sonar (waiting), no battery."""
+    head = [s["frame"], 4, 0, 0, 0, 0, 0, 0, 0]
+    tail = ["-"] * 5 + [5] * 5 + [0, 0, "-", 0, 0, 0, 0, 2500, 2600]
+    return "~T " + " ".join(map(str, head + list(s["pulses"]) + tail))
+
+
+def test_a_live_board_walks_where_its_feet_carry_it():
+    """A board's page moves its body by the feet of every telemetry line (board.py's odometry,
+    the mover above): the simulator's run streamed as a board streams it (every other frame, no
+    room), the body at the origin facing +x at the first line. Against the simulator's own path,
+    turned into that frame: within the half-rate replay's bounds above."""
+    from tests.test_view_virtual import source
+
+    sim = SimSource(world.load("wall"), 12, seed=0, disturb=False)
+    sim.step()
+    truth = []
+    src, _ = source()
+    try:
+        for k in range(1500):
+            s = plain(sim.snapshot())
+            if k % 2 == 0:
+                src.link.feed(_telemetry_line(s))
+                b = src.snapshot()["body"]
+                truth.append(((s["body"]["x"], s["body"]["y"], s["body"]["yaw"]), (b["x"], b["y"], b["yaw"])))
+            sim.step()
+    finally:
+        sim.close()
+        src.close()
+    (x0, y0, yaw0), _ = truth[0]
+    c, si = math.cos(yaw0), math.sin(yaw0)
+    worst = (0.0, 0.0)
+    for (tx, ty, tyaw), (x, y, yaw) in truth:
+        dx, dy = tx - x0, ty - y0
+        rx, ry = c * dx + si * dy, -si * dx + c * dy  # the truth in the first line's body frame
+        worst = max(worst[0], math.hypot(x - rx, y - ry)), max(worst[1], abs(yaw - (tyaw - yaw0)))
+    assert truth[-1][1][0] > 100  # it walked along +x
+    assert worst[0] < 6.0 and worst[1] < math.radians(0.3), worst
+
+
+def test_a_limp_or_restarted_board_starts_its_odometry_over_where_the_body_was():
+    """Feet seen again after a limp line (no pulses) or a board that started over (its frame
+    count went back) are not a step from the feet before: the body stays where it was."""
+    from tests.test_view_virtual import source
+
+    sim = SimSource(world.load("wall"), 12, seed=0, disturb=False)
+    sim.step()
+    snaps = []
+    for _ in range(400):
+        snaps.append(plain(sim.snapshot()))
+        sim.step()
+    sim.close()
+    src, _ = source()
+    try:
+        for s in snaps[:200:2]:
+            src.link.feed(_telemetry_line(s))
+        before = src.snapshot()["body"]
+        assert before["x"] > 20  # it walked
+        src.link.feed(_telemetry_line({**snaps[200], "pulses": [0] * 18}))  # limp
+        src.link.feed(_telemetry_line(snaps[300]))
+        after = src.snapshot()["body"]
+        assert (after["x"], after["y"], after["yaw"]) == (before["x"], before["y"], before["yaw"])
+        src.link.feed(_telemetry_line({**snaps[100], "frame": 5}))  # the board started over
+        again = src.snapshot()["body"]
+        assert (again["x"], again["y"], again["yaw"]) == (before["x"], before["y"], before["yaw"])
+    finally:
+        src.close()

@@ -8,13 +8,15 @@ sends a console line tagged, reply(tag) is its answer.
 
 The servo maps are the board's own (boardcal.py: its `cal` lines read when the page connects and
 followed after every calibration command), so a trimmed or flipped servo is drawn at the angle
-the board drove it to. There is no room: the body stays at the origin (x, y, yaw 0); its height
-is the coxa plane's above the lowest foot."""
+the board drove it to. There is no room: the body starts at the origin (x, y, yaw 0) and is
+moved by the feet of every telemetry line (inroom.Odometry, dead reckoning); its height is the
+coxa plane's above the lowest foot."""
 
 from hexapod import board as boards
 from hexapod import follow, gait, sensors, tick
 from hexapod_host.commands.doctor import board_line
 from hexapod_host.view.boardcal import BoardCal, cal_lines
+from hexapod_host.view.inroom import Odometry
 from hexapod_host.view.source import Source, pose
 from hexapod_host.wall.room import BODY_HALF, Body, grounded
 
@@ -60,11 +62,29 @@ class BoardSource(Source):
             self._ask_board(reply_s)
         self.body = Body(self.board)
         self._rest = self._rest_pose()
+        # Where the feet have carried the body since the page connected (inroom.Odometry, the
+        # wall simulator's mover on every telemetry line, in the link's thread): a dead reckoning
+        # from the pulses sent, on a floor with no room (a slipping foot is not seen).
+        walker = Body(self.board)
+        walker.maps = self.body.maps  # the board's own maps, as BoardCal updates them
+        self.odometry = Odometry(walker)
+        self._at = (0.0, 0.0, 0.0)  # x, y mm, yaw rad
+        self._odometry_frame = -1
+        link.on_telemetry = self._moved
         self.cal = BoardCal(link, self.body)
         if stream is None:
             self.cal.why = "the board answered nothing"  # not 18 more hang guards long
         else:
             self.cal.read_all(reply_s)
+
+    def _moved(self, t):
+        """One telemetry line's feet into the odometry (the link's thread)."""
+        legs = pose(self.odometry.body, t["pulses"])
+        if legs is None or t["frame"] <= self._odometry_frame:  # limp, or the board started over
+            self.odometry.lose()
+        if legs is not None:
+            self._at = self.odometry.step(legs["legs"])
+        self._odometry_frame = t["frame"]
 
     def _ask_board(self, reply_s):
         """The board's own name and robot: `selftest`'s first line, `ok board NAME robot ROBOT`
@@ -108,6 +128,7 @@ class BoardSource(Source):
             "body_half": list(BODY_HALF),
             "brackets": [list(seg) for seg in b.outline[4:]],
             "frame_s": FRAME_S,
+            "odometry": "dead reckoning from the feet of every telemetry line",
         }
 
     def step(self):
@@ -178,12 +199,13 @@ class BoardSource(Source):
                 "extra": {**extra, "gait": "-", "phase": 0, "walk": [0, 0, 0], "battery_mv": None},
             }
         legs = pose(self.body, t["pulses"]) or self._rest
+        x, y, yaw = self._at
         side = SIDES[t["follow_side"]]
         return {
             "frame": t["frame"],
             "time_s": round(t["frame"] * FRAME_S, 3),
             **legs,
-            "body": {"x": 0.0, "y": 0.0, "z": -min(leg[3][2] for leg in legs["legs"]), "yaw": 0.0},
+            "body": {"x": x, "y": y, "z": -min(leg[3][2] for leg in legs["legs"]), "yaw": yaw},
             "distances": [_mm(v) for v in t["distances"]],
             "sonar_status": [sensors.STATUS_NAMES[s] for s in t["sonar_status"]],
             "mode": tick.MODE_NAMES[t["mode"]],

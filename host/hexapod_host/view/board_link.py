@@ -38,6 +38,7 @@ class BoardLink:
         self.malformed = 0  # telemetry lines the parser refused
         self.last_error = ""
         self.notices = deque(maxlen=50)
+        self.on_telemetry = None  # called with each telemetry dict, in the reader's thread
         self.boots = 0  # the board's power-up lines seen (`boot: ...`, docs/console.md): it restarted
         self.replies = OrderedDict()  # '#N' -> 'ok ...' / 'err ...' / 'working'
         self.first = {}  # '#N' -> the first 'ok'/'err' line under it (a multi-line reply's first)
@@ -99,6 +100,11 @@ class BoardLink:
                 return
             self.telemetry = t
             self.telemetry_lines += 1
+            if self.on_telemetry is not None:
+                try:
+                    self.on_telemetry(t)
+                except Exception as e:  # the reader must go on whatever a listener hits
+                    self.last_error = "telemetry listener: %s: %s" % (type(e).__name__, e)
             return
         head, _, rest = text.partition(" ")
         is_reply = rest == "working" or rest.split(" ", 1)[0] in ("ok", "err")

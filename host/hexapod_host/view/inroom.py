@@ -43,24 +43,41 @@ def start(snaps, world):
     return side, START_MM
 
 
+class Odometry:
+    """The body's world pose from its feet, one snapshot after another (the module's mover): a
+    Body (hexapod_host.wall.room) placed where it starts, stepped with each snapshot's legs."""
+
+    def __init__(self, body):
+        self.body = body
+        self._old = None  # the feet of the snapshot before (None: start over from these)
+        self._last = None  # the last step made with feet down in both, in the body's frame
+
+    def lose(self):
+        """The feet are not known for a while (a limp robot, a gap): the next snapshot starts over."""
+        self._old = self._last = None
+
+    def step(self, legs):
+        """Move the body by these legs (four points a leg, body frame, mm); its (x, y, yaw)."""
+        body = self.body
+        body.set_legs(legs)
+        x, y, theta = body.x, body.y, body.theta
+        body.move(self._old)
+        if len(body.stance) >= 2:
+            c, si = math.cos(theta), math.sin(theta)
+            dx, dy = body.x - x, body.y - y
+            self._last = (body.theta - theta, c * dx + si * dy, -si * dx + c * dy)
+        elif self._old is not None and self._last is not None:
+            # No foot on the ground in both snapshots: a stance changed hands between them (a
+            # recording of every other frame or fewer); the gait goes on as it went.
+            body.advance(*self._last)
+        self._old = body.feet
+        return body.x, body.y, body.theta
+
+
 def poses(snaps, world, board="pico"):
     """The body's (x, y mm, yaw rad) in the world for each snapshot (dicts, in order)."""
     body = Body(board)
     side, distance = start(snaps, world)
     place_at_start(body, world, side, distance)
-    out, old, last = [], None, None
-    for s in snaps:
-        body.set_legs(s["legs"])
-        x, y, theta = body.x, body.y, body.theta
-        body.move(old)
-        if len(body.stance) >= 2:
-            c, si = math.cos(theta), math.sin(theta)
-            dx, dy = body.x - x, body.y - y
-            last = (body.theta - theta, c * dx + si * dy, -si * dx + c * dy)  # the step, in the body's frame
-        elif old is not None and last is not None:
-            # No foot on the ground in both snapshots: a stance changed hands between them (a
-            # recording of every other frame or fewer); the gait goes on as it went.
-            body.advance(*last)
-        old = body.feet
-        out.append((body.x, body.y, body.theta))
-    return out
+    odometry = Odometry(body)
+    return [odometry.step(s["legs"]) for s in snaps]

@@ -127,7 +127,8 @@ class View:
         with ui.row().classes("w-full no-wrap"):
             self._scene(d)
             with ui.column():
-                self._controls(live=driver.drivable)
+                self.own_clock = driver.drivable  # a board runs on its own clock
+                self._controls(live=self.own_clock)
                 self.drive = DrivePanel(driver, lambda: self.player.snap)
                 self.jog = _jog_panel(driver)
                 self.table = ui.label().style("white-space: pre; font-family: monospace").props("id=readings")
@@ -298,14 +299,16 @@ class View:
 
     def _status(self, s):
         f, x = s["follow"], s.get("extra", {})
-        state = (
-            "running"
-            if self.player.running
-            else ("done: %s" % (x.get("why") or "success") if self.player.done() else "paused")
-        )
+        if self.own_clock:  # a board: no trial, and it runs whether or not the page looks
+            played = ""
+        elif self.player.running:
+            played = "running  "
+        else:
+            played = ("done: %s  " % (x.get("why") or "success")) if self.player.done() else "paused  "
+        trial = "trial %s  " % x["trial"] if "trial" in x else ""
         self.status.set_text(
-            "trial %s  frame %d  t %.2f s  %s  robot %s  follower %s  updates %d  skipped %d"
-            % (x.get("trial", "-"), s["frame"], s["time_s"], state, s["mode"], f["mode"], self.drawn, self.pace.skipped)
+            "%sframe %d  t %.2f s  %srobot %s  follower %s  updates %d  skipped %d"
+            % (trial, s["frame"], s["time_s"], played, s["mode"], f["mode"], self.drawn, self.pace.skipped)
         )
 
     def _readings(self, s):

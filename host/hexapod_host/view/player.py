@@ -144,7 +144,8 @@ class Player:
                 f["error_mm"],
                 f["output_dps"],
                 None if walk is None else round(math.hypot(walk[0], walk[1]), 1),
-                self._body_speed(s) if "walls" in self.described else None,  # no room: no odometry
+                # a room, or a board's dead reckoning (board.py); an older board recording has neither
+                self._body_speed(s) if "walls" in self.described or "odometry" in self.described else None,
                 None if mv is None else mv / 1000,
                 self._frame_rate(s["frame"]),
                 x.get("frame_us"),
