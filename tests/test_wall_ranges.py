@@ -27,11 +27,14 @@ for gains in ((pid.GAIN_MAX,) * 3, (1, pid.GAIN_MAX, 0), (pid.GAIN_MAX, 0, pid.G
     out(top)
 
 class FakeWalker:
-    # What the follower reads of a walker: heading (fixmath.ANGLE_UNIT), state.
+    # What the follower reads of a walker: heading (fixmath.ANGLE_UNIT), state, the ramped velocity
+    # (0.1 mm/s; the distance estimate's forward travel) and the held-tick count.
 
     def __init__(self):
         self.psi = 0
         self.state = 0
+        self.vel = [0, 0, 0]
+        self.held = 0
 
 
 class FakeRobot:
@@ -49,11 +52,13 @@ class FakeRobot:
 
     def walk(self, vx, vy, yaw):
         self.walker.state = 2
+        self.walker.vel[0] = vx
         self.yaw = yaw
         return 0
 
     def stop(self):
         self.yaw = 0
+        self.walker.vel[0] = 0
         return 0
 
     def tick(self, now):

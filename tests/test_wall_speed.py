@@ -41,3 +41,16 @@ def test_cli_json_reports_it_beside_time_s(capsys):
     assert out["success_rate"] == 1.0
     assert out["top_speed_share"] == pytest.approx(1500 / out["time_s"] / 48.3, abs=1e-3)
     assert out["rows"][0]["top_speed_share"] == out["top_speed_share"]
+
+
+def test_the_follower_walks_the_wall_at_90_percent_of_top_speed():
+    # Issue 22 point 5's goal (>= 90 % of the tripod's 48.3 mm/s along the 1.5 m wall), on three
+    # disturbed trials of `sim wall --seed 5` at 12 cm. On main d7dc18d (the PID on the raw pair) the
+    # sonars' noise turned the robot about 10 deg/s on average and these took 42.0-43.3 s (share 0.730);
+    # with the estimate (1/8 a sample) 34.2-34.5 s (0.904). The trials are seeded: the same every run.
+    world = load("wall")
+    results = [
+        sim.run_trial(world, 12, sim.trial_seed(5, "wall", 12, k), bus="sink", max_frames=2500) for k in range(3)
+    ]
+    assert all(r["success"] for r in results), [r["why"] for r in results]
+    assert sim.speed_share(results)["top_speed_share"] >= 0.9

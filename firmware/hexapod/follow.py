@@ -16,7 +16,12 @@ distance of a look-ahead point L ahead of the sensor pair,
     e = (set point - d) - L sin(angle),   d = (d_front + d_rear) / 2,
 and its output turns the robot away from the wall (positive output = away) while it walks
 forward at the set speed. The angle term damps (distance alone oscillates); the angle guard
-stops the turn toward (or away from) the wall at ANGLE_GUARD, inside the beam.
+stops the turn toward (or away from) the wall at ANGLE_GUARD, inside the beam. d and the angle
+are estimates, not the raw pair (issue 22 point 5): between samples the walk predicts them (the
+walker's heading change turns the angle, its forward travel at that angle moves d) and each pair
+sample corrects the prediction by 1/2**EST_SHIFT of the difference. Fed raw, the sonars' 3 mm
+noise made the paper's Kp = 25 (2.5 deg/s per mm) turn about 10 deg/s on average, and every turn
+costs forward speed (the walker scales a command until its feet fit: docs/wall.md).
 
 Modes: off, following, corner (the front sonar sees a wall ahead: arc away from the followed
 wall), lost (no wall on the side: arc toward where it was, radius = the wall distance), then
@@ -105,7 +110,7 @@ SPEED = const(800)  # forward speed, 0.1 mm/s
 YAW_MAX = const(3000)  # the follower's largest yaw rate (PID output clamp), cdeg/s
 I_MAX = const(1000)  # integral clamp, cdeg/s
 LOOKAHEAD = const(1000)  # L: the look-ahead point ahead of the sensor pair, 0.1 mm
-ANGLE_GUARD = const(1200)  # no further turn toward or away from the wall past this angle, cdeg
+ANGLE_GUARD = const(800)  # no further turn toward or away from the wall past this angle, cdeg
 WALL_GAP = const(1500)  # a side reading beyond set point + this is no wall, 0.1 mm
 JUMP = const(300)  # a side reading this much beyond the sensor's last one is an edge, not the wall
 MISS_RUN = const(3)  # pings in a row without a steerable reading take a sensor out of use
@@ -117,6 +122,11 @@ CORNER_TURN = const(27000)  # turning this far in one corner without clearing it
 LOST_TURN = const(15000)  # arc toward a lost wall this far, then search, cdeg
 SEARCH_GROW = const(500)  # the search spiral's radius grows this fast, 0.1 mm/s
 SEARCH_MS = const(30000)  # search this long, then stop, ms
+# A pair's sample corrects the walk's prediction of the wall's angle and distance by 1/2**EST_SHIFT of
+# the difference: the sonars' noise (sd 3 mm) reaches the PID about 1/4 as large (sd x sqrt(K / (2 - K)),
+# K = 1/8), the robot's own turns at once. 1/32 (the first try) let heading slip build into 4-5 mm RMS.
+EST_SHIFT = const(3)
+_EST_HALF = const(4)  # 2**EST_SHIFT / 2: the correction rounded half up, not floored (no drift)
 _COUNT_MAX = const(1000000)  # counters stop here (small ints for ever)
 _DEG180 = const(1800000)  # fixmath.ANGLE_UNIT
 _DEG360 = const(3600000)
@@ -179,6 +189,10 @@ class Follower:
         self._turn = 0  # fixmath.ANGLE_UNIT
         self._adr = 0  # the angle carried on by the walker's heading since the last pair, ANGLE_UNIT
         self._psi = 0
+        self._est = False  # the pair's estimate (_adr, _dist) has been started from a sample
+        self._dist = 0  # the pair's midpoint distance estimate, 0.1 mm << 4
+        self._walked = 0  # forward speed summed over the frames walked since the last sample, 0.1 mm/s
+        self._held = 0  # the walker's held count at the last frame
         self._t0 = 0
         self._sweep = [0, 0]  # seed 000's full turn: vx (0.1 mm/s), |yaw| (cdeg/s)
 
@@ -255,6 +269,9 @@ class Follower:
         self.distance = -1
         self.angle = self.error = self.output = 0
         self._adr = 0
+        self._est = False
+        self._walked = 0
+        self._held = self.robot.walker.held
         self._used = 3
         self.used = USED_NAMES[self._side()][3]
         self.distance_only = False
@@ -350,6 +367,12 @@ class Follower:
         elif d < -_DEG180:
             d += _DEG360
         self._psi = p
+        w = self.robot.walker
+        if w.held == self._held:
+            if self._walked < _COUNT_MAX:
+                self._walked += w.vel[0]
+        else:
+            self._held = w.held
         self._adr += self._away * d  # turning away from the wall opens the angle
         if self._adr > _DEG180:
             self._adr = _DEG180
@@ -404,6 +427,7 @@ class Follower:
             self.used = USED_NAMES[self._side()][used]
             self.distance_only = used == 1 or used == 2
             self.pid.reset(True)
+            self._est = False
         if used == 0:
             self._lost(now)
             return
@@ -420,12 +444,23 @@ class Follower:
         if used == 3:
             df = rd[self._f]
             dr = rd[self._r]
-            diff = df - dr
-            self.distance = (df + dr) >> 1
-            a = atan2(diff, self._base)
-            self._adr = a
-            self.angle = to_cdeg(a)
-            m = self.distance + self.lookahead * diff // self._base  # + L sin(angle)
+            a = atan2(df - dr, self._base)
+            d = (df + dr) << 3
+            if self._est:
+                # The walk's prediction since the last sample (the angle by the walker's heading each
+                # frame, the distance by its forward travel at that angle), corrected by 1/2**EST_SHIFT
+                # of what the sample says: the PID steers on the wall, not on the sonars' noise.
+                s = sin(to_cdeg(self._adr))
+                self._dist += mul_q15(self._walked * 8 // 25, s)
+                self._adr += (a - self._adr + _EST_HALF) >> EST_SHIFT
+                self._dist += (d - self._dist + _EST_HALF) >> EST_SHIFT
+            else:
+                self._adr = a
+                self._dist = d
+                self._est = True
+            self.angle = to_cdeg(self._adr)
+            self.distance = (self._dist + 8) >> 4
+            m = self.distance + mul_q15(self.lookahead, sin(self.angle))  # + L sin(angle)
         else:
             # One sensor: its distance, with the angle of the last pair carried on by the walker's
             # own heading (odometry) and let fade (1/16 an update), so heading slip cannot pile up.
@@ -436,6 +471,7 @@ class Follower:
             x = self.mounts[k][0] - ((self.mounts[self._f][0] + self.mounts[self._r][0]) >> 1)
             self.distance = rd[k] - mul_q15(x, s)  # the pair's midpoint
             m = self.distance + mul_q15(self.lookahead, s)
+        self._walked = 0
         u = self.pid.update(self.setpoint, m, now)
         self.error = self.pid.error
         # Past the guard angle no further turn that way: the pair's beams would lose the wall. On one
@@ -477,6 +513,7 @@ class Follower:
             self.turned = 0
             if mode == FOLLOWING:
                 self.pid.reset()
+                self._est = False
                 self.output = 0
                 self._fresh = 0
                 self._sent = False

@@ -79,7 +79,7 @@ def follow_heap():
 
 def main_from_board_setting():
     """main.main for 300 frames with the board's follow setting (left, 120 mm, 60 mm/s), the left wall at
-    115 mm: (mode, side, setpoint, speed, updated, distance, turning right, robot mode)."""
+    115 mm: (mode, side, setpoint, speed, updated, distance, turned right, robot mode)."""
     import boards.pico
 
     loop = Loop()
@@ -90,7 +90,7 @@ def main_from_board_setting():
     finally:
         boards.pico.BOARD["follow"] = None
     f = r.follower
-    return (f.mode_name, f.side, f.setpoint, f.speed, f.updates > 10, f.distance, f.yaw < 0, r.robot.mode)
+    return (f.mode_name, f.side, f.setpoint, f.speed, f.updates > 10, f.distance, f.turned < 0, r.robot.mode)
 
 
 def follow_refusals():
