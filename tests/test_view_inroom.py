@@ -28,8 +28,12 @@ BOARD_DESCRIBE = {"source": "virtual", "board": "pico", "sensors": SENSORS, "bod
 FEET = [(150.0, -120.0), (0.0, -160.0), (-150.0, -120.0), (-150.0, 120.0), (0.0, 160.0), (150.0, 120.0)]
 
 
-def snap(n, feet, distances=(None,) * 5, side=None):
-    legs = [[[x / 3, y / 3, 0.0], [x / 2, y / 2, 0.0], [x, y, 20.0], [x, y, -80.0]] for x, y in feet]
+def snap(n, feet, distances=(None,) * 5, side=None, up=()):
+    """Snapshot of frame n, the feet (x, y mm) on the ground (z -80) but those of the legs in `up` (z -60)."""
+    legs = [
+        [[x / 3, y / 3, 0.0], [x / 2, y / 2, 0.0], [x, y, 20.0], [x, y, -60.0 if i in up else -80.0]]
+        for i, (x, y) in enumerate(feet)
+    ]
     return {
         "frame": n,
         "time_s": n * 0.04,
@@ -92,6 +96,28 @@ def test_a_boards_recording_walks_in_the_worlds_room(tmp_path):
     assert (src.snapshot()["body"]["x"], src.snapshot()["body"]["y"]) == (200.0, -330.0)
 
 
+def test_a_stance_changes_hands_in_the_frame_between_two_snapshots(tmp_path):
+    """A board's every other frame: frames 0, 2, 4. Frames 0 -> 2: tripod A (legs 0, 2, 4) down,
+    its feet 20 mm further back: the body 20 mm on. In frame 3 (not recorded) A lifts and B (1, 3,
+    5) lands. A's feet at 4 are 20 mm further back again, so at 3, halfway, 10 mm: the body goes
+    10 mm on to frame 3. B's feet at 4 are their frame-3 places (halfway between 2 and 4) turned
+    -2 degrees about the body centre: from frame 3 the body turns +2 degrees where it stands.
+    Had the step before the hand-over stood in for it, frame 4 would be at (240, -330, 0)."""
+    a, b = (0, 2, 4), (1, 3, 5)
+    at4 = turned(FEET, -2.0)
+    f0 = [(x + 20.0, y) if i in a else (x, y) for i, (x, y) in enumerate(FEET)]
+    f2 = [FEET[i] if i in a else (2 * FEET[i][0] - at4[i][0], 2 * FEET[i][1] - at4[i][1]) for i in range(6)]
+    f4 = [(x - 20.0, y) if i in a else at4[i] for i, (x, y) in enumerate(FEET)]
+    snaps = [snap(0, f0, up=b), snap(2, f2, up=b), snap(4, f4, up=a)]
+    src = ReplaySource(write(tmp_path / "half.mcap", BOARD_DESCRIBE, snaps), world.load("wall"))
+    want = [(200.0, -330.0, 0.0), (220.0, -330.0, 0.0), (230.0, -330.0, math.radians(2.0))]
+    assert poses(src) == [pytest.approx(w, abs=1e-9) for w in want]
+    # Three frames apart the hand-over's frame is not known: the step before stands in (20 mm on).
+    snaps[2]["frame"] = 5
+    src = ReplaySource(write(tmp_path / "gap3.mcap", BOARD_DESCRIBE, snaps), world.load("wall"))
+    assert poses(src)[2] == pytest.approx((240.0, -330.0, 0.0), abs=1e-9)
+
+
 def test_the_start_is_the_first_side_readings_on_the_followed_side(tmp_path):
     # the right wall followed: the recording says so; its right pair first read 100 and 110 mm
     right = [None, None, None, 100.0, 110.0]
@@ -122,8 +148,8 @@ def test_the_simulators_own_path_from_its_feet(tmp_path):
     rep = ReplaySource(write(tmp_path / "sim.mcap", {**described, "source": "virtual"}, snaps), world.load("wall"))
     assert poses(rep) == [pytest.approx(t, abs=1e-6) for t in truth]
     # Every other frame, as a board streams at 25 a second: where a stance changes hands between
-    # two snapshots no foot is down in both, and the gait's last step stands in for that one
-    # (without it the body fell 2 frames behind every half cycle: 56 mm over these 30 s, 1.4 m).
+    # two snapshots no foot is down in both, and the frame between is rebuilt (without it the body
+    # fell 2 frames behind every half cycle: 56 mm over these 30 s, 1.4 m).
     rep = ReplaySource(
         write(tmp_path / "half.mcap", {**described, "source": "virtual"}, snaps[::2]), world.load("wall")
     )

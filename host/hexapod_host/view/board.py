@@ -83,7 +83,7 @@ class BoardSource(Source):
         if legs is None or t["frame"] <= self._odometry_frame:  # limp, or the board started over
             self.odometry.lose()
         if legs is not None:
-            self._at = self.odometry.step(legs["legs"])
+            self._at = self.odometry.step(legs["legs"], t["frame"])
         self._odometry_frame = t["frame"]
 
     def _ask_board(self, reply_s):
