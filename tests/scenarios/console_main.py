@@ -3,16 +3,17 @@ the select.poll reader, on the stub board (scenarios.console_rig). These print w
 prints (main's notices, the console's replies on stdout): run them through rt.run."""
 
 import _stub_clock as clock
+import _stub_serial
 import console
 import main
 from scenarios.console_rig import Board
 
 
-class CtrlC(console.BufferReader):
+class CtrlC(_stub_serial.BufferReader):
     """A reader holding `get 1` that raises KeyboardInterrupt (Ctrl-C) at its read number after + 1."""
 
     def __init__(self, after):
-        console.BufferReader.__init__(self, b"get 1\n")
+        _stub_serial.BufferReader.__init__(self, b"get 1\n")
         self.after = after
         self.calls = 0
 
@@ -20,7 +21,7 @@ class CtrlC(console.BufferReader):
         self.calls += 1
         if self.calls > self.after:
             raise KeyboardInterrupt
-        return console.BufferReader.read_byte(self)
+        return _stub_serial.BufferReader.read_byte(self)
 
 
 def ctrl_c(on_exit):

@@ -9,6 +9,7 @@ one CPython process, starts where the VM's fresh process does. The sonars stand 
 import _stub_clock as clock
 import _stub_i2c
 import _stub_pins
+import _stub_serial
 import console
 import main
 import stub_board
@@ -39,7 +40,7 @@ class Board:
         self.sonar = stub_board.sonar_models(board, SONAR_MM10)
         self.r = main.build(clock=clock)
         self.robot = self.r.robot
-        self.reader = console.BufferReader()
+        self.reader = _stub_serial.BufferReader()
         self.replies = []
         self.con = console.start(self.r, self.reader, None, out=self.out)
 

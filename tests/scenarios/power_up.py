@@ -4,19 +4,19 @@ board file's "boot" setting; what the PCA9685 models put out before anyone types
 import os
 
 import _stub_clock as clock
+import _stub_serial
 import calstore
-import console
 import main
 import stub_board
 from scenarios.calstore import cal_text
 
 
-class Lines(console.BufferReader):
+class Lines(_stub_serial.BufferReader):
     """Console input fed line by line, one after each `every` frames (a maker typing); it also
     watches the PCA9685 models once a frame (the console polls it once a frame)."""
 
     def __init__(self, lines, every, table, chips):
-        console.BufferReader.__init__(self, b"")
+        _stub_serial.BufferReader.__init__(self, b"")
         self.lines = list(lines)
         self.every = every
         self.table = table
@@ -35,7 +35,7 @@ class Lines(console.BufferReader):
             self.frame += 1
             if self.lines and self.frame % self.every == 0:
                 self.feed(self.lines.pop(0).encode() + b"\n")
-        return console.BufferReader.read_byte(self)
+        return _stub_serial.BufferReader.read_byte(self)
 
     def watch(self):
         started = 0

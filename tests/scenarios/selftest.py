@@ -7,6 +7,7 @@ calibration file with a flipped byte. Runs on CPython and in the MicroPython VM.
 import _stub_clock as clock
 import _stub_i2c
 import _stub_pins
+import _stub_serial
 import calstore
 import console
 import main
@@ -39,7 +40,7 @@ class Board:
             self.fs.files[calstore.FILE] = cal_text(rows(board)).replace("2 femur 0", "2 femur 7")
         self.r = main.build(clock=clock)
         self.robot = self.r.robot
-        self.reader = console.BufferReader()
+        self.reader = _stub_serial.BufferReader()
         self.replies = []
         self.con = console.start(self.r, self.reader, self.fs, self.fs.open, out=self.replies.append)
         self.frames = 0

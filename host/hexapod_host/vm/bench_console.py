@@ -13,6 +13,7 @@ from array import array
 import _stub_clock as clock
 import _stub_i2c
 import _stub_pins
+import _stub_serial
 import console
 import main
 from _stub_i2c import shared_bus
@@ -33,7 +34,7 @@ for c in boards.load("pico")["pca9685"]["chips"]:
     bus.attach(PCA9685Model(c["address"], osc_hz=c["osc_hz"]))
 r = main.build(clock=clock)
 r.robot.frame = tick.FrameBuffer()
-reader = console.BufferReader()
+reader = _stub_serial.BufferReader()
 con = console.start(r, reader, None, out=lambda line, more=None: None)  # tagged: out(tag, line)
 
 # (setup lines, timed line): the timed line runs REPEATS times from the same state.
