@@ -12,11 +12,12 @@ import _stub_pins
 import _stub_serial
 import console
 import main
+import standing
 import stub_board
 from scenarios.rig import servo_state
 
 from hexapod import board as boards
-from hexapod import robotcal, tick
+from hexapod import robotcal
 
 SONAR_MM10 = [3000 + 1000 * k for k in range(5)]  # each sonar's wall, tenths of a mm
 
@@ -106,10 +107,9 @@ class Board:
         return servo_state(self.robot, self.con)
 
     def stand(self):
-        """say('stand') and run frames until the robot is STANDING."""
+        """say('stand') and run frames until the robot is STANDING (standing.until_standing's bound)."""
         self.say("stand")
-        while self.robot.mode != tick.STANDING:
-            self.frame()
+        standing.until_standing(self.robot, lambda n: self.frame())
 
 
 def steps(todo):

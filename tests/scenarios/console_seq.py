@@ -19,6 +19,7 @@ Frame bounds, from the robot file (robots/default.py) and the core's speeds:
 """
 
 import console
+import standing
 from scenarios import console_rig
 from scenarios.rig import servo_state
 
@@ -46,10 +47,7 @@ def sit_after_tibia_zero(frames=200):
     leg 2's pulses, the console's other lines]."""
     b = Board()
     replies = [b.say("stand")]
-    n = 0
-    while b.robot.mode != tick.STANDING and n < POSTURE_FRAMES:
-        b.frame()
-        n += 1
+    n = standing.until_standing(b.robot, lambda n: b.frame(), POSTURE_FRAMES)
     replies.append(b.say("joint 2 tibia 0"))
     replies.append(b.say("sit"))
     took = -1
@@ -75,9 +73,7 @@ def held_notice():
     stray REPL edit would): the console says so once, not every frame. Returns [notices, held
     frames, notices after the map is put back and the frame is held again]."""
     b = Board()
-    b.say("stand")
-    while b.robot.mode != tick.STANDING:
-        b.frame()
+    b.stand()
     s = b.robot.servos[4]  # leg 2 femur
     lo = s.min_us
     s.min_us = b.robot.pulses[4] + 50

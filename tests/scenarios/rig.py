@@ -1,5 +1,7 @@
 """A robot on a frame buffer with its own 20 ms clock, and the one way to stand it up."""
 
+import standing
+
 import robots.default as d
 from hexapod import geometry, tick
 
@@ -16,12 +18,9 @@ def unguarded_geometry():
 
 
 def stand(robot, now=0):
-    """Stand the robot up and tick it every 20 ms from now until it is STANDING; return the clock after."""
-    robot.stand_up()
-    while robot.mode != tick.STANDING:
-        robot.tick(now)
-        now += TICK_MS
-    return now
+    """Stand the robot up and tick it every 20 ms from now until it is STANDING (standing.stand:
+    RuntimeError if it has not within its frame bound); return the clock after."""
+    return now + TICK_MS * standing.stand(robot, lambda n: robot.tick(now + TICK_MS * n))
 
 
 def servo_state(robot, con):

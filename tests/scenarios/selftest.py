@@ -11,6 +11,7 @@ import _stub_serial
 import calstore
 import console
 import main
+import standing
 import stub_board
 from scenarios.calstore import StubFS, cal_text
 from scenarios.rig import servo_state
@@ -74,8 +75,7 @@ class Board:
 
 def stand(b):
     b.say("stand", "ok mode")
-    while b.robot.mode != tick.STANDING:
-        b.frame()
+    standing.until_standing(b.robot, lambda n: b.frame())
     for _ in range(3):
         b.frame()
 

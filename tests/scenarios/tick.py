@@ -1,5 +1,6 @@
 """The control tick on a default robot: pulses, overruns, refusals, posture moves, clamps."""
 
+import standing
 from scenarios.rig import Rig
 
 from hexapod import tick
@@ -139,19 +140,21 @@ def stand_up_from_anywhere():
             -8000,
         ]
     )
-    robot.stand_up()
-    prev_a = None
-    prev_f = None
+    prev = [None, None]  # angles and feet of the frame before
     steps = []
-    while robot.mode != tick.STANDING:
+
+    def frame(n):
         rig.run(1)
         feet = [[w.fx[i], w.fy[i], w.fz[i]] for i in range(6)]
-        if prev_a is not None:
-            da = max(abs(robot.angles[k] - prev_a[k]) for k in range(18))
-            df = max(max(abs(feet[i][j] - prev_f[i][j]) for j in range(3)) for i in range(6))
+        a, f = prev
+        if a is not None:
+            da = max(abs(robot.angles[k] - a[k]) for k in range(18))
+            df = max(max(abs(feet[i][j] - f[i][j]) for j in range(3)) for i in range(6))
             steps.append([da, df])
-        prev_a = list(robot.angles)
-        prev_f = feet
+        prev[0] = list(robot.angles)
+        prev[1] = feet
+
+    standing.stand(robot, frame)
     final = [[w.fx[i] - w.nx[i], w.fy[i] - w.ny[i], w.fz[i] - w.ground] for i in range(6)]
     return [steps, final, [robot.faults, robot.ticks]]
 
@@ -163,15 +166,17 @@ def sit_relax_and_height():
     w = rig.w
     rig.stand()
     rows = [[robot.set_height(1000), robot.mode]]
-    n = 0
-    worst = 0
+    worst = [0]
     prev = list(robot.angles)
-    while robot.mode != tick.STANDING:
+
+    def frame(n):
         rig.run(1)
-        n += 1
-        worst = max(worst, max(abs(robot.angles[k] - prev[k]) for k in range(18)))
-        prev = list(robot.angles)
-    rows.append([n, worst, [w.fz[i] >> 4 for i in range(6)]])
+        worst[0] = max(worst[0], max(abs(robot.angles[k] - prev[k]) for k in range(18)))
+        for k in range(18):
+            prev[k] = robot.angles[k]
+
+    n = standing.until_standing(robot, frame)
+    rows.append([n, worst[0], [w.fz[i] >> 4 for i in range(6)]])
     rows.append([robot.walk(1000, 0, 0)])
     rig.run(100)
     robot.stop()
@@ -248,11 +253,11 @@ def steady_tick_heap():
     rows = []
     robot.stand_up()
     rig.run(5)
+    frame = lambda n: rig.run(1)  # noqa: E731 (made before the weighing: a closure is heap)
     gc.collect()
     gc.disable()
     a = gc.mem_alloc()
-    while robot.mode != tick.STANDING:
-        rig.run(1)
+    standing.until_standing(robot, frame)
     stand_bytes = gc.mem_alloc() - a
     gc.enable()
     rows.append(["stand", stand_bytes])
