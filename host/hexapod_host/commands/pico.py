@@ -25,6 +25,15 @@ def _script(path, argv, tmp):
     return out
 
 
+def _with_standing():
+    """The board's flash plus the host's stand-up helper (stubs/micropython/standing.py), for the
+    bench scripts that stand a robot up: an image of its own, so the loop and boot figures still
+    come from exactly what `hexapod flash` puts on a board."""
+    import standing
+
+    return pico.flashed(extra=[(standing.__file__, "standing.py")])
+
+
 def _board(files, fs, **kw):
     """Run files on the emulated Pico; their JSON lines, or UsageError with the board's words."""
     status, out, err, stats = pico.run(files, fs=fs, **kw)
@@ -59,8 +68,9 @@ def bench_tick(args, fs, tmp):
     """The VM's tick bench (vm/bench_tick.py) on the board: every gait, then the wall follower."""
     script = os.path.join(VM_DIR, "bench_tick.py")
     ticks = args.ticks
-    gaits, _ = _board([_script(script, ("", ticks, 1, "gaits", 20000), tmp)], fs)
-    wall, _ = _board([_script(script, ("", ticks, 1, "wall", 20000), tmp)], fs)
+    with _with_standing() as bench_fs:
+        gaits, _ = _board([_script(script, ("", ticks, 1, "gaits", 20000), tmp)], bench_fs)
+        wall, _ = _board([_script(script, ("", ticks, 1, "wall", 20000), tmp)], bench_fs)
     return {
         "bench": "tick",
         "gaits": gaits,
@@ -81,11 +91,10 @@ PARTS = """
 import time, gc, main
 from array import array
 r = main.build()
-r.robot.stand_up()
+import standing  # after the build: code loaded before the core's would move it (its figures)
+asked = r.robot.stand_up()
 t = time.ticks_ms()
-while r.robot.mode != 3:
-    t += 20
-    r.robot.tick(t)
+t += 20 * standing.until_standing(r.robot, lambda n: r.robot.tick(t + 20 * (n + 1)), None, asked)
 r.robot.walk(1200, 0, 0)
 N = 50
 ping = array("i", [0] * N)
@@ -173,7 +182,9 @@ def bench_frame(args, fs, tmp):
         # Every line the board wrote parses (ValueError naming the field otherwise); the parts
         # below are the default scenario's (no console in them), kept so both give the same keys.
         result["telemetry_lines"] = len([telemetry.parse(line) for line in lines if telemetry.is_telemetry(line)])
-    parts, _ = _board([_write(tmp, "parts.py", PARTS)], fs, devices=pico.devices(distances=list(pico_loop.DISTANCES)))
+    devices = pico.devices(distances=list(pico_loop.DISTANCES))
+    with _with_standing() as parts_fs:
+        parts, _ = _board([_write(tmp, "parts.py", PARTS)], parts_fs, devices=devices)
     result["parts"] = parts[-1]
     return result
 

@@ -51,17 +51,15 @@ def _number(name, text, places, limit, unit):
 
 def record(gait_name, speed, turn, cycles=2):
     """Walk the default robot in the core; per tick: feet (mm, body frame) and swing flags."""
+    import standing
+
     import robots.default as robot_file
     from hexapod import geometry, tick
     from hexapod.gait import gait_number
 
     g = geometry.load(robot_file)
     robot = tick.Robot(g, tick.default_servos(g), tick.FrameBuffer())
-    t = 0
-    robot.stand_up()
-    while robot.mode != tick.STANDING:
-        robot.tick(t)
-        t += 20
+    t = 20 * standing.stand(robot, lambda n: robot.tick(20 * n))
     robot.set_gait(gait_number(gait_name))
     robot.walk(speed, 0, turn)
     w = robot.walker

@@ -15,6 +15,8 @@ import math
 import os
 import sys
 
+import standing
+
 from hexapod import geometry as geometry_mod
 from hexapod import tick
 from hexapod.gait import NAMES, RIPPLE, TICK_MS, TRIPOD, WAVE, gait_number
@@ -64,10 +66,8 @@ class Run:
     def stand(self):
         """Stand the core up (kinematically), then put the model in that stance and let it settle."""
         r = self.robot
-        r.stand_up()
-        while r.mode != tick.STANDING:
-            self.now += TICK_MS
-            r.tick(self.now)
+        now = self.now
+        self.now += TICK_MS * standing.stand(r, lambda n: r.tick(now + TICK_MS * (n + 1)))
         self.settle()
 
     def settle(self):

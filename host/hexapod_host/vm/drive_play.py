@@ -10,6 +10,8 @@
 # walked; margin the body centre's distance inside the planned stance feet's polygon (0.1 mm,
 # hexapod.stability). And "R line what code" for a command the robot refused, "F code" for a frame
 # held back, "E" at the end. COMMANDS rows: (line, t_ms, vx, vy, yaw, gait or -1, stop).
+import standing
+
 import robots.default as d
 from hexapod import geometry, tick
 from hexapod.body import FINE_SHIFT
@@ -37,11 +39,7 @@ def play(commands, gait, ticks):
     g = geometry.load(d)
     robot = tick.Robot(g, tick.default_servos(g), tick.FrameBuffer())
     w = robot.walker
-    now = 0
-    robot.stand_up()
-    while robot.mode != tick.STANDING:
-        robot.tick(now)
-        now += 20
+    now = 20 * standing.stand(robot, lambda n: robot.tick(20 * n))
     if gait != robot.gait:
         code = robot.set_gait(gait)
         if code:

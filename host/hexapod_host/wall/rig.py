@@ -17,10 +17,10 @@ cannot tell: it sees pins, a clock and a bus.
 import _stub_clock as clock
 import hcsr04_model
 import main
+import standing
 import stub_board
 
 from hexapod import board as boards
-from hexapod import tick
 
 NO_ECHO = 0  # a distance of 0 from the simulator: nothing heard
 
@@ -80,13 +80,8 @@ class Rig:
         set_distances(self.sonars, d)
 
     def stand(self):
-        """Stand up; returns the frames it took (the sonars ping all along)."""
-        self.robot.stand_up()
-        n = 0
-        while self.robot.mode != tick.STANDING and n < 1000:
-            self.step()
-            n += 1
-        return n
+        """Stand up; returns the frames it took (the sonars ping all along), RuntimeError past 1000."""
+        return standing.stand(self.robot, lambda n: self.step(), 1000)
 
     def step(self):
         """One 20 ms frame of the real loop; returns the tick's code."""
