@@ -665,11 +665,12 @@ class Console:
         try:
             return consolecal.command(self, word, args)
         finally:
-            if word == "boot" and not self.keep_cal:
-                release(CAL)
-            elif not self.keep_cal:
-                clock = self.runner.clock
-                self._cal_until = clock.ticks_add(clock.ticks_ms(), CAL_KEEP_MS)
+            if not self.keep_cal:
+                if word == "boot":
+                    release(CAL)
+                else:
+                    clock = self.runner.clock
+                    self._cal_until = clock.ticks_add(clock.ticks_ms(), CAL_KEEP_MS)
 
     def _cal_over(self):
         """True when the jog session is over: CAL_KEEP_MS without a jog or calibration command, or

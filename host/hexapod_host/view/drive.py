@@ -42,7 +42,6 @@ BUTTONS = ("stand", "sit", "relax", "stop", "wall off")
 PAD_DEADZONE = 0.15  # a stick within this of centre is centred (worn sticks rest off zero)
 PAD_STALE = 12  # renewals (RENEW_S apart: 3 s) with no report from an off-centre pad: the page went quiet
 WALL_CM = (4.0, 50.0)  # the console's set point range
-HEIGHT_STEP_MM = 0.1  # the console's height is in tenths of a mm
 
 
 class NotOwner(Exception):
@@ -50,11 +49,11 @@ class NotOwner(Exception):
 
 
 class Driver:
-    def __init__(self, source, heights_mm=None):
+    def __init__(self, source):
         self.source = source
         self.drivable = bool(getattr(source, "drivable", False))
         # The robot file's body height range (mm): the console's `height` takes nothing else.
-        self.heights_mm = heights_mm if heights_mm is not None else robot_heights_mm()
+        self.heights_mm = robot_heights_mm()
         self.owner = None  # the client id that may drive
         self.keys = set()  # keys held
         self.stick = None  # (x, y) in -1..1 while the stick is held
@@ -266,7 +265,7 @@ def _number(v, lo):
     return isinstance(v, (int, float)) and not isinstance(v, bool) and lo <= v <= 1.0
 
 
-def robot_heights_mm(robot=None):
-    """(lowest, highest) body height the robot file allows, mm."""
-    g = geometry.load(robot if robot is not None else robots.default)
+def robot_heights_mm():
+    """(lowest, highest) body height robots/default.py allows, mm (the robot the view draws)."""
+    g = geometry.load(robots.default)
     return (g.body_height_min / 10, g.body_height_max / 10)

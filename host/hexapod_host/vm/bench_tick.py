@@ -26,7 +26,6 @@ HIST = array("H", bytes(2 * HIST_US))  # tick durations, one bucket per microsec
 if len(sys.argv) > 1 and sys.argv[1]:
     sys.path.insert(0, sys.argv[1])
 
-
 import robots.default as robot_file  # noqa: E402
 from hexapod import geometry, tick  # noqa: E402
 from hexapod.gait import NAMES  # noqa: E402
