@@ -34,14 +34,15 @@ SWING_EASE = const(300)
 # steady walk's swings are never shortened (they were 0.3 mm a swing, and the feet drifted out).
 LIFT_SLACK = const(8)
 EASE_DEAD = const(16)
+# gain_steps' swing ticks a job step: ~0.65 ms on the emulated Pico (80 us a tick), under one of the
+# servo guard's IK solves (~0.8 ms), the other steps a configure job takes.
+GAIN_TICKS = const(8)
 
 
-def swing_budget(walker):
-    """walker.stroke_gain (Q15) and swing_max (0.1 mm, per leg) for its clock and srho in force, and
-    walker.band: the coxa axes' x, y (0.1 mm), then band_in, band_out (0.1 mm^2) a leg each."""
-    w = walker.clock.swing_ticks
-    st = walker.clock.stance_ticks
-    s = walker._stroke
+def gain_steps(walker, w, s):
+    """The stroke's largest share of one tick in a w-tick swing, times w (Q15), into walker.next_gain
+    (s: two words of scratch): a generator yielding every GAIN_TICKS ticks, a configure job's steps
+    (a gait change on the move then finds it made: 3.4 ms of a Pico frame for the ripple's swing)."""
     last = 0
     best = 0
     for u in range(1, w + 1):
@@ -49,7 +50,21 @@ def swing_budget(walker):
         if s[0] - last > best:
             best = s[0] - last
         last = s[0]
-    g = best * w
+        if u % GAIN_TICKS == 0:
+            yield
+    walker.next_gain = best * w
+
+
+def swing_budget(walker, g=0):
+    """walker.stroke_gain (Q15, gain_steps' for its clock's swing; g when given) and swing_max (0.1 mm,
+    per leg) for its clock and srho in force, and walker.band: the coxa axes' x, y (0.1 mm), then
+    band_in, band_out (0.1 mm^2) a leg each."""
+    w = walker.clock.swing_ticks
+    st = walker.clock.stance_ticks
+    if not g:
+        for _ in gain_steps(walker, w, walker._stroke):
+            pass
+        g = walker.next_gain
     walker.stroke_gain = g
     for i in range(6):
         r = walker.srho[i] + LIFT_SLACK

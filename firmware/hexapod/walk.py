@@ -31,7 +31,7 @@ from micropython import const
 
 from hexapod import gaitswitch
 from hexapod.body import FINE, FINE_SHIFT, Body
-from hexapod.budget import in_budget, off_band, swing_budget
+from hexapod.budget import gain_steps, in_budget, off_band, swing_budget
 from hexapod.fixmath import ONE, cos, isqrt, mul_q15, sin
 from hexapod.gait import TICK_MS, TRIPOD, GaitClock, actual_cycle_ms, check_cycle_ms, check_gait, swing_stance_ticks
 from hexapod.limits import (  # largest |vx|, |vy| (0.1 mm/s) and |yaw rate| (cdeg/s) accepted
@@ -148,6 +148,7 @@ class Walker:
         self.next_cycle_ms = 1000
         self.next_lift = 300
         self.next_rho = [0] * 6
+        self.next_gain = 0  # budget.gain_steps' for the pending change's swing, made by its configure job
         self._shape = [0, 0]
         self._stroke = [0, 0]  # swing_stroke's (stroke, carry) fractions
         self._plan = [0, 0]  # where the swing's plan puts a foot, fine
@@ -209,13 +210,15 @@ class Walker:
         self.check_step(step)
         guard = None
         limit = self.geometry.servo_step
+        ticks = swing_stance_ticks(gait, cycle_ms, [0, 0])
         if limit:
             body = self.pose_body if self.pose_body is not None else Body(self.geometry)
-            ticks = swing_stance_ticks(gait, cycle_ms, [0, 0])
             guard = servo_steps(self, body, ticks[0], ticks[1], lift, limit, self._caps, self._srho, self._peak)
-        return self._configure(guard, gait, cycle_ms, lift, step, rho, strict)
+        # (made here, with its scratch: a job's ticks after its first allocate nothing)
+        gain = gain_steps(self, ticks[0], ticks)
+        return self._configure(guard, gain, gait, cycle_ms, lift, step, rho, strict)
 
-    def _configure(self, guard, gait, cycle_ms, lift, step, rho, strict):
+    def _configure(self, guard, gain, gait, cycle_ms, lift, step, rho, strict):
         # The guard's answer from the robot file's table (hexapod.reach.table_servo), else its solves.
         t = self.table
         if guard is not None and (t is None or not table_servo(t, self, gait, cycle_ms, lift, step, rho)):
@@ -224,6 +227,8 @@ class Walker:
                 self._caps[i] = rho[i] if rho[i] < step else step
             for _ in guard:
                 yield
+        for _ in gain:
+            yield
         self.configured = self.take(gait, cycle_ms, lift, step, rho, strict, guard is not None)
 
     def take(self, gait, cycle_ms, lift, step, rho, strict, guarded):
@@ -268,7 +273,7 @@ class Walker:
             self.srho[i] = self.next_srho[i]
         self.phase = 0
         self.pending = 0
-        swing_budget(self)
+        swing_budget(self, self.next_gain)
         self._rescale()
         if self.state != STOPPED:
             gaitswitch.phase_in(self)
