@@ -51,11 +51,14 @@ def pico_calls(fs, *calls):
 @pytest.mark.skipif(pico.missing() is not None, reason=pico.missing() or "")
 def test_rescale_equals_the_plain_form_on_the_emulated_pico():
     with pico.flashed(extra=on_board("lcg.py", "rescale.py")) as fs:
-        rescaled, aimed, sined = pico_calls(fs, "rescales(300, True)", "aims(1000)", "sines(3000)")
+        rescaled, aimed, sined, rooted = pico_calls(
+            fs, "rescales(300, True)", "aims(1000)", "sines(3000)", "roots(3000)"
+        )
     check(rescaled, 300)
     count, odd, differ = aimed
     assert count == 1000 and odd > 100 and differ == 0, aimed
     assert sined == (3000, 0, True)
+    assert rooted[0] > 20000 and rooted[1:] == (0, True), rooted  # on Thumb: 32-bit machine words
 
 
 def test_aim_equals_the_plain_form_in_both_runtimes(both_runtimes):
@@ -69,6 +72,14 @@ def test_aim_equals_the_plain_form_in_both_runtimes(both_runtimes):
 # every table step and its edges, both signs, whole turns away, up to the 2**29 the docstrings allow.
 def test_viper_sine_equals_fixmath_on_the_vm(mp):
     assert mp.with_heapsize("1m").call("scenarios.rescale:sines", 20000) == (20000, 0, True)
+
+
+# hexapod/_fixmath_viper.py's isqrt (gaitswitch's and stability's root on a MicroPython with viper: the
+# rooms and the support margin of a gait change on the move, in the tick) and fixmath's: the floor root.
+def test_isqrt_is_the_floor_root_in_both_runtimes_and_viper_in_the_vm(both_runtimes):
+    cp, mp = both_runtimes.call("scenarios.rescale:roots", 20000)
+    assert cp[1:] == (0, False) and mp[1:] == (0, True), (cp, mp)
+    assert cp[0] == mp[0] > 150000  # both roots on every n (CPython runs the twin's source as Python)
 
 
 # Walker.command checks its own input unless told its caller just did (Robot.walk, which checks

@@ -18,13 +18,15 @@ KINDS = ("gait", "pose", "height", "params")
 
 
 @pytest.mark.parametrize("kind", KINDS)
-def test_a_configure_in_the_slack_solves_at_most_two_a_tick_and_ends_as_one_made_at_once(both_runtimes, kind):
+def test_a_configure_in_the_slack_solves_two_a_tick_one_walking_and_ends_as_one_made_at_once(both_runtimes, kind):
     cp, mp = both_runtimes.call("scenarios.configure:spread", kind)
     assert cp == mp
     code, asked, worst, ticks, job_code, after, sync, sync_code, travel = cp
     assert code == tick.OK and job_code == tick.OK and sync_code == tick.OK
     assert asked == 0  # not even the feet where they stand: all of it in the slack
-    assert worst == 2  # never more than two solves a tick (and the work does go on)
+    # Never more than two solves a tick standing, one walking (the gait, asked on the move: a walking
+    # frame has room for one beside a walk command; docs/pico.md), and the work does go on.
+    assert worst == (1 if kind == "gait" else 2)
     assert ticks > 100  # thousands of solves: spread over many frames
     assert after == sync  # reach discs, servo radii, peak, gait, cycle, pose, ground: the same integers
     if kind == "gait":

@@ -6,25 +6,42 @@ A change asked while walking goes in three steps (docs/motion.md, "Changing gait
    and servo-speed radius), the old gait walks on with its steps aimed inside three quarters of
    the new disc (aim_inside) until fits(): a foot far behind would otherwise start the new gait's
    shorter swing from there and turn its joints faster than the servo budget.
-2. Then no new swing starts; at the first tick with every foot down the new clock is taken.
+2. Then no new swing starts; at the first tick with every foot down the new clock is taken
+   (walker._apply, its stroke gain made by the configure job: budget.gain_steps), the swing budget
+   and the feet's rooms the next tick and the slot the one after (walker.pending ROOMS, _SLOT): one
+   part a tick, so that none takes a Pico frame past 6 ms (docs/pico.md). The feet stay down and
+   the body walks on.
 3. phase_in: the new clock starts at the slot whose lift order suits the feet, and the body walks
    slower (walker.slow, permille of the command) until every leg has begun its first new swing
    (walker.settling ticks, under one cycle), just enough that no stance foot reaches the edge of
    its disc before it lifts. The new swings aim for the full command.
 
 Units as in hexapod.walk: feet fine (0.1 mm << 4), discs 0.1 mm, rooms in ticks. Off the steady
-tick: each runs once a change (phase_in on its first tick), fits once a tick while fitting.
+tick: each runs once a change, fits once a tick while fitting.
 """
 
+import sys
 from array import array
 
 from micropython import const
 
 from hexapod.body import FINE, FINE_SHIFT
+from hexapod.budget import swing_budget
 from hexapod.fixmath import isqrt
 from hexapod.gait import TICK_MS
 
+# fixmath's root as machine code where MicroPython has viper (hexapod/_fixmath_viper.py, equal for
+# every n fixmath allows: tests/test_rescale.py): a change's rooms take six in one tick.
+if sys.implementation.name == "micropython":
+    try:  # noqa: SIM105 (no contextlib on MicroPython)
+        from hexapod._fixmath_viper import isqrt  # noqa: F811
+    except Exception:  # no viper emitter on this build: the plain root stays
+        pass
+
 ROOM_MAX = const(1000000)  # a foot that does not move has room without end (ticks)
+# walker.pending: 1 while a change waits for every foot down, then its last two parts on the move.
+ROOMS = const(2)  # the settings taken: the feet's rooms next tick
+_SLOT = const(3)  # the rooms made: the slot next tick
 # The stance's slack (0.1 mm) and the ramp's steps a tick (0.1 mm/s, cdeg/s), copied by hand.
 _SLACK = const(16)  # hexapod.walk.STANCE_SLACK
 _SPEED_STEP = const(40)  # hexapod.walk.SPEED_STEP
@@ -61,10 +78,14 @@ def begin(w):
 
 
 def scale(w):
-    """walker._rescale; while fitting, the steps aimed inside the pending change's discs too."""
-    w._rescale()
+    """walker._rescale; while fitting, the steps aimed inside the pending change's discs too (a new
+    command while the slot waits makes the rooms again: they are the command's)."""
+    if w.pending == _SLOT:
+        w.pending = ROOMS
     if w.fitting:
         aim_inside(w)
+    else:
+        w._rescale()
 
 
 def goal(w):
@@ -87,7 +108,18 @@ def after_tick(w, airborne):
         w.fitting = 0  # from now on no new swing: the change waits for every foot down
         w._rescale()
     if w.pending and not w.fitting and not airborne:
-        w._apply()
+        # One part a tick (a Pico frame has room for one): the settings, then the feet's rooms, then
+        # the slot; no foot lifts meanwhile (walker._maybe_lift), the body walks on.
+        if w.pending == 1:
+            w._apply()  # pending ROOMS on the move
+        elif w.pending == ROOMS:
+            swing_budget(w, w.stroke_gain)  # (no swing before the next tick's lifts)
+            for i in range(6):
+                w._room[i] = stance_room(w, i)  # phase_in's, for the feet where they stand
+            w.pending = _SLOT
+        else:
+            phase_in(w, 1)
+            w.pending = 0
 
 
 def fits(w):
@@ -110,13 +142,19 @@ def fits(w):
 
 
 def aim_inside(w):
-    """The command scaled (again) to both the gait walked and three quarters of the pending one's
-    discs; the stance discs of the gait walked are kept, so no foot now outside the new disc holds
-    the body."""
+    """The command scaled to both the gait walked and three quarters of the pending one's discs (one
+    walker._rescale); the stance discs are the gait walked's (as its _rescale leaves them), so no
+    foot now outside the new disc holds the body."""
     srho = w.srho
+    rho = w.rho
     keep = w._keep
     for i in range(6):
-        keep[i] = w.stance_rho[i]
+        # walker._rescale's stance disc for the gait walked: its step, reach and servo discs + slack.
+        lim = rho[i] if rho[i] < w.step else w.step
+        if 0 < srho[i] < lim:
+            lim = srho[i]
+        lim += _SLACK
+        keep[i] = lim if lim < rho[i] else rho[i]
         keep[i + 6] = srho[i]
         lim = w.next_rho[i] if w.next_rho[i] < w.next_srho[i] else w.next_srho[i]
         # Three quarters: the feet then fit with room to spare for the new lift order.
@@ -129,18 +167,16 @@ def aim_inside(w):
         srho[i] = keep[i + 6]
 
 
-def phase_in(w):
-    """Start the new clock (every foot down) at the slot that lets the body walk fastest.
+def phase_in(w, old):
+    """Start the new clock (every foot down) at the slot that lets the body walk fastest, with the
+    rooms (walker._room) made `old` ticks ago by after_tick (the body walked on meanwhile).
 
     Each stance foot may still move room[i] ticks at the command before it leaves its stance disc;
     at phase p leg i lifts in r = start[i] - p ticks (mod the cycle). The slot chosen has the largest
     slow = min(1000, room * 1000 // r) over the legs; the body's goal is slow/1000 of the command
     for the ticks until the last leg has lifted (settling, at most one cycle)."""
     clock = w.clock
-    room = w._room
-    for i in range(6):
-        room[i] = stance_room(w, i)
-    best = _best_slot(w, 0)
+    best = _best_slot(w, old)
     if best < 1000:
         # The ramp takes `lag` ticks to slow from the speed walked to the goal, the feet moving on
         # faster meanwhile: try again with that much less room (the slot may change).
@@ -151,7 +187,7 @@ def phase_in(w):
             d = (d if d >= 0 else -d) // (_YAW_STEP if j == 2 else _SPEED_STEP) + 1
             if d > lag:
                 lag = d
-        best = _best_slot(w, lag)
+        best = _best_slot(w, lag + old)
     cycle = clock.cycle_ticks
     last = 0
     for i in range(6):

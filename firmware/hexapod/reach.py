@@ -244,7 +244,7 @@ def swing_point(walker, body, i, u, v, swing, lift, tmp, buf):
 # The table's fields (lengths 0.1 mm, ms, cdeg a tick):
 #     ROBOT = robot_key(geometry) of the robot file it was made from
 #     DISCS = ((height, lift, (rho x6)), ...)
-#     SERVO = ((gait, cycle_ms, lift, step, height, (rho x6), peak, (srho x6)), ...)
+#     SERVO = ((gait, cycle_ms, lift, step, height, (rho x6), peak, (srho x6), stroke gain), ...)
 
 
 def robot_key(geometry):
@@ -285,8 +285,9 @@ def table_discs(table, body, ground, lift, out):
 
 
 def table_servo(table, walker, gait, cycle_ms, lift, step, rho):
-    """The servo radii and the no-step peak into walker._srho and _peak for the walker's level
-    pose_body at its ground; False when the table has no entry for exactly these settings."""
+    """The servo radii, the no-step peak and the swing's stroke gain into walker._srho, _peak and
+    next_gain (hexapod.budget.gain_steps') for the walker's level pose_body at its ground; False
+    when the table has no entry for exactly these settings."""
     body = walker.pose_body
     if body is None or not body.level:
         return False
@@ -300,6 +301,7 @@ def table_servo(table, walker, gait, cycle_ms, lift, step, rho):
                     same = False
             if same:
                 walker._peak[0] = row[6]
+                walker.next_gain = row[8]
                 for i in range(6):
                     walker._srho[i] = row[7][i]
                 return True

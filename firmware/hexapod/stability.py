@@ -6,9 +6,19 @@ is the smallest distance from the point (px, py) to a polygon edge, positive ins
 negative outside, in 0.1 mm. Fewer than three feet down has no support: NO_SUPPORT.
 """
 
+import sys
+
 from micropython import const
 
 from hexapod.fixmath import isqrt
+
+# fixmath's root as machine code where MicroPython has viper (hexapod/_fixmath_viper.py, equal for
+# every n fixmath allows: tests/test_rescale.py): the margin takes one an edge each tick a change settles.
+if sys.implementation.name == "micropython":
+    try:  # noqa: SIM105 (no contextlib on MicroPython)
+        from hexapod._fixmath_viper import isqrt  # noqa: F811
+    except Exception:  # no viper emitter on this build: the plain root stays
+        pass
 
 NO_SUPPORT = const(-1000000)
 

@@ -39,6 +39,7 @@ from hexapod.walk import SERVO_SPEED, SPEED_MAX, STEP_MAX, STOPPED, YAW_RATE_MAX
 
 # isort: split
 # After walk: compiling walk.py from source needs the VM's room in one piece (a 256 KB heap).
+from hexapod.gaitswitch import ROOMS
 from hexapod.stability import NO_SUPPORT, support_margin
 
 # The viper twins (docs/viper.md): the frame and the pose check compiled by the viper emitter where
@@ -86,9 +87,12 @@ WAKE_GROUP = (0, 1, 2, 2, 1, 0)  # each leg's group (legs 1 RF .. 6 LF)
 RHO_MIN = const(50)  # a leg needs a reach disc this wide (0.1 mm) to walk
 # A configure asked with wait=False (the console's) runs in the frames' slack: this many of its IK
 # solves (hexapod.reach's steps, the posture trial's) after each tick's frame. On an emulated Pico
-# a solve there costs ~0.6-0.75 ms, a frame with a walk command ~4.2 ms before them: two keep it
-# under 6 ms (three made 6.4 ms: hexapod pico bench frame --scenario drive, docs/pico.md).
+# a step there costs ~0.6-1.2 ms; a standing frame ~2.4 ms: two keep it near 5 ms. Walking, a frame
+# is 3.1-4.1 ms and a walk command asked in it 1.3-1.7 ms more: one step (6.2-6.6 ms with two,
+# hexapod pico bench frame --scenario drive, docs/pico.md), and none in the ticks that take a gait
+# change on the move (gaitswitch.after_tick's parts, each ~1.5 ms).
 JOB_STEPS = const(2)
+_JOB_STEPS_WALKING = const(1)
 
 
 def describe(code):
@@ -244,7 +248,7 @@ class Robot:
 
     def tick(self, now_ms):
         """One 20 ms frame at loop time now_ms; returns OK or the reason the frame was held.
-        A configure under way (wait=False) then takes JOB_STEPS of its IK solves."""
+        A configure under way (wait=False) then takes JOB_STEPS of its IK solves (walking fewer)."""
         # One function for the frame on purpose: each call a tick makes costs ~15-25 us on a
         # Pico (the frame split in three calls took ~60 us of it: hexapod pico bench frame).
         if self._timed:
@@ -290,7 +294,10 @@ class Robot:
             else:
                 code = self._output_plain()
         if self._job is not None:
-            self._work(JOB_STEPS)
+            if m != WALKING:
+                self._work(JOB_STEPS)
+            elif self.walker.pending < ROOMS:
+                self._work(_JOB_STEPS_WALKING)
         return code
 
     def _work(self, n):

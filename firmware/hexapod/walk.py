@@ -142,7 +142,7 @@ class Walker:
         self.state = STOPPED
         self.phase = 0
         self.held = 0  # ticks the body was held still to keep a stance foot in reach
-        self.pending = 0  # 1 while a gait/cycle/lift change waits for all feet down
+        self.pending = 0  # 1 while a gait/cycle/lift change waits for all feet down, then its parts (gaitswitch)
         gaitswitch.init(self)  # goal (the ramp's target), slow, settling, fitting and scratch
         self.next_gait = TRIPOD
         self.next_cycle_ms = 1000
@@ -219,16 +219,18 @@ class Walker:
         return self._configure(guard, gain, gait, cycle_ms, lift, step, rho, strict)
 
     def _configure(self, guard, gain, gait, cycle_ms, lift, step, rho, strict):
-        # The guard's answer from the robot file's table (hexapod.reach.table_servo), else its solves.
+        # The guard's answer and the stroke gain from the robot file's table (hexapod.reach.table_servo),
+        # else the guard's solves and the gain's steps.
         t = self.table
-        if guard is not None and (t is None or not table_servo(t, self, gait, cycle_ms, lift, step, rho)):
-            # No need to look past what the reach and the step allow already.
-            for i in range(6):
-                self._caps[i] = rho[i] if rho[i] < step else step
-            for _ in guard:
+        if guard is None or t is None or not table_servo(t, self, gait, cycle_ms, lift, step, rho):
+            if guard is not None:
+                # No need to look past what the reach and the step allow already.
+                for i in range(6):
+                    self._caps[i] = rho[i] if rho[i] < step else step
+                for _ in guard:
+                    yield
+            for _ in gain:
                 yield
-        for _ in gain:
-            yield
         self.configured = self.take(gait, cycle_ms, lift, step, rho, strict, guard is not None)
 
     def take(self, gait, cycle_ms, lift, step, rho, strict, guarded):
@@ -257,7 +259,10 @@ class Walker:
         if self.state == STOPPED:
             self._apply()
         elif same:
-            self.pending = 0  # nothing the feet would notice: no need to wait (step applies now)
+            # Nothing the feet would notice: no need to wait (step applies now); a change already
+            # taken still phases in (gaitswitch.after_tick).
+            if self.pending < gaitswitch.ROOMS:
+                self.pending = 0
             self.fitting = 0
             self._rescale()
         else:
@@ -272,11 +277,15 @@ class Walker:
             self.rho[i] = self.next_rho[i]
             self.srho[i] = self.next_srho[i]
         self.phase = 0
-        self.pending = 0
-        swing_budget(self, self.next_gain)
+        self.stroke_gain = self.next_gain
         self._rescale()
-        if self.state != STOPPED:
-            gaitswitch.phase_in(self)
+        if self.state == STOPPED:
+            self.pending = 0
+            swing_budget(self, self.stroke_gain)
+        else:
+            # On the move the swing budget, the rooms and the phase come over the next two ticks
+            # (gaitswitch.after_tick), no foot lifting meanwhile.
+            self.pending = gaitswitch.ROOMS
 
     # -- commands ----------------------------------------------------------------------
 
@@ -549,6 +558,8 @@ class Walker:
                     return self.state
             self.state = STOPPED
             self.phase = 0
+            if self.pending >= gaitswitch.ROOMS:
+                self.pending = 0  # taken: stopped, it starts at phase 0 as a change taken standing
         return self.state
 
     def _lift_all(self, still):

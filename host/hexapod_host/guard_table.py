@@ -8,7 +8,7 @@ tests/test_guard_table.py checks the shipped table against the live guard, entry
 
 import sys
 
-from hexapod import reach
+from hexapod import budget, reach
 from hexapod.body import Body
 from hexapod.gait import NAMES, swing_stance_ticks
 from hexapod.reach import robot_key
@@ -33,7 +33,9 @@ def live_entries(geometry):
         caps = [rho[i] if rho[i] < step else step for i in range(6)]
         srho = [0] * 6
         peak = reach.servo_radii(w, body, swing, stance, lift, geometry.servo_step, caps, srho)
-        servo.append((gait, cycle, lift, step, height, tuple(rho), peak, tuple(srho)))
+        for _ in budget.gain_steps(w, swing, [0, 0]):
+            pass
+        servo.append((gait, cycle, lift, step, height, tuple(rho), peak, tuple(srho), w.next_gain))
     return discs, servo
 
 
@@ -56,7 +58,8 @@ def table_text(robot_module):
     lines += ["    %r," % (row,) for row in discs]
     lines += [
         ")",
-        "# (gait, cycle_ms, lift, step, height, reach discs x6, no-step peak cdeg a tick, servo radii x6)",
+        "# (gait, cycle_ms, lift, step, height, reach discs x6, no-step peak cdeg a tick, servo radii x6,",
+        "# the swing's stroke gain, Q15: hexapod.budget.gain_steps)",
         "SERVO = (",
     ]
     lines += ["    %r," % (row,) for row in servo]

@@ -227,3 +227,27 @@ def bad_commands(commands):
             out.append(str(e).split(":")[0])
     out.append((w.state, list(w.cmd), w.scale_permille, w.req_vx, w.req_vy, w.req_yaw) == before)
     return out
+
+
+def roots(cases):
+    """(count, wrong, gaitswitch's and stability's isqrt are the viper one) over the squares' edges
+    k^2 - 1, k^2 (k up to 2**15), drawn n < 2**30 and n <= 0, each root checked against
+    x^2 <= n < (x + 1)^2 (0 for n <= 0), the plain and (where there is one) the viper root."""
+    from hexapod import gaitswitch, stability
+
+    try:
+        from hexapod._fixmath_viper import isqrt as _isqrt
+    except ImportError:  # a MicroPython without viper
+        _isqrt = None
+    draw = Lcg().draw
+    count = wrong = 0
+    for j in range(cases):
+        k = j * 32768 // cases + 1
+        for n in (k * k - 1, k * k, draw(30) >> (j % 30), -j):
+            for root in (isqrt, _isqrt):
+                if root is None or n >= 1 << 30:
+                    continue
+                x = root(n)
+                wrong += (x != 0) if n <= 0 else not (x * x <= n < (x + 1) * (x + 1))
+                count += 1
+    return (count, wrong, gaitswitch.isqrt is _isqrt and stability.isqrt is _isqrt)

@@ -28,13 +28,19 @@ try:
 except ImportError:
     import time as clock
 
-import main
-import runner
-
-import hexapod
-
 FRAMES = int(sys.argv[1]) if len(sys.argv) > 1 else 500
 SCENARIO = sys.argv[2] if len(sys.argv) > 2 else "default"
+# The per-frame records first, while the heap is in one piece (made after the imports, 2,000
+# frames' 8 KB blocks found no room on the emulated Pico: MemoryError); no list made on the way.
+BUSY = array("i", bytes(4 * FRAMES))  # us from a frame's start to the end of its step
+START = array("i", bytes(4 * FRAMES))  # us from the first frame's start
+GAPS = array("i", bytes(4 * (FRAMES - 1)))  # the periods, for the summary
+
+import main  # noqa: E402
+import runner  # noqa: E402
+
+import hexapod  # noqa: E402
+
 if SCENARIO == "stream":
     # The console's modules before the loop is built, while the heap has blocks big enough for
     # their code (imported after main.build they found none on the emulated Pico: MemoryError).
@@ -43,9 +49,6 @@ if SCENARIO == "stream":
     from drivers import stream
 # (frame, vx 0.1 mm/s, vy, yaw cdeg/s); None: stop. Frame 0 stands up.
 COMMANDS = ((60, 1200, 0, 0), (160, 0, 0, 3000), (230, 600, 600, 0), (300, -800, 0, 0), (400, None, 0, 0))
-BUSY = array("i", [0] * FRAMES)  # us from a frame's start to the end of its step
-START = array("i", [0] * FRAMES)  # us from the first frame's start
-GAPS = array("i", [0] * (FRAMES - 1))  # the periods, for the summary
 LATE = array("i", [0])  # frames begun a whole period after the last with the background sender still busy
 COMMAND_US = array("i", [0] * len(COMMANDS))  # each command's time (Robot.walk/stop) after its frame's step, us
 # drive: (frame, what, args); "walk" (vx, vy, yaw), "stop", "gait" (gait), "height" (0.1 mm),
