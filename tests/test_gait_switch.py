@@ -91,3 +91,27 @@ def test_a_change_on_the_move_allocates_nothing_a_tick(mp):
     pairs = [[3, 0], [0, 3], [2, 1], [1, 2]]
     got = mp.with_heapsize("1m").call(TARGET + "heap_per_tick", pairs)
     assert got == [[a, b, b, 0, 299] for a, b in pairs]
+
+
+@pytest.mark.parametrize("what", ["stop", "walk", "gait", "stopping"])
+def test_a_change_interrupted_while_it_is_taken_still_phases_in(both_runtimes, what):
+    # A change is taken over three ticks (walker.pending 2: the settings, 3: the rooms, then the slot;
+    # hexapod.gaitswitch.after_tick). Asked the tripod into wave at 15 mm/s, the walker waits with
+    # pending 1 until every foot is down; then, at the first of the three ticks:
+    cp, mp = both_runtimes.call(TARGET + "interrupted", what)
+    assert cp == mp
+    seen, (state, pending, _phase, gait, held, lifted, faults) = cp
+    k = seen.index(2) if 2 in seen else seen.index(0)
+    assert seen[:k] == [1] * k and k > 0
+    after = {
+        "stop": [2, 3, 0],  # a stop lets the slot come (the walker still walks, slowing)
+        "walk": [2, 3, 3, 0],  # a new command at the slot's tick: the rooms again, the slot a tick later
+        "gait": [2, 3, 1, 2, 3, 0],  # tetrapod (table) taken at once after: waits, then its own three
+        "stopping": [0],  # stopped in the settings' tick (asked after a stop): no slot, phase 0
+    }[what]
+    assert seen[k : k + len(after)] == after and set(seen[k + len(after) :]) == {0}, seen[k:]
+    # Then (after a stop: standing, then walking again) it walks the new gait, every leg lifting, with
+    # no tick held and no fault; a stop in the settings' tick keeps the new gait's swing budget
+    # (without it the tripod's stayed, and the walk restarted from the stop held 120 ticks of 300).
+    assert (state, pending, gait) == (2, 0, 1 if what == "gait" else 3)
+    assert (held, lifted, faults) == (0, 6, 0)

@@ -559,7 +559,9 @@ class Walker:
             self.state = STOPPED
             self.phase = 0
             if self.pending >= gaitswitch.ROOMS:
-                self.pending = 0  # taken: stopped, it starts at phase 0 as a change taken standing
+                # Taken: stopped, it starts at phase 0 as a change taken standing, with its budget.
+                self.pending = 0
+                swing_budget(self, self.stroke_gain)
         return self.state
 
     def _lift_all(self, still):

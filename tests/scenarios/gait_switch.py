@@ -104,3 +104,58 @@ def heap_per_tick(pairs):
             n += 1
         out.append([a, b, rig.w.clock.gait, worst, n])
     return out
+
+
+def interrupted(what):
+    """A change into wave asked walking the tripod at 15 mm/s, and `what` at the first tick of its three
+    (walker.pending ROOMS: the settings taken, phase 0): "stop" (zero command), "walk" (a new command,
+    at the rooms' tick and again at the slot's), "gait" (tetrapod asked, from the table); or
+    "stopping": the change asked 40 ticks after a stop, so that the walker stops while it is taken
+    (then walks again). Returns
+    [the pending value seen each tick from the ask (until 0 for 20 ticks), then at the end: walker
+    state, pending, phase, gait walked, held ticks since the ask, feet lifted in the 300 ticks after
+    (walk: 0 if none lifted), robot.faults]."""
+    rig = Rig()
+    rig.stand()
+    robot = rig.robot
+    w = rig.w
+    robot.walk(150, 0, 0)
+    rig.run(400)
+    held0 = w.held
+    if what == "stopping":
+        robot.stop()
+        rig.run(40)  # slowed to a stand, the last steps landing
+    robot.set_gait(3, wait=False)
+    seen = []
+    quiet = 0
+    acted = 0
+    for _ in range(600):
+        rig.run(1)
+        seen.append(int(w.pending))
+        if w.pending >= 2 and not acted:
+            acted = 1
+            if what == "stop":
+                robot.stop()
+            elif what == "walk":
+                robot.walk(100, 50, 0)
+                rig.run(1)
+                seen.append(int(w.pending))
+                robot.walk(150, 0, 500)
+            else:
+                robot.set_gait(1, wait=False)
+        if what == "stopping":
+            acted = acted or not w.pending
+        quiet = quiet + 1 if acted and not w.pending else 0
+        if quiet >= 20:
+            break
+    lifted = 0
+    if what == "stop" or what == "stopping":
+        rig.run(300)
+        robot.walk(150, 0, 0)
+    su = [0] * 6
+    for _ in range(300):
+        rig.run(1)
+        for i in range(6):
+            su[i] |= 1 if w.su[i] >= 0 else 0
+    lifted = sum(su)
+    return [seen, [w.state, int(w.pending), w.phase, w.clock.gait, w.held - held0, lifted, robot.faults]]
