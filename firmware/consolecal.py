@@ -16,22 +16,9 @@ def command(con, word, args):
     """The reply to a jog or calibration command line's word and arguments on console con."""
     if word == "boot":  # console.start: the calibration file's (rows, where, version) it read
         return put_file(con, *args)
-    if word == "foot":
-        return _foot(con, args)
-    if word == "nudge":
-        return _nudge(con, args)
-    if word == "joint":
-        return _joint(con, args)
-    if word == "pulse":
-        return _pulse(con, args)
-    if word == "cal":
-        return cal_line(con, _servo(con, args, 2, "L J (leg 1..6, coxa|femur|tibia)"))
-    if word == "trim":
-        return _trim(con, args)
-    if word == "dir":
-        return _dir(con, args)
-    if word == "range":
-        return _range(con, args)
+    run = _WITH_ARGS.get(word)
+    if run is not None:
+        return run(con, args)
     con._args(args, 0, "no arguments")
     if word == "save":
         return _save(con)
@@ -41,6 +28,10 @@ def command(con, word, args):
             _defaults(con)
         return reply
     return _defaults(con)
+
+
+def _cal(con, args):
+    return cal_line(con, _servo(con, args, 2, "L J (leg 1..6, coxa|femur|tibia)"))
 
 
 def _foot(con, args):
@@ -292,3 +283,16 @@ def save(store, rows):
         store.os.remove(store.path)  # FAT cannot rename over a file: TMP is complete by now
         store.os.rename(store.tmp, store.path)
     return calstore.crc16(text[: text.rfind("crc ")].encode())
+
+
+# The commands that read arguments (save, load and defaults take none).
+_WITH_ARGS = {
+    "foot": _foot,
+    "nudge": _nudge,
+    "joint": _joint,
+    "pulse": _pulse,
+    "cal": _cal,
+    "trim": _trim,
+    "dir": _dir,
+    "range": _range,
+}

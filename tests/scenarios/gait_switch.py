@@ -14,14 +14,20 @@ from hexapod.fixmath import isqrt
 from hexapod.stability import NO_SUPPORT
 
 
-def switch(a, b, vx, vy, yaw, before=600, after=480):
+def walking(gait, vx, vy, yaw, ticks):
+    """A Rig stood up, walking `gait` at (vx, vy, yaw) for `ticks`."""
     rig = Rig()
     rig.stand()
+    rig.robot.set_gait(gait)
+    rig.robot.walk(vx, vy, yaw)
+    rig.run(ticks)
+    return rig
+
+
+def switch(a, b, vx, vy, yaw, before=600, after=480):
+    rig = walking(a, vx, vy, yaw, before)
     robot = rig.robot
     w = rig.w
-    robot.set_gait(a)
-    robot.walk(vx, vy, yaw)
-    rig.run(before)
     old_cycle = w.clock.cycle_ticks
     held0 = w.held
     robot.set_gait(b, wait=False)
@@ -48,12 +54,9 @@ def switch(a, b, vx, vy, yaw, before=600, after=480):
 
 def refusals():
     """Gait changes refused while walking change nothing: [per ask: what it said, state unchanged]."""
-    rig = Rig()
-    rig.stand()
+    rig = walking(0, 200, 0, 0, 100)
     robot = rig.robot
     w = rig.w
-    robot.walk(200, 0, 0)
-    rig.run(100)
 
     def snap():
         return [robot.gait, robot.cycle_ms, w.clock.gait, w.pending, w.phase, list(w.cmd), list(w.vel), list(w.su)]
@@ -115,12 +118,9 @@ def interrupted(what):
     [the pending value seen each tick from the ask (until 0 for 20 ticks), then at the end: walker
     state, pending, phase, gait walked, held ticks since the ask, feet lifted in the 300 ticks after
     (walk: 0 if none lifted), robot.faults]."""
-    rig = Rig()
-    rig.stand()
+    rig = walking(0, 150, 0, 0, 400)
     robot = rig.robot
     w = rig.w
-    robot.walk(150, 0, 0)
-    rig.run(400)
     held0 = w.held
     if what == "stopping":
         robot.stop()

@@ -71,6 +71,24 @@ def settle(robot, t):
         t += 20
 
 
+def finish(robot, t, before, worst, fol=None):
+    """A weighed pass's (heap bytes, worst raw us, faults); then the robot (or its follower fol)
+    stopped and the robot settled."""
+    heap = weighed(before)
+    if fol is None:
+        robot.stop()
+    else:
+        fol.off()
+    settle(robot, t)
+    return heap, worst, robot.faults
+
+
+def timed(best, n, t0, first, worst):
+    """keep_best for tick n begun at t0 (ticks_us); returns the larger of worst and its time."""
+    d = keep_best(best, n, time.ticks_diff(time.ticks_us(), t0), first)
+    return d if d > worst else worst
+
+
 def keep_best(best, n, d, first):
     """Tick n's time d (us, clamped to 16 bits) kept in best if first or faster; returns the clamped d."""
     if d > 65535:
@@ -96,14 +114,9 @@ def one_pass(gait, best, first):
             robot.walk(c[0], c[1], c[2])
         t0 = time.ticks_us()
         robot.tick(t)
-        d = keep_best(best, n, time.ticks_diff(time.ticks_us(), t0), first)
-        if d > worst:
-            worst = d
+        worst = timed(best, n, t0, first, worst)
         t += 20
-    heap = weighed(before)
-    robot.stop()
-    settle(robot, t)
-    return heap, worst, robot.faults
+    return finish(robot, t, before, worst)
 
 
 def percentile(hist, count, num, den):
@@ -196,14 +209,9 @@ def one_wall_pass(best, first):
         t0 = time.ticks_us()
         fol.update(t, k, DIST, STATUS)
         robot.tick(t)
-        d = keep_best(best, n, time.ticks_diff(time.ticks_us(), t0), first)
-        if d > worst:
-            worst = d
+        worst = timed(best, n, t0, first, worst)
         t += 20
-    heap = weighed(before)
-    fol.off()
-    settle(robot, t)
-    return heap, worst, robot.faults
+    return finish(robot, t, before, worst, fol)
 
 
 def run_wall(best, hist):
