@@ -1,13 +1,32 @@
 import os
 import sys
+import tempfile
 
 import pytest
 from _pytest.nodeid import NodeId
 
 import hexapod_host  # noqa: F401  (puts firmware, boards and shims on sys.path)
 from hexapod_host.pico import emulator as pico
+from hexapod_host.serial import flash
 
 pytest_plugins = ["hexapod_host.testing.runtimes"]
+
+
+def pytest_configure(config):
+    """One folder of mpy-cross outputs for the run (hexapod_host.serial.flash.compile_mpy, keyed by
+    binary, arguments and source bytes): the dozens of stagings compile each source once. Made by
+    the controlling process, so that its test workers (and what they start) inherit it."""
+    if hasattr(config, "workerinput") or os.environ.get(flash.MPY_CACHE_ENV):
+        return
+    config._mpy_cache = tempfile.TemporaryDirectory(prefix="hexapod-mpy-")
+    os.environ[flash.MPY_CACHE_ENV] = config._mpy_cache.name
+
+
+def pytest_unconfigure(config):
+    cache = getattr(config, "_mpy_cache", None)
+    if cache is not None:
+        os.environ.pop(flash.MPY_CACHE_ENV, None)
+        cache.cleanup()
 
 
 def pytest_sessionstart(session):
