@@ -37,19 +37,27 @@ def pytest_sessionstart(session):
             raise pytest.UsageError("CI runs every Pico test, but the emulated Pico cannot start: " + reason)
 
 
-# The longest single tests, longest first (minutes each on 2 loaded cores), then the modules whose
-# tests take tens of seconds (emulated Pico, Chromium, long VM runs): started first, so that
-# neither worker is left running one of them alone at the end. From `pytest -n 2 --durations=0`
-# of the whole suite on 2026-11-27 (load 5-30: other helpers' runs): the first two took 749 and
-# 740 s there, and the run's wall time was 80 min for 1037 s of this process's own CPU.
+# The longest tests and the modules whose tests share one module fixture (so one xdist group, run
+# on one worker: their sum), longest first: started first, so that neither worker is left running
+# one of them alone at the end (longest processing time first). From `pytest -n 2 --durations=60`
+# of the whole suite on 2026-11-28 (2 cores shared with other runs: 580 s wall, 541 s CPU), the
+# browser test's from CI; a parametrized test counts once a parameter.
 LONGEST = (
-    "test_rescale.py::test_rescale_equals_the_plain_form_on_the_emulated_pico",
-    "test_tick_viper.py::test_viper_paths_equal_plain_code_on_the_emulated_pico",
-    "test_tick_ranges.py::test_every_intermediate_of_the_tick_fits_a_small_int",
-    "test_pico.py::test_viper_on_thumb_equals_plain_solver_and_cpython",
-    "test_pico.py::test_every_module_imports_as_mpy_with_the_heap_left",
-    "test_pico_battery.py::test_the_battery_scenario_on_the_emulated_pico",
-    "test_console_sequences.py::test_random_command_sequences_never_freeze",
+    "test_pico_loop.py",  # the `boot` fixture (15 s), the stream and gait-change runs (20 s each), ...
+    "test_pico_flash.py::test_flash_the_emulated_pico_over_a_pty_then_boot_it",  # 66 s
+    "test_view_sources_browser.py::test_pico_telemetry_reaches_the_page",  # ~60 s in CI
+    "test_pico_battery.py::test_the_battery_scenario_on_the_emulated_pico",  # 38 s
+    "test_pico.py",  # 19 + 10 + 8 s
+    "test_pico_wiring.py::test_the_flashed_files_build_without_the_checks_and_an_edited_one_is_checked",  # 36 s
+    "test_console_sequences.py::test_random_command_sequences_never_freeze",  # 2 x 23-30 s
+    "test_tick_viper.py::test_viper_paths_equal_plain_code_on_the_emulated_pico",  # 5 x 15-20 s
+    "test_virtual_board_room.py::test_wall_left_12_follows_the_wall_world_at_12_cm",  # 20 s, real time
+    "test_rescale.py::test_rescale_equals_the_plain_form_on_the_emulated_pico",  # 20 s
+    "test_console_fuzz.py::test_the_property_really_runs_ten_thousand_lines",  # 18 s
+    "test_view_calibrate_all.py::test_all_18_joints_calibrated_from_the_page_on_the_virtual_board",  # 14 s
+    "test_pico_i2c.py",  # 2 x 6-7 s
+    "test_pico_cli.py::test_serial_attaches_the_boards_chips_and_sonars_at_the_distances_given",  # 10 s
+    "test_pico_faults.py::test_the_fault_log_outlives_a_soft_reset",  # 10 s
 )
 SLOW_MODULES = (
     "test_pico",
@@ -74,9 +82,9 @@ def _shares_a_module_fixture(item):
 
 
 def _tier(item):
-    name = "%s::%s" % (item.path.name, item.originalname)
-    if name in LONGEST:
-        return (0, LONGEST.index(name))
+    for name in ("%s::%s" % (item.path.name, item.originalname), item.path.name):
+        if name in LONGEST:
+            return (0, LONGEST.index(name))
     if any(word in item.path.name for word in SLOW_MODULES) or item.get_closest_marker("xdist_group"):
         return (1, 0)
     return (2, 0)
