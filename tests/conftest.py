@@ -108,6 +108,16 @@ def pytest_collection_modifyitems(config, items):
     items.sort(key=_tier)
 
 
+@pytest.fixture(scope="session")
+def pico_fs():
+    """The staged firmware's littlefs image (pico/default: what a flash puts on the board), made once
+    a test process and only read: the emulator loads it into its flash, and what a board writes goes
+    elsewhere (save_fs). Session-wide, so the tests that boot it spread over the workers (a module
+    fixture would make their module one xdist group)."""
+    with pico.flashed() as path:
+        yield path
+
+
 @pytest.fixture
 def virtual_board():
     """start(cal_dir) -> (pty path, an open Link): `hexapod virtual-board` for pico/default in the
