@@ -122,7 +122,8 @@ def pico_fs():
 def virtual_board():
     """start(cal_dir) -> (pty path, an open Link): `hexapod virtual-board` for pico/default in the
     MicroPython VM (cal_dir "": no calibration filesystem); every board started is stopped after.
-    start(cal_dir, world=W) -> (pty path, link, room): its sonars in world W's room (--world)."""
+    start(cal_dir, world=W) -> (pty path, link, room): its sonars in world W's room (--world).
+    pace: start_virtual_board's ("" real time, or "eager")."""
     from hexapod_host.commands.console import start_virtual_board
     from hexapod_host.serial.link import Link
     from hexapod_host.testing.runtimes import micropython_missing
@@ -131,8 +132,8 @@ def virtual_board():
         pytest.skip(micropython_missing())
     started = []
 
-    def start(cal_dir, world=None):
-        proc, path, master, slave = start_virtual_board("pico", "default", cal_dir, world=world)
+    def start(cal_dir, world=None, pace=""):
+        proc, path, master, slave = start_virtual_board("pico", "default", cal_dir, world=world, pace=pace)
         link = Link.open(path, timeout=10)
         started.append((proc, master, slave, link))
         link.request("help")  # the VM is up

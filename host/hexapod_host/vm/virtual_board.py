@@ -3,8 +3,8 @@
 # `hexapod virtual-board` starts it on a pseudo-terminal. Arguments: board name, robot name,
 # calibration directory ('' = no calibration file), frames to run (-1 = for ever), trace file
 # ('' = none; see Trace below), the room's pipes ('R,W': file descriptors; absent or '' = no room),
-# and the pacing ('eager': a line waiting on the console starts the next frame at once, see serve;
-# absent or '' = real time only).
+# and the pacing (absent or '' = real time; 'eager': a line waiting on the console starts the next
+# frame at once; see serve).
 #
 # The room (`--world`, hexapod_host.wall.board_room on the host): before each frame the sonar
 # models take their five distances from pipe R (0.1 mm, 0 = nothing heard; the wall simulator's
