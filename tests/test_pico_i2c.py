@@ -64,10 +64,10 @@ def on_board(background, fs):
     return got
 
 
-@pytest.fixture(scope="module")
-def fs():
-    with pico.flashed() as path:
-        yield path
+@pytest.fixture
+def fs(pico_fs):
+    """The staged firmware's littlefs image (what a flash puts on the board): conftest's, one a test process."""
+    return pico_fs
 
 
 def expected(background):

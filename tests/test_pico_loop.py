@@ -18,10 +18,10 @@ pytestmark = pytest.mark.skipif(REASON is not None, reason=REASON or "")
 FRAMES = 100  # 2 s: stand up, then tripod walking from frame 60 (10 s: `hexapod pico bench frame`)
 
 
-@pytest.fixture(scope="module")
-def fs():
-    with pico.flashed() as path:
-        yield path
+@pytest.fixture
+def fs(pico_fs):
+    """The staged firmware's littlefs image (what a flash puts on the board): conftest's, one a test process."""
+    return pico_fs
 
 
 @pytest.fixture(scope="module")

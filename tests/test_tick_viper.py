@@ -517,16 +517,17 @@ def test_robot_on_the_vm_uses_the_viper_frame_swing_and_stance(mp):
 
 
 @pytest.mark.skipif(pico.missing() is not None, reason=pico.missing() or "")
-def test_viper_paths_equal_plain_code_on_the_emulated_pico(mp):
+@pytest.mark.parametrize("path", sorted(PATHS))
+def test_viper_paths_equal_plain_code_on_the_emulated_pico(mp, path):
     # 1,000 frames (6,000 leg solves, 18,000 pulses), 2,000 swings, 1,000 stances, moves and starts:
     # the viper twins (Thumb code) on the Pico, their plain code on the host VM (the same on every
-    # MicroPython VM), the digests of their results equal.
+    # MicroPython VM), the digests of their results equal. One path a test (a boot each, as before
+    # in one test): the two test workers share the five.
+    _, checks, _, cases = PATHS[path]
     with pico.flashed(extra=on_board("_lcg_viper.py", "digest.py", "lcg.py")) as fs:
-        for path in sorted(PATHS):
-            _, checks, _, cases = PATHS[path]
-            status, out, err, _ = pico.run_source(source(path, cases, "viper"), fs=fs, timeout=600)
-            assert status == 0, (path, out + err)
-            board = ast.literal_eval(out.strip().splitlines()[-1])
-            plain = mp.value(source(path, cases, "plain"), heapsize="1m")
-            checks(plain[:-1], cases)
-            assert board[0] == cases and board[-1] == plain[-1], (path, board, plain)
+        status, out, err, _ = pico.run_source(source(path, cases, "viper"), fs=fs, timeout=600)
+    assert status == 0, (path, out + err)
+    board = ast.literal_eval(out.strip().splitlines()[-1])
+    plain = mp.value(source(path, cases, "plain"), heapsize="1m")
+    checks(plain[:-1], cases)
+    assert board[0] == cases and board[-1] == plain[-1], (path, board, plain)

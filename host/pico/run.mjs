@@ -313,23 +313,27 @@ const schedule = (dev.schedule || []).slice().sort((a, b) => a[0] - b[0]);
 let instructions = 0;
 const profile = process.env.RP2040_PROFILE ? new Map() : null;   // PC -> executed count
 function step(n) {
-  const core = mcu.core;
+  // The chip, its clock and the count in locals (module bindings are context slots: a load or a
+  // store each instruction); the clock is the same object throughout (powerOn runs between steps).
+  const core = mcu.core, clk = clock, prof = profile;
+  let executed = 0;
   for (let i = 0; i < n; i++) {
     if (core.waiting) {
-      const dt = clock.nanosToNextAlarm;
-      if (dt <= 0) { clock.tick(CYCLE_NS); continue; }
-      clock.tick(dt); i += dt / CYCLE_NS;
+      const dt = clk.nanosToNextAlarm;
+      if (dt <= 0) { clk.tick(CYCLE_NS); continue; }
+      clk.tick(dt); i += dt / CYCLE_NS;
       continue;
     }
     const pc = core.PC;
     if (pc < 0x4000) {
       if (pc === ROM_ERASE || pc === ROM_PROGRAM) { flashCall(pc); continue; }
-      if (pc === ROM.NOT_FOUND) romMissing();
+      if (pc === ROM.NOT_FOUND) { instructions += executed; executed = 0; romMissing(); }
     }
-    if (profile) profile.set(pc, (profile.get(pc) || 0) + 1);
-    clock.tick(core.executeInstruction() * CYCLE_NS);
-    instructions++;
+    if (prof) prof.set(pc, (prof.get(pc) || 0) + 1);
+    clk.tick(core.executeInstruction() * CYCLE_NS);
+    executed++;
   }
+  instructions += executed;
   while (schedule.length && schedule[0][0] * 1000 <= clock.nanos) {
     const [, k, d] = schedule.shift();
     sonars[k].distance = d;

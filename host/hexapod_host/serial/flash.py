@@ -206,6 +206,40 @@ def sha256(path):
         return hashlib.sha256(f.read()).hexdigest()
 
 
+# A folder where compile_mpy keeps what mpy-cross made, by what it was given (the test suite sets
+# it for its run: dozens of stagings of the same sources); unset, every file is compiled.
+MPY_CACHE_ENV = "HEXAPOD_MPY_CACHE"
+
+
+def compile_mpy(cmd, src, dest, name):
+    """Run mpy-cross's cmd (output dest, source src, named name on the board); FlashError if it
+    refuses. With $HEXAPOD_MPY_CACHE a folder: an output made before from the same binary,
+    arguments (dest aside) and source bytes is copied from there instead (mpy-cross is
+    deterministic)."""
+    cache = os.environ.get(MPY_CACHE_ENV)
+    key = None
+    if cache and os.path.isdir(cache):
+        h = hashlib.sha256()
+        st = os.stat(cmd[0]) if os.path.isfile(cmd[0]) else None
+        h.update(
+            repr((cmd[0], st and (st.st_size, st.st_mtime_ns), [a for a in cmd[1:] if a not in (dest, src)])).encode()
+        )
+        with open(src, "rb") as f:
+            h.update(f.read())
+        key = os.path.join(cache, h.hexdigest() + ".mpy")
+        with contextlib.suppress(OSError):
+            shutil.copyfile(key, dest)
+            return
+    proc = subprocess.run(cmd, capture_output=True, text=True)
+    if proc.returncode:
+        raise FlashError("mpy-cross refused %s: %s" % (name, (proc.stderr or proc.stdout).strip()))
+    if key is not None:  # written aside, then renamed: another process may be reading it
+        part = "%s.%d" % (key, os.getpid())
+        with contextlib.suppress(OSError):
+            shutil.copyfile(dest, part)
+            os.replace(part, key)
+
+
 def stage(board, robot, out=None, arch=None):
     """Build the image in out (default build/flash/BOARD): returns (commands run, {board path: sha256}, libs).
 
@@ -247,9 +281,7 @@ def stage(board, robot, out=None, arch=None):
             os.makedirs(os.path.dirname(dest), exist_ok=True)
             cmd = [mpy_cross, "-march=" + arch, "-s", board_path(src), "-o", dest, src]
             commands.append(cmd)
-            proc = subprocess.run(cmd, capture_output=True, text=True)
-            if proc.returncode:
-                raise FlashError("mpy-cross refused %s: %s" % (board_path(src), (proc.stderr or proc.stdout).strip()))
+            compile_mpy(cmd, src, dest, board_path(src))
         image[rel] = sha256(dest)
     if not cp:  # the files just checked, so the board builds from them without its checks (hexapod.wiring)
         checked = ("boards/%s.mpy" % board, "robots/%s.mpy" % robot, "robots/%s%s.mpy" % (robot, CAL))

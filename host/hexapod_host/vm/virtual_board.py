@@ -2,7 +2,9 @@
 # PCA9685 and HC-SR04 models) with the serial console on stdin/stdout, paced to real time.
 # `hexapod virtual-board` starts it on a pseudo-terminal. Arguments: board name, robot name,
 # calibration directory ('' = no calibration file), frames to run (-1 = for ever), trace file
-# ('' = none; see Trace below), and the room's pipes ('R,W': file descriptors; absent or '' = no room).
+# ('' = none; see Trace below), the room's pipes ('R,W': file descriptors; absent or '' = no room),
+# and the pacing (absent or '' = real time; 'eager': a line waiting on the console starts the next
+# frame at once; see serve).
 #
 # The room (`--world`, hexapod_host.wall.board_room on the host): before each frame the sonar
 # models take their five distances from pipe R (0.1 mm, 0 = nothing heard; the wall simulator's
@@ -36,6 +38,7 @@ CAL_DIR = sys.argv[3] if len(sys.argv) > 3 else ""
 FRAMES = int(sys.argv[4]) if len(sys.argv) > 4 else -1
 TRACE = sys.argv[5] if len(sys.argv) > 5 else ""
 ROOM = sys.argv[6] if len(sys.argv) > 6 else ""
+EAGER = len(sys.argv) > 7 and sys.argv[7] == "eager"
 
 board = stub_board.reset(BOARD)
 bus, models = stub_board.pca9685_models(board)
@@ -159,10 +162,17 @@ print("virtual board %s (robot %s) ready: 50 Hz, console on this line; 'help' li
 
 
 def serve(frames):
-    """Frames paced to real time until frames ran (-1: for ever) or Ctrl-C; returns the frames run."""
+    """Frames paced to real time until frames ran (-1: for ever) or Ctrl-C; returns the frames run.
+    EAGER: while a frame waits for the real clock, a byte on the console ends the wait (the
+    frame after it reads the line), and the pacing starts again from there (no catching up)."""
     t0 = time.ticks_ms()
     v0 = clock.ticks_ms()
     n = 0
+    if EAGER:
+        import select
+
+        woken = select.poll()
+        woken.register(sys.stdin, select.POLLIN)
     try:
         while frames < 0 or n < frames:
             if room_in is not None:
@@ -180,7 +190,11 @@ def serve(frames):
             n += 1
             ahead = clock.ticks_diff(clock.ticks_ms(), v0) - time.ticks_diff(time.ticks_ms(), t0)
             if ahead > 0:
-                time.sleep_ms(ahead)
+                if EAGER and woken.poll(ahead):
+                    t0 = time.ticks_ms()
+                    v0 = clock.ticks_ms()
+                else:
+                    time.sleep_ms(ahead)
     except KeyboardInterrupt:
         hold = board.get("on_exit") == "hold"
         r.leave(hold)  # as runner.serve on a board
