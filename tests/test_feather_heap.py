@@ -41,7 +41,11 @@ FIT_HEAP = 278 * 1024
 # 316,416-319,488 (248,480-251,552 B free); with code.py compiling drivers.pca9685 and hexapod.tick
 # before anything else 310,272-319,488 (242,336-251,552 B free; 0 to 8 KB less, never more). This
 # guard holds the worst folder's figure, which pytest's own folder may be.
-TODAY_HEAP = 319488
+# 2026-11-28: those figures were runs in which `selftest` (and near the threshold `wall` or `status`)
+# answered `err ...: internal error MemoryError`: the bench counted a run as passing when the loop
+# went on. bench.feather.vm now fails such a run; the same main then needed 380,928-389,120
+# (312,224-320,480 B free) over the five folders of bench.feather.folder_spread.
+TODAY_HEAP = 389120
 GROWTH_HEAP = TODAY_HEAP + 8 * 1024
 
 
@@ -77,7 +81,7 @@ def test_fit_heap_gives_the_deploy_what_a_feather_has(drive):
     assert FIT_FREE - 2048 <= free <= FIT_FREE, (free, FIT_FREE)
 
 
-@pytest.mark.xfail(strict=True, raises=MemoryError, reason="the deploy needs 242,336-251,552 B free, 218,880 fit")
+@pytest.mark.xfail(strict=True, raises=MemoryError, reason="the deploy needs 312,224-320,480 B free, 218,880 fit")
 def test_deploy_fits_a_feather(drive):
     feather.vm(drive, feather.run_cfg(), FIT_HEAP)
 
@@ -148,3 +152,14 @@ def test_bench_feather_is_a_bench_with_json_out(monkeypatch, capsys):
     monkeypatch.setattr(feather, "measure", lambda libs_as="mpy": figures)
     assert cli.main(["bench", "feather", "--json"]) == 0
     assert json.loads(capsys.readouterr().out) == figures
+
+
+def test_a_command_that_met_memory_error_fails_the_run(monkeypatch):
+    # The console catches a command's MemoryError (`err selftest: internal error MemoryError ...`)
+    # and the loop goes on to its JSON line: the run must still count as out of heap.
+    caught = "ok mode moving\nerr selftest: internal error MemoryError memory allocation failed, allocating 1792 B\n"
+    monkeypatch.setattr(feather.mpvm, "run", lambda **kw: caught + '{"frames": 1000}\n')
+    with pytest.raises(MemoryError, match="err selftest: internal error MemoryError"):
+        feather.vm("drive", {}, 300000)
+    monkeypatch.setattr(feather.mpvm, "run", lambda **kw: 'ok mode moving\n{"frames": 1000}\n')
+    assert feather.vm("drive", {}, 300000) == {"frames": 1000}
