@@ -14,10 +14,9 @@ CircuitPython's SerialReader lives in code.py, the tests' BufferReader in the st
 import sys
 
 from micropython import const
-from runner import BOOT_WORDS, counters
 
 from hexapod import battery as batteries
-from hexapod import faultlog, follow, gait, limits, release, sensors, tick
+from hexapod import faultlog, gait, release, sensors, tick
 from hexapod.body import FINE_SHIFT
 from hexapod.leg import describe as leg_describe
 from hexapod.units import format_fixed, parse_fixed
@@ -41,6 +40,11 @@ SLOW = ("gait", "height", "stand", "sit", "relax", "save", "load", "defaults")
 # follows a wall: the 5.3 KB of heap it takes on a Pico are the walking loop's again.
 CAL = "consolecal"
 CAL_KEEP_MS = const(30000)
+# The reporting and setting commands' module (consolemore.py: help, status, gait, height, sonar,
+# wall, pid, echo, faults, stream): imported at the first of them and kept while they keep coming
+# (let go CAL_KEEP_MS after the last one: the running loop does not carry it); CircuitPython
+# (keep_more False, set by code.py) compiles it per command and lets it go after each.
+MORE = "consolemore"
 
 
 def fault_text(log, bank):
@@ -91,6 +95,10 @@ class Console:
     # CircuitPython compiles a module's source at each import, needing several times its size in
     # free heap: code.py loads consolecal once, next to console, and sets this to keep it.
     keep_cal = False
+    # consolemore kept for CAL_KEEP_MS after its last command (MicroPython loads its .mpy once for
+    # a run of them); CircuitPython keeps the heap for the loop and compiles the module's source
+    # per command instead: code.py sets this False.
+    keep_more = True
 
     def __init__(self, runner, reader=None, out=print, store=None, walk_timeout_ms=WALK_TIMEOUT_MS, write=None):
         """runner: runner.Runner; reader: has read_byte(); store: calstore.Store or None (no
@@ -127,9 +135,10 @@ class Console:
         self.trims = [0] * 18
         self.cal_source = "defaults"
         self._cal_until = -1  # consolecal stays loaded for a jog session until then (ticks_ms); -1: not loaded
+        self._more_until = -1  # consolemore stays loaded until then (ticks_ms); -1: not loaded
         self._table = {
-            "help": self._help,
-            "status": self._status,
+            "help": MORE,
+            "status": MORE,
             "stand": self._stand,
             "sit": self._sit,
             "relax": self._relax,
@@ -140,11 +149,11 @@ class Console:
             "get": self._get,
             "walk": self._walk,
             "stop": self._stop,
-            "gait": self._gait,
-            "height": self._height,
-            "sonar": self._sonar,
-            "wall": self._wall,
-            "pid": self._pid,
+            "gait": MORE,
+            "height": MORE,
+            "sonar": MORE,
+            "wall": MORE,
+            "pid": MORE,
             "cal": CAL,
             "trim": CAL,
             "dir": CAL,
@@ -152,10 +161,10 @@ class Console:
             "save": CAL,
             "load": CAL,
             "defaults": CAL,
-            "echo": self._echo,
+            "echo": MORE,
             "selftest": self._selftest,
-            "faults": self._faults,
-            "stream": self._stream,
+            "faults": MORE,
+            "stream": MORE,
         }
 
     # -- the frame's part ---------------------------------------------------------------
@@ -185,6 +194,11 @@ class Console:
         if self._cal_until >= 0 and self._cal_over():
             self._cal_until = -1
             release(CAL)
+        if self._more_until >= 0:
+            clock = self.runner.clock
+            if clock.ticks_diff(clock.ticks_ms(), self._more_until) >= 0:
+                self._more_until = -1
+                release(MORE)
         if self._job is not None:
             self._job_step()
         if self._late is not None and not self.robot.configuring():
@@ -314,7 +328,12 @@ class Console:
         if tag is not None and word in SLOW:
             self.out(tag, "working")  # sent before the command runs: the client waits on
         try:
-            reply = self._calibration(word, args) if fn is CAL else fn(args)
+            if fn is CAL:
+                reply = self._calibration(word, args)
+            elif fn is MORE:
+                reply = self._more(word, args)
+            else:
+                reply = fn(args)
         except ValueError as e:
             return "err %s: %s" % (word, e)
         except Exception as e:  # the loop must go on whatever a command hits
@@ -466,43 +485,6 @@ class Console:
 
     # -- commands -------------------------------------------------------------------------
 
-    def _help(self, args):
-        self._args(args, 0, "no arguments")
-        return "ok " + COMMANDS
-
-    def _status(self, args):
-        self._args(args, 0, "no arguments")
-        r = self.runner
-        f = r.follower
-        left = 0
-        if self._walking:
-            left = r.clock.ticks_diff(self._deadline, r.clock.ticks_ms())
-            left = left if left > 0 else 0
-        on = f.mode != follow.OFF
-        return (
-            "ok %s faults %d mode %s gait %s "
-            "walk_ms %d wall %s wall_mode %s wall_d %s wall_angle %s wall_error %s wall_out %s wall_faults %d "
-            "cal %s boot %s battery %s battery_mv %s"
-            % (
-                counters(r),
-                r.robot.faults,
-                tick.MODE_NAMES[r.robot.mode],
-                gait.NAMES[r.robot.gait],
-                left,
-                f.side if on else "off",
-                follow.MODE_NAMES[f.mode],
-                format_fixed(f.distance, 1) if on and f.distance >= 0 else "-",  # no distance (yet)
-                format_fixed(f.angle if on else 0, 2),
-                format_fixed(f.error if on else 0, 1),
-                format_fixed(f.output if on else 0, 2),
-                f.fault_total if on else 0,
-                self.cal_source,
-                BOOT_WORDS[r.boot],
-                "n/a" if r.battery is None else batteries.STATE_NAMES[r.battery.state],
-                "n/a" if r.battery is None else r.battery.level_mv,
-            )
-        )
-
     def _stand(self, args):
         self._args(args, 0, "no arguments")
         self._no_follow()
@@ -551,34 +533,6 @@ class Console:
             self.runner.follow_off()
         return self._mode_reply(self.robot.stop())
 
-    def _gait(self, args):
-        if args:
-            self._args(args, 1, "a gait name (%s)" % ", ".join(gait.NAMES))
-            if args[0] not in gait.NAMES:
-                raise ValueError("%r, allowed %s" % (args[0][:20], ", ".join(gait.NAMES)))
-            # Checked over the next frames (the servo guard's solves), the robot walking on
-            # meanwhile and the console answering other lines: the reply comes when it is done.
-            return self._later("gait", self.robot.set_gait(gait.NAMES.index(args[0]), wait=False))
-        return self._ok_late("gait")
-
-    def _height(self, args):
-        if args:
-            self._args(args, 1, "MM (the body's standing height)")
-            g = self.robot.geometry
-            h = self._num("height", args[0], 1, g.body_height_min, g.body_height_max, "mm")
-            # Standing: the feet move there (checked over the next frames, like a gait); else the
-            # next stand goes to it.
-            return self._later("height", self.robot.set_height(h, wait=False))
-        return self._ok_late("height")
-
-    def _later(self, word, code):
-        if code:
-            return self._refused(code)
-        if self.robot.configuring():
-            self._late = word
-            return None
-        return self._ok_late(word)
-
     def _ok_late(self, word):
         r = self.robot
         if word == "gait":
@@ -596,66 +550,19 @@ class Console:
         self._say(self._late_tag, reply)
         self._late_tag = None
 
-    def _sonar(self, args):
-        self._args(args, 0, "no arguments")
-        r = self.runner
-        parts = ["ok"]
-        for k in range(len(r.distances)):
-            st = r.sonar_status[k]
-            d = r.distances[k]
-            parts.append(sensors.SENSOR_NAMES[k])
-            parts.append(format_fixed(d, 1) if st == sensors.OK and d >= 0 else "-")
-            parts.append(sensors.STATUS_NAMES[st] if 0 <= st < len(sensors.STATUS_NAMES) else "unknown")
-        return " ".join(parts)
+    def _more(self, word, args):
+        """A reporting or setting command (consolemore): its module stays CAL_KEEP_MS after it
+        (poll lets it go), or goes at once (keep_more False: CircuitPython)."""
+        import consolemore
 
-    def _wall(self, args):
-        if len(args) == 1 and args[0] == "off":
-            self.runner.follow_off()
-            return "ok wall off"
-        self._args(args, 2, "left|right CM, or off")
-        if args[0] not in limits.SIDES:
-            raise ValueError("side %r, allowed left, right or off" % (args[0][:20],))
-        cm = self._num("set point", args[1], 2, limits.SETPOINT_MIN, limits.SETPOINT_MAX, "cm")
-        self._battery_ok()
-        self._walking = False
-        code = self.runner.follow(args[0], cm)
-        if code:
-            return self._refused(code)
-        return "ok wall %s setpoint %s" % (args[0], format_fixed(cm, 2))
-
-    def _pid(self, args):
-        p = self.runner.follower.pid
-        if args:
-            self._args(args, 3, "KP KI KD (each 0..100, 3 decimals)")
-            top = 100000  # hexapod.pid.GAIN_MAX
-            kp = self._num("kp", args[0], 3, 0, top, "")
-            ki = self._num("ki", args[1], 3, 0, top, "")
-            kd = self._num("kd", args[2], 3, 0, top, "")
-            self.runner.follower.set_gains(kp, ki, kd)
-        return "ok pid %s %s %s" % (format_fixed(p.kp, 3), format_fixed(p.ki, 3), format_fixed(p.kd, 3))
-
-    def _echo(self, args):
-        if len(args) > 1 or (args and args[0] not in ("on", "off")):
-            raise ValueError("need on, off or nothing (ask), got %r" % (" ".join(args)[:20],))
-        if args and args[0] == "on" and self.write is None:
-            raise ValueError("this console has no raw output to echo to")
-        if args:
-            self.echo = args[0] == "on"
-        return "ok echo " + ("on" if self.echo else "off")
-
-    def _faults(self, args):
-        if len(args) > 1 or (args and args[0] != "clear"):
-            raise ValueError("need clear or nothing (list), got %r" % (" ".join(args)[:20],))
-        log = self.runner.faultlog
-        if args:
-            log.clear()
-            return "ok faults cleared"
-        return "ok faults " + fault_text(log, self.runner.bank)
-
-    def _stream(self, args):
-        from drivers import stream  # only now: a board that never streams keeps its heap and names
-
-        return stream.command(self, args)
+        try:
+            return consolemore.command(self, word, args)
+        finally:
+            if self.keep_more:
+                clock = self.runner.clock
+                self._more_until = clock.ticks_add(clock.ticks_ms(), CAL_KEEP_MS)
+            else:
+                release(MORE)
 
     def _calibration(self, word, args):
         """A jog or calibration command (consolecal): its module stays on the heap for the session
@@ -688,7 +595,7 @@ class Console:
         try:
             job = selftest.start(self, args)
         except Exception:
-            sys.modules.pop("selftest", None)
+            release_selftest()
             raise
         if self._job is not None:
             self._job_end(self._job.abort())
@@ -718,7 +625,13 @@ class Console:
         self._job = None
         self._job_tag = None
         self.lines += 1
-        sys.modules.pop("selftest", None)  # its heap goes back once the job is dropped
+        release_selftest()  # its heap goes back once the job is dropped
+
+
+def release_selftest():
+    """selftest (and the servo sweep's module, when the job loaded it) out of sys.modules."""
+    sys.modules.pop("selftest", None)
+    sys.modules.pop("selftestsweep", None)
 
 
 def tag_length(buf, n):
