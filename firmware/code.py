@@ -80,7 +80,7 @@ def _release(robot_name):
 # biggest driver, drivers.pca9685 (left last, it was what failed once tick came first), then
 # hexapod.tick (which compiles walk); then the board and robot files, read and let go before
 # the console loads (their checks are not alive while the loop is built); then runner (which
-# compiles the wall follower), then console, whose reporting and setting commands (consolemore)
+# compiles the wall follower), then console, whose reporting and setting commands (consoleparts.more)
 # are compiled per command; a collection after each. A board file refused stops
 # code.py here, with the message build() gave before. `hexapod bench feather` (docs/flashing.md)
 # has the figures.
@@ -108,7 +108,9 @@ if sys.implementation.name != "cpython":
     import consolecal  # noqa: F401
 
     console.Console.keep_cal = True
-    console.Console.keep_more = False  # consolemore compiled per command, let go after it
+    # consoleparts.more and selftest compiled per command on a collected heap, the former let go after
+    # each (console.Console.compiles).
+    console.Console.compiles = True
     gc.collect()
     from drivers import cp_clock, cp_hcsr04_pulsein, cp_pca9685  # noqa: F401
 from runner import FRAME_MS, Runner  # noqa: E402

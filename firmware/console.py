@@ -11,6 +11,7 @@ CircuitPython's SerialReader lives in code.py, the tests' BufferReader in the st
 (_stub_serial): a board's heap keeps neither.
 """
 
+import gc
 import sys
 
 from micropython import const
@@ -40,11 +41,11 @@ SLOW = ("gait", "height", "stand", "sit", "relax", "save", "load", "defaults")
 # follows a wall: the 5.3 KB of heap it takes on a Pico are the walking loop's again.
 CAL = "consolecal"
 CAL_KEEP_MS = const(30000)
-# The reporting and setting commands' module (consolemore.py: help, status, gait, height, sonar,
+# The reporting and setting commands' module (consoleparts/more.py: help, status, gait, height, sonar,
 # wall, pid, echo, faults, stream): imported at the first of them and kept while they keep coming
 # (let go CAL_KEEP_MS after the last one: the running loop does not carry it); CircuitPython
-# (keep_more False, set by code.py) compiles it per command and lets it go after each.
-MORE = "consolemore"
+# (Console.compiles, set by code.py) compiles it per command and lets it go after each.
+MORE = "consoleparts.more"
 
 
 def fault_text(log, bank):
@@ -92,13 +93,18 @@ class PollReader:
 class Console:
     """Command lines -> calls on a runner.Runner; replies through `out` (print on a board)."""
 
-    # CircuitPython compiles a module's source at each import, needing several times its size in
-    # free heap: code.py loads consolecal once, next to console, and sets this to keep it.
+    # True: consolecal stays loaded once imported (no session end lets it go). CircuitPython's
+    # code.py loads it next to console and keeps it: compiled at boot on a heap with room, not at
+    # a jog session's first command on the loop's (nor at boot for the calibration file's load,
+    # after build(): both measured worse, docs/flashing.md).
     keep_cal = False
-    # consolemore kept for CAL_KEEP_MS after its last command (MicroPython loads its .mpy once for
-    # a run of them); CircuitPython keeps the heap for the loop and compiles the module's source
-    # per command instead: code.py sets this False.
-    keep_more = True
+    # True where the board compiles a module's source at each import (CircuitPython: code.py sets
+    # it): consoleparts.more is let go after each of its commands instead of kept CAL_KEEP_MS (the loop's
+    # heap over a compile per command), and the modules loaded on demand (consoleparts.more, consolecal,
+    # selftest and its bus checks) are compiled on a collected heap: the collector would run only
+    # once an allocation failed, with the parse's first blocks already placed in the small holes
+    # the loop's heap has (bench.feather: 16 KB more free heap needed without it, 2026-11-28).
+    compiles = False
 
     def __init__(self, runner, reader=None, out=print, store=None, walk_timeout_ms=WALK_TIMEOUT_MS, write=None):
         """runner: runner.Runner; reader: has read_byte(); store: calstore.Store or None (no
@@ -135,7 +141,7 @@ class Console:
         self.trims = [0] * 18
         self.cal_source = "defaults"
         self._cal_until = -1  # consolecal stays loaded for a jog session until then (ticks_ms); -1: not loaded
-        self._more_until = -1  # consolemore stays loaded until then (ticks_ms); -1: not loaded
+        self._more_until = -1  # consoleparts.more stays loaded until then (ticks_ms); -1: not loaded
         self._table = {
             "help": MORE,
             "status": MORE,
@@ -551,22 +557,26 @@ class Console:
         self._late_tag = None
 
     def _more(self, word, args):
-        """A reporting or setting command (consolemore): its module stays CAL_KEEP_MS after it
-        (poll lets it go), or goes at once (keep_more False: CircuitPython)."""
-        import consolemore
+        """A reporting or setting command (consoleparts.more): its module stays CAL_KEEP_MS after it
+        (poll lets it go), or goes at once where the board compiles it (compiles)."""
+        if self.compiles:
+            gc.collect()
+        from consoleparts import more
 
         try:
-            return consolemore.command(self, word, args)
+            return more.command(self, word, args)
         finally:
-            if self.keep_more:
+            if self.compiles:
+                release(MORE)
+            else:
                 clock = self.runner.clock
                 self._more_until = clock.ticks_add(clock.ticks_ms(), CAL_KEEP_MS)
-            else:
-                release(MORE)
 
     def _calibration(self, word, args):
         """A jog or calibration command (consolecal): its module stays on the heap for the session
         (poll lets it go, _cal_over); the boot's file load ("boot") lets it go at once."""
+        if self.compiles and CAL not in sys.modules:
+            gc.collect()
         import consolecal
 
         try:
@@ -590,6 +600,8 @@ class Console:
     # -- multi-line replies (selftest) ------------------------------------------------------
 
     def _selftest(self, args):
+        if self.compiles:
+            gc.collect()
         import selftest  # only now: the module leaves the heap again when the job ends
 
         try:
@@ -629,9 +641,9 @@ class Console:
 
 
 def release_selftest():
-    """selftest (and the servo sweep's module, when the job loaded it) out of sys.modules."""
+    """selftest (and the bus checks' or the servo sweep's module, when the job loaded it) out of sys.modules."""
     sys.modules.pop("selftest", None)
-    sys.modules.pop("selftestsweep", None)
+    release("consoleparts.selftestsweep", "consoleparts.selftestbus")
 
 
 def tag_length(buf, n):

@@ -2,7 +2,7 @@
 
 Imported by console.py only when the command runs, and dropped from sys.modules when it ends, so
 the board's heap carries none of this in normal running; the servo sweep's job lives in
-selftestsweep.py, imported for `selftest servos L` only (a smaller compile for the checks on
+consoleparts/selftestsweep.py, imported for `selftest servos L` only (a smaller compile for the checks on
 CircuitPython, which compiles a module's source at each import). Nothing here runs in the 50 Hz tick: a
 job's step() runs in Console.poll(), after the frame was sent.
 
@@ -27,26 +27,7 @@ from hexapod.units import format_fixed
 HEAP_LOW = 16384  # bytes free below which the heap check fails
 _RESETS = ("PWRON_RESET", "HARD_RESET", "WDT_RESET", "DEEPSLEEP_RESET", "SOFT_RESET")
 _RESET_WORDS = ("power_on", "hard", "watchdog", "deepsleep", "soft")
-_GROUND = "common ground with the Pico?"
-
-
-def _hex(a):
-    return "0x%02x" % a
-
-
-def jumper_hint(address):
-    """Which address jumpers a PCA9685 board at address (0x40..0x7f) has bridged."""
-    bits = address - 0x40
-    if not 0 <= bits < 64:
-        return "is it a PCA9685 at all?"
-    if not bits:
-        return "are all its address jumpers (A0-A5) open?"
-    on = ["A%d" % i for i in range(6) if bits >> i & 1]
-    return "is its %s jumper bridged (and no other)?" % "+".join(on)
-
-
-def no_answer_hint(address):
-    return "%s is its VCC on 3V3? SDA and SCL wired through? %s" % (jumper_hint(address), _GROUND)
+_GROUND = "common ground with the Pico?"  # consoleparts.selftestbus has its own copy
 
 
 class _Watch:
@@ -129,9 +110,13 @@ class Checks:
         )
         self._line(out, True, "version " + VERSION)
         chips = getattr(r.bank, "chips", None) or []
-        self._i2c(out, board, chips)
+        if self.con.compiles:  # compiled from source (CircuitPython): on a collected heap
+            gc.collect()
+        from consoleparts import selftestbus  # the bus's checks: a module of their own, a smaller compile each
+
+        selftestbus.i2c(self, out, board, chips)
         for c in chips:
-            self._chip(out, c)
+            selftestbus.chip(self, out, c)
         self._calibration(out)
         self._reset(out)
         self._faults(out)
@@ -150,72 +135,6 @@ class Checks:
             self._line(out, True, text)
         else:
             self._line(out, False, text + ": charge the pack (cut off below %s V)" % battery.volts(b.cutoff_mv))
-
-    def _i2c(self, out, board, chips):
-        if not chips:
-            self._line(out, True, "i2c n/a (no PCA9685 bank on this loop)")
-            return
-        for c in chips:
-            c.sync()  # a background burst (rp2) finishes before the bus is scanned
-        i2c = chips[0].i2c
-        try:
-            locked = hasattr(i2c, "try_lock")  # busio.I2C (CircuitPython) is scanned under its lock
-            while locked and not i2c.try_lock():
-                pass
-            try:
-                found = i2c.scan()
-            finally:
-                if locked:
-                    i2c.unlock()
-        except OSError as e:
-            self._line(out, False, "i2c scan failed (%s): SDA or SCL held low? pull-ups? %s" % (e, _GROUND))
-            return
-        want = [c.address for c in chips]
-        missing = [a for a in want if a not in found]
-        extra = [a for a in found if a not in want]
-        names = " ".join(_hex(a) for a in found) if found else "nothing"
-        text = "i2c found " + names
-        if extra:
-            text += " (not in the board file: %s%s)" % (
-                " ".join(_hex(a) for a in extra),
-                "; 0x70 is a PCA9685's power-on ALLCALL address" if 0x70 in extra else "",
-            )
-        if not found:
-            pins = board["i2c"] if board else {}
-            self._line(
-                out,
-                False,
-                "%s: no chip answers: SDA on %s and SCL on %s? the PCA9685 boards powered (VCC on 3V3)? %s"
-                % (text, pins.get("sda", "?"), pins.get("scl", "?"), _GROUND),
-            )
-        elif missing:
-            self._line(
-                out,
-                False,
-                "%s, missing %s: %s" % (text, " ".join(_hex(a) for a in missing), no_answer_hint(missing[0])),
-            )
-        else:
-            self._line(out, True, text)
-
-    def _chip(self, out, c):
-        name = "pca9685 " + _hex(c.address)
-        mode1, pre = c.read_back()
-        want1 = c.mode1_written()
-        if mode1 < 0 or pre < 0:
-            self._line(out, False, "%s: no answer: %s" % (name, no_answer_hint(c.address)))
-            return
-        got = "MODE1 %s PRE_SCALE %s" % (_hex(mode1), _hex(pre))
-        if mode1 != want1 or pre != c.prescale:
-            self._line(
-                out,
-                False,
-                "%s %s, the driver wrote MODE1 %s PRE_SCALE %s: it reset since start-up (a brownout: servo "
-                "power sagging into its VCC? VCC on 3V3, not on the servo supply) or another I2C master "
-                "writes it; the loop sets it up again within %d frames"
-                % (name, got, _hex(want1), _hex(c.prescale), c._check_every),
-            )
-            return
-        self._line(out, True, "%s %s (%d Hz at osc %d Hz)" % (name, got, c.freq_hz, c.osc_hz))
 
     def _sonars(self, out):
         r = self.runner
@@ -335,6 +254,6 @@ def start(console, args):
             "the robot is %s; servos are swept only while it sits (body on the ground, no leg carries it): 'sit' first"
             % tick.MODE_NAMES[r.mode]
         )
-    from selftestsweep import Sweep  # only for this job: dropped with selftest when it ends
+    from consoleparts.selftestsweep import Sweep  # only for this job: dropped with selftest when it ends
 
     return Sweep(console, leg)

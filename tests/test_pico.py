@@ -139,10 +139,12 @@ def test_every_module_imports_as_mpy_with_the_heap_left(fs):
     assert expected | core <= set(names) and not [n for n in names if ".cp_" in n]
     # The console imports stream at the first `stream` (telemetry, kept while the console lives),
     # selftest for `selftest` (dropped after the command): selftest last, on top of a streaming board;
-    # selftestsweep comes with `selftest servos L` only, after selftest: the last row is that job's.
-    # consolemore (the reporting and setting commands) comes at the first of them and stays 30 s after
-    # the last: first of the on-demand ones (a `status` just before `selftest` leaves it loaded).
-    on_demand = ["consolemore", "drivers.stream", "selftest", "selftestsweep"]
+    # consoleparts.selftestbus comes with the checks, consoleparts.selftestsweep with `selftest
+    # servos L` only: the last row has both (more than either job loads). consoleparts.more (the
+    # reporting and setting commands) comes at the first of them and stays 30 s after the last:
+    # first of the on-demand ones (a `status` just before `selftest` leaves it loaded).
+    on_demand = ["consoleparts.more", "drivers.stream", "selftest"]
+    on_demand += ["consoleparts.selftestbus", "consoleparts.selftestsweep"]
     resident_names = [n for n in names if n not in on_demand and n != "drivers._stream_viper"]  # stream's twin: with it
     # The calibration commands' module comes and goes: console.start reads the calibration file
     # with it at boot and lets it go (its names stay: qstrs), each calibration command likewise.
@@ -179,7 +181,7 @@ load(%r)
     for name, path, _ in rows:
         assert path.endswith(".mpy") and path.replace("/", ".")[:-4].removesuffix(".__init__") == name, (name, path)
     left = int(rows[len(resident_names) - 1][2])
-    streaming = int(rows[-3][2])
+    streaming = int(rows[len(resident_names) + on_demand.index("drivers.stream")][2])
     in_selftest = int(rows[-1][2])
     print(
         "heap: %d bytes free at start, %d after importing the %d resident modules, %d once main.main has"

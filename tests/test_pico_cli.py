@@ -110,7 +110,7 @@ def test_run_streams_output_and_returns_the_boards_status(tmp_path):
         "calstore.mpy",
         "console.mpy",
         "consolecal.mpy",
-        "consolemore.mpy",
+        "consoleparts",
         "drivers",
         "hexapod",
         "hexapod.checked",
@@ -119,7 +119,6 @@ def test_run_streams_output_and_returns_the_boards_status(tmp_path):
         "robots",
         "runner.mpy",
         "selftest.mpy",
-        "selftestsweep.mpy",
         "startup.mpy",
     ]
     assert os.path.getsize(str(image) + ".img") == pico.FS_BLOCKS * pico.FS_BLOCK_SIZE

@@ -3,8 +3,8 @@
 imports this module at the first of them; MicroPython keeps it while they keep coming (let go
 CAL_KEEP_MS after the last one); CircuitPython, which compiles a module's source at each import,
 compiles it for the command and lets it go after (hexapod.release), so the console's own compile
-and the running loop's heap are smaller (docs/flashing.md). The console
-names the command in an err reply; the replies are the console's as before.
+and the running loop's heap are smaller (docs/flashing.md). The console names the command in
+an err reply; the replies are the console's as before.
 """
 
 import console
