@@ -643,7 +643,7 @@ class Console:
 def release_selftest():
     """selftest (and the bus checks' or the servo sweep's module, when the job loaded it) out of sys.modules."""
     sys.modules.pop("selftest", None)
-    release("consoleparts.selftestsweep", "consoleparts.selftestbus")
+    release("consoleparts.selftestsweep", "consoleparts.selftestbus", "consoleparts.selftestboard")
 
 
 def tag_length(buf, n):

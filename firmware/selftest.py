@@ -21,12 +21,9 @@ around the angle it holds and back, at SWEEP_CDEG_PER_S, every step through Robo
 
 import gc
 
-from hexapod import VERSION, sensors, tick
+from hexapod import VERSION, release, sensors, tick
 from hexapod.units import format_fixed
 
-HEAP_LOW = 16384  # bytes free below which the heap check fails
-_RESETS = ("PWRON_RESET", "HARD_RESET", "WDT_RESET", "DEEPSLEEP_RESET", "SOFT_RESET")
-_RESET_WORDS = ("power_on", "hard", "watchdog", "deepsleep", "soft")
 _GROUND = "common ground with the Pico?"  # consoleparts.selftestbus has its own copy
 
 
@@ -117,24 +114,19 @@ class Checks:
         selftestbus.i2c(self, out, board, chips)
         for c in chips:
             selftestbus.chip(self, out, c)
-        self._calibration(out)
-        self._reset(out)
-        self._faults(out)
-        self._heap(out)
-        self._supply(out, getattr(r, "battery", None))
+        selftestbus = None
+        release("consoleparts.selftestbus")  # done with: the next one's compile gets its heap
+        if self.con.compiles:
+            gc.collect()
+        from consoleparts import selftestboard  # the board's own checks
 
-    def _supply(self, out, b):
-        """The battery monitor's pack voltage and state (hexapod.battery), when the board has one."""
-        if b is None:
-            self._line(out, True, "supply n/a (no battery monitor configured)")
-            return
-        from hexapod import battery
-
-        text = "supply %s V, %d cells, %s" % (battery.volts(b.level_mv), b.cells, battery.STATE_NAMES[b.state])
-        if b.state == battery.OK:
-            self._line(out, True, text)
-        else:
-            self._line(out, False, text + ": charge the pack (cut off below %s V)" % battery.volts(b.cutoff_mv))
+        selftestboard.calibration(self, out)
+        selftestboard.reset(self, out)
+        selftestboard.faults(self, out)
+        selftestboard.heap(self, out)
+        selftestboard.supply(self, out, getattr(r, "battery", None))
+        selftestboard = None
+        release("consoleparts.selftestboard")
 
     def _sonars(self, out):
         r = self.runner
@@ -164,77 +156,6 @@ class Checks:
             else:
                 why = "no result while the test watched (%d frames): is the loop's round robin running?" % self.frames
             self._line(out, False, "%s %s: %s" % (name, word, why))
-
-    def _calibration(self, out):
-        store = self.con.store
-        src = self.con.cal_source
-        if store is None:
-            self._line(out, True, "calibration n/a (no filesystem on this console; in force: %s)" % src)
-            return
-        try:
-            crc = store.check()
-        except ValueError as e:
-            self._line(
-                out,
-                False,
-                "calibration %s: the robot file's defaults are in use at boot (in force now: %s): calibrate and "
-                "'save' (docs/jog.md)" % (e, src),
-            )
-            return
-        self._line(out, True, "calibration %s crc %04x (in force: %s)" % (store.path, crc, src))
-
-    def _reset(self, out):
-        try:
-            import machine
-
-            cause = machine.reset_cause()
-        except (ImportError, AttributeError):
-            self._line(out, True, "reset_cause n/a (no machine.reset_cause on this port)")
-            return
-        word = "code_%d" % cause
-        for i in range(len(_RESETS)):
-            if getattr(machine, _RESETS[i], None) == cause:
-                word = _RESET_WORDS[i]
-        if word == "watchdog":
-            self._line(
-                out,
-                False,
-                "reset_cause watchdog: the loop stalled past the board file's watchdog_ms and the watchdog reset "
-                "the board: a traceback at the REPL shows why (run with watchdog_ms None to see it)",
-            )
-            return
-        self._line(out, True, "reset_cause " + word)
-
-    def _faults(self, out):
-        """The fault log (runner.faultlog): a sonar's lost echo is news, the rest is a fault to fix."""
-        import console
-
-        from hexapod import faultlog
-
-        log = self.runner.faultlog
-        text = "faults " + console.fault_text(log, self.runner.bank)
-        serious = False
-        for i in range(log.count()):
-            serious = serious or log.entry(i)[0] != faultlog.SONAR
-        if serious:
-            text += ": fix the cause (docs/console.md, faults), then `faults clear`"
-        self._line(out, not serious, text)
-
-    def _heap(self, out):
-        if not hasattr(gc, "mem_free"):
-            self._line(out, True, "heap n/a (no gc.mem_free on this runtime)")
-            return
-        gc.collect()
-        free = gc.mem_free()
-        if free < HEAP_LOW:
-            self._line(
-                out,
-                False,
-                "heap free %d bytes, below %d: a line or a walk may fail for memory: flash compiled .mpy "
-                "files (hexapod flash does) and remove extra files from the board" % (free, HEAP_LOW),
-            )
-            return
-        self._line(out, True, "heap free %d bytes" % free)
 
 
 def start(console, args):
