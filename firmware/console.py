@@ -41,11 +41,13 @@ SLOW = ("gait", "height", "stand", "sit", "relax", "save", "load", "defaults")
 # follows a wall: the 5.3 KB of heap it takes on a Pico are the walking loop's again.
 CAL = "consolecal"
 CAL_KEEP_MS = const(30000)
-# The reporting and setting commands' module (consoleparts/more.py: help, status, gait, height, sonar,
-# wall, pid, echo, faults, stream): imported at the first of them and kept while they keep coming
-# (let go CAL_KEEP_MS after the last one: the running loop does not carry it); CircuitPython
-# (Console.compiles, set by code.py) compiles it per command and lets it go after each.
+# The reporting commands' module (consoleparts/more.py: help, status, sonar, echo, faults) and the
+# setting commands' (consoleparts/setting.py: gait, height, wall, pid, stream): each imported at
+# the first of its commands and kept while they keep coming (let go CAL_KEEP_MS after the last
+# one: the running loop does not carry them); CircuitPython (Console.compiles, set by code.py)
+# compiles one per command and lets it go after each.
 MORE = "consoleparts.more"
+SETTING = "consoleparts.setting"  # gait, height, wall, pid, stream: loaded and let go as MORE
 
 
 def fault_text(log, bank):
@@ -155,11 +157,11 @@ class Console:
             "get": self._get,
             "walk": self._walk,
             "stop": self._stop,
-            "gait": MORE,
-            "height": MORE,
+            "gait": SETTING,
+            "height": SETTING,
             "sonar": MORE,
-            "wall": MORE,
-            "pid": MORE,
+            "wall": SETTING,
+            "pid": SETTING,
             "cal": CAL,
             "trim": CAL,
             "dir": CAL,
@@ -170,7 +172,7 @@ class Console:
             "echo": MORE,
             "selftest": self._selftest,
             "faults": MORE,
-            "stream": MORE,
+            "stream": SETTING,
         }
 
     # -- the frame's part ---------------------------------------------------------------
@@ -204,7 +206,7 @@ class Console:
             clock = self.runner.clock
             if clock.ticks_diff(clock.ticks_ms(), self._more_until) >= 0:
                 self._more_until = -1
-                release(MORE)
+                release(MORE, SETTING)
         if self._job is not None:
             self._job_step()
         if self._late is not None and not self.robot.configuring():
@@ -336,8 +338,8 @@ class Console:
         try:
             if fn is CAL:
                 reply = self._calibration(word, args)
-            elif fn is MORE:
-                reply = self._more(word, args)
+            elif fn is MORE or fn is SETTING:
+                reply = self._part(fn, word, args)
             else:
                 reply = fn(args)
         except ValueError as e:
@@ -556,18 +558,22 @@ class Console:
         self._say(self._late_tag, reply)
         self._late_tag = None
 
-    def _more(self, word, args):
-        """A reporting or setting command (consoleparts.more): its module stays CAL_KEEP_MS after it
-        (poll lets it go), or goes at once where the board compiles it (compiles)."""
+    def _part(self, name, word, args):
+        """A reporting or setting command (consoleparts.more or .setting, name): its module stays
+        CAL_KEEP_MS after it (poll lets it go), or goes at once where the board compiles it
+        (compiles)."""
         if self.compiles:
             gc.collect()
-        from consoleparts import more
-
+        if name is MORE:  # (static imports: hexapod flash ships what it finds imported)
+            from consoleparts import more as part
+        else:
+            from consoleparts import setting as part
         try:
-            return more.command(self, word, args)
+            return part.command(self, word, args)
         finally:
+            part = None
             if self.compiles:
-                release(MORE)
+                release(name)
             else:
                 clock = self.runner.clock
                 self._more_until = clock.ticks_add(clock.ticks_ms(), CAL_KEEP_MS)

@@ -141,10 +141,10 @@ def test_every_module_imports_as_mpy_with_the_heap_left(fs):
     # selftest for `selftest` (dropped after the command): selftest last, on top of a streaming board;
     # consoleparts.selftestbus and selftestboard come with the checks (one after the other),
     # consoleparts.selftestsweep with `selftest servos L` only: the last row has all three (more
-    # than either job loads). consoleparts.more (the
-    # reporting and setting commands) comes at the first of them and stays 30 s after the last:
-    # first of the on-demand ones (a `status` just before `selftest` leaves it loaded).
-    on_demand = ["consoleparts.more", "drivers.stream", "selftest"]
+    # than either job loads). consoleparts.more and .setting (the reporting and the setting
+    # commands) come at the first of theirs and stay 30 s after the last: first of the on-demand
+    # ones (a `status` just before `selftest` leaves one loaded).
+    on_demand = ["consoleparts.more", "consoleparts.setting", "drivers.stream", "selftest"]
     on_demand += ["consoleparts.selftestbus", "consoleparts.selftestboard", "consoleparts.selftestsweep"]
     resident_names = [n for n in names if n not in on_demand and n != "drivers._stream_viper"]  # stream's twin: with it
     # The calibration commands' module comes and goes: console.start reads the calibration file

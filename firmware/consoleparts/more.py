@@ -1,5 +1,5 @@
-"""The console's reporting and setting commands (`help`, `status`, `gait`, `height`, `sonar`, `wall`,
-`pid`, `echo`, `faults`, `stream`): console.py hands them here (Console._more). The console
+"""The console's reporting commands (`help`, `status`, `sonar`, `echo`, `faults`): console.py hands
+them here (Console._part; the setting commands are consoleparts/setting.py's). The console
 imports this module at the first of them; MicroPython keeps it while they keep coming (let go
 CAL_KEEP_MS after the last one); CircuitPython, which compiles a module's source at each import,
 compiles it for the command and lets it go after (hexapod.release), so the console's own compile
@@ -11,7 +11,7 @@ import console
 from runner import BOOT_WORDS, counters
 
 from hexapod import battery as batteries
-from hexapod import follow, gait, limits, sensors, tick
+from hexapod import follow, gait, sensors, tick
 from hexapod.units import format_fixed
 
 
@@ -59,37 +59,6 @@ def _status(con, args):
     )
 
 
-def _gait(con, args):
-    if args:
-        con._args(args, 1, "a gait name (%s)" % ", ".join(gait.NAMES))
-        if args[0] not in gait.NAMES:
-            raise ValueError("%r, allowed %s" % (args[0][:20], ", ".join(gait.NAMES)))
-        # Checked over the next frames (the servo guard's solves), the robot walking on
-        # meanwhile and the console answering other lines: the reply comes when it is done.
-        return _later(con, "gait", con.robot.set_gait(gait.NAMES.index(args[0]), wait=False))
-    return con._ok_late("gait")
-
-
-def _height(con, args):
-    if args:
-        con._args(args, 1, "MM (the body's standing height)")
-        g = con.robot.geometry
-        h = con._num("height", args[0], 1, g.body_height_min, g.body_height_max, "mm")
-        # Standing: the feet move there (checked over the next frames, like a gait); else the
-        # next stand goes to it.
-        return _later(con, "height", con.robot.set_height(h, wait=False))
-    return con._ok_late("height")
-
-
-def _later(con, word, code):
-    if code:
-        return con._refused(code)
-    if con.robot.configuring():
-        con._late = word
-        return None
-    return con._ok_late(word)
-
-
 def _sonar(con, args):
     con._args(args, 0, "no arguments")
     r = con.runner
@@ -101,34 +70,6 @@ def _sonar(con, args):
         parts.append(format_fixed(d, 1) if st == sensors.OK and d >= 0 else "-")
         parts.append(sensors.STATUS_NAMES[st] if 0 <= st < len(sensors.STATUS_NAMES) else "unknown")
     return " ".join(parts)
-
-
-def _wall(con, args):
-    if len(args) == 1 and args[0] == "off":
-        con.runner.follow_off()
-        return "ok wall off"
-    con._args(args, 2, "left|right CM, or off")
-    if args[0] not in limits.SIDES:
-        raise ValueError("side %r, allowed left, right or off" % (args[0][:20],))
-    cm = con._num("set point", args[1], 2, limits.SETPOINT_MIN, limits.SETPOINT_MAX, "cm")
-    con._battery_ok()
-    con._walking = False
-    code = con.runner.follow(args[0], cm)
-    if code:
-        return con._refused(code)
-    return "ok wall %s setpoint %s" % (args[0], format_fixed(cm, 2))
-
-
-def _pid(con, args):
-    p = con.runner.follower.pid
-    if args:
-        con._args(args, 3, "KP KI KD (each 0..100, 3 decimals)")
-        top = 100000  # hexapod.pid.GAIN_MAX
-        kp = con._num("kp", args[0], 3, 0, top, "")
-        ki = con._num("ki", args[1], 3, 0, top, "")
-        kd = con._num("kd", args[2], 3, 0, top, "")
-        con.runner.follower.set_gains(kp, ki, kd)
-    return "ok pid %s %s %s" % (format_fixed(p.kp, 3), format_fixed(p.ki, 3), format_fixed(p.kd, 3))
 
 
 def _echo(con, args):
@@ -151,21 +92,10 @@ def _faults(con, args):
     return "ok faults " + console.fault_text(log, con.runner.bank)
 
 
-def _stream(con, args):
-    from drivers import stream  # only now: a board that never streams keeps its heap and names
-
-    return stream.command(con, args)
-
-
 _COMMANDS = {
     "help": _help,
     "status": _status,
-    "gait": _gait,
-    "height": _height,
     "sonar": _sonar,
-    "wall": _wall,
-    "pid": _pid,
     "echo": _echo,
     "faults": _faults,
-    "stream": _stream,
 }
