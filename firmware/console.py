@@ -650,6 +650,7 @@ def release_selftest():
     """selftest (and the bus checks' or the servo sweep's module, when the job loaded it) out of sys.modules."""
     sys.modules.pop("selftest", None)
     release("consoleparts.selftestsweep", "consoleparts.selftestbus", "consoleparts.selftestboard")
+    release("consoleparts.selftestsonar")
 
 
 def tag_length(buf, n):

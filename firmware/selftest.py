@@ -22,9 +22,6 @@ around the angle it holds and back, at SWEEP_CDEG_PER_S, every step through Robo
 import gc
 
 from hexapod import VERSION, release, sensors, tick
-from hexapod.units import format_fixed
-
-_GROUND = "common ground with the Pico?"  # consoleparts.selftestbus has its own copy
 
 
 class _Watch:
@@ -77,7 +74,13 @@ class Checks:
         w = self.watch
         if w.left == 0 or self.frames >= self.limit:
             self._restore()
-            self._sonars(out)
+            if self.con.compiles:
+                gc.collect()
+            from consoleparts import selftestsonar  # the sonar checks: compiled for the last step only
+
+            selftestsonar.sonars(self, out)
+            selftestsonar = None
+            release("consoleparts.selftestsonar")
             out.append(self.end())
             self.done = True
         return out
@@ -127,35 +130,6 @@ class Checks:
         selftestboard.supply(self, out, getattr(r, "battery", None))
         selftestboard = None
         release("consoleparts.selftestboard")
-
-    def _sonars(self, out):
-        r = self.runner
-        w = self.watch
-        pins = getattr(r, "sonar_pins", None)
-        for k in range(len(w.status)):
-            st = w.status[k]
-            name = "sonar " + sensors.SENSOR_NAMES[k]
-            if st == sensors.OK:
-                self._line(out, True, "%s ok %s mm" % (name, format_fixed(w.distance[k], 1)))
-                continue
-            word = sensors.STATUS_NAMES[st] if 0 <= st < len(sensors.STATUS_NAMES) else "wait"
-            wires = "trigger on pin %s, echo on pin %s" % pins[k] if pins else "its trigger and echo pins"
-            if st == sensors.NO_ECHO:
-                why = "the echo never rose: module on 5 V? %s? the echo's 1k/2k divider in place? %s" % (wires, _GROUND)
-            elif st == sensors.STUCK:
-                why = "the echo was high before the trigger: echo shorted high, or the divider's ground leg open"
-                why += " (%s)" % wires
-            elif st == sensors.OUT_OF_RANGE:
-                why = (
-                    "nothing within %s mm: point it at a wall 10-50 cm away (a soft or slanted target "
-                    % (format_fixed(r.sonars.ring.sensors[k].max_range, 1),)
-                    + "returns no echo)"
-                )
-            elif st == sensors.TOO_CLOSE:
-                why = "closer than 20.0 mm: something on the transducers, or a bent one hearing its own burst"
-            else:
-                why = "no result while the test watched (%d frames): is the loop's round robin running?" % self.frames
-            self._line(out, False, "%s %s: %s" % (name, word, why))
 
 
 def start(console, args):

@@ -139,13 +139,14 @@ def test_every_module_imports_as_mpy_with_the_heap_left(fs):
     assert expected | core <= set(names) and not [n for n in names if ".cp_" in n]
     # The console imports stream at the first `stream` (telemetry, kept while the console lives),
     # selftest for `selftest` (dropped after the command): selftest last, on top of a streaming board;
-    # consoleparts.selftestbus and selftestboard come with the checks (one after the other),
-    # consoleparts.selftestsweep with `selftest servos L` only: the last row has all three (more
-    # than either job loads). consoleparts.more and .setting (the reporting and the setting
+    # consoleparts.selftestbus, selftestboard and selftestsonar come with the checks (one after the
+    # other), consoleparts.selftestsweep with `selftest servos L` only: the last row has all four
+    # (more than either job loads). consoleparts.more and .setting (the reporting and the setting
     # commands) come at the first of theirs and stay 30 s after the last: first of the on-demand
     # ones (a `status` just before `selftest` leaves one loaded).
     on_demand = ["consoleparts.more", "consoleparts.setting", "drivers.stream", "selftest"]
-    on_demand += ["consoleparts.selftestbus", "consoleparts.selftestboard", "consoleparts.selftestsweep"]
+    on_demand += ["consoleparts.selftestbus", "consoleparts.selftestboard", "consoleparts.selftestsonar"]
+    on_demand.append("consoleparts.selftestsweep")
     resident_names = [n for n in names if n not in on_demand and n != "drivers._stream_viper"]  # stream's twin: with it
     # The calibration commands' module comes and goes: console.start reads the calibration file
     # with it at boot and lets it go (its names stay: qstrs), each calibration command likewise.
