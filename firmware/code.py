@@ -79,8 +79,9 @@ def _release(robot_name):
 # the heap into holes. So on a board the largest compiles come first, on the emptiest heap: the
 # biggest driver, drivers.pca9685 (left last, it was what failed once tick came first), then
 # hexapod.tick (which compiles walk); then the board and robot files, read and let go before
-# the console loads (their checks are not alive while the loop is built); then console (it loads
-# runner and the wall follower as it runs); a collection after each. A board file refused stops
+# the console loads (their checks are not alive while the loop is built); then runner (which
+# compiles the wall follower), then console, whose reporting and setting commands (consoleparts.more)
+# are compiled per command; a collection after each. A board file refused stops
 # code.py here, with the message build() gave before. `hexapod bench feather` (docs/flashing.md)
 # has the figures.
 _settings = None  # settings(BOARD, ROBOT), read at import on a board; build() takes it once
@@ -94,6 +95,9 @@ if sys.implementation.name != "cpython":  # CPython: the tests install fake modu
     _settings = settings()
     _release(ROBOT)
     gc.collect()
+    import runner  # noqa: F401  (compiles the wall follower)
+
+    gc.collect()
 
 import console  # noqa: E402
 
@@ -104,6 +108,9 @@ if sys.implementation.name != "cpython":
     import consolecal  # noqa: F401
 
     console.Console.keep_cal = True
+    # consoleparts.more and selftest compiled per command on a collected heap, the former let go after
+    # each (console.Console.compiles).
+    console.Console.compiles = True
     gc.collect()
     from drivers import cp_clock, cp_hcsr04_pulsein, cp_pca9685  # noqa: F401
 from runner import FRAME_MS, Runner  # noqa: E402

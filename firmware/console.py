@@ -11,13 +11,13 @@ CircuitPython's SerialReader lives in code.py, the tests' BufferReader in the st
 (_stub_serial): a board's heap keeps neither.
 """
 
+import gc
 import sys
 
 from micropython import const
-from runner import BOOT_WORDS, counters
 
 from hexapod import battery as batteries
-from hexapod import faultlog, follow, gait, limits, release, sensors, tick
+from hexapod import faultlog, gait, release, sensors, tick
 from hexapod.body import FINE_SHIFT
 from hexapod.leg import describe as leg_describe
 from hexapod.units import format_fixed, parse_fixed
@@ -41,6 +41,13 @@ SLOW = ("gait", "height", "stand", "sit", "relax", "save", "load", "defaults")
 # follows a wall: the 5.3 KB of heap it takes on a Pico are the walking loop's again.
 CAL = "consolecal"
 CAL_KEEP_MS = const(30000)
+# The reporting commands' module (consoleparts/more.py: help, status, sonar, echo, faults) and the
+# setting commands' (consoleparts/setting.py: gait, height, wall, pid, stream): each imported at
+# the first of its commands and kept while they keep coming (let go CAL_KEEP_MS after the last
+# one: the running loop does not carry them); CircuitPython (Console.compiles, set by code.py)
+# compiles one per command and lets it go after each.
+MORE = "consoleparts.more"
+SETTING = "consoleparts.setting"  # gait, height, wall, pid, stream: loaded and let go as MORE
 
 
 def fault_text(log, bank):
@@ -88,9 +95,18 @@ class PollReader:
 class Console:
     """Command lines -> calls on a runner.Runner; replies through `out` (print on a board)."""
 
-    # CircuitPython compiles a module's source at each import, needing several times its size in
-    # free heap: code.py loads consolecal once, next to console, and sets this to keep it.
+    # True: consolecal stays loaded once imported (no session end lets it go). CircuitPython's
+    # code.py loads it next to console and keeps it: compiled at boot on a heap with room, not at
+    # a jog session's first command on the loop's (nor at boot for the calibration file's load,
+    # after build(): both measured worse, docs/flashing.md).
     keep_cal = False
+    # True where the board compiles a module's source at each import (CircuitPython: code.py sets
+    # it): consoleparts.more is let go after each of its commands instead of kept CAL_KEEP_MS (the loop's
+    # heap over a compile per command), and the modules loaded on demand (consoleparts.more, consolecal,
+    # selftest and its bus checks) are compiled on a collected heap: the collector would run only
+    # once an allocation failed, with the parse's first blocks already placed in the small holes
+    # the loop's heap has (bench.feather: 16 KB more free heap needed without it, 2026-11-28).
+    compiles = False
 
     def __init__(self, runner, reader=None, out=print, store=None, walk_timeout_ms=WALK_TIMEOUT_MS, write=None):
         """runner: runner.Runner; reader: has read_byte(); store: calstore.Store or None (no
@@ -127,9 +143,10 @@ class Console:
         self.trims = [0] * 18
         self.cal_source = "defaults"
         self._cal_until = -1  # consolecal stays loaded for a jog session until then (ticks_ms); -1: not loaded
+        self._more_until = -1  # consoleparts.more stays loaded until then (ticks_ms); -1: not loaded
         self._table = {
-            "help": self._help,
-            "status": self._status,
+            "help": MORE,
+            "status": MORE,
             "stand": self._stand,
             "sit": self._sit,
             "relax": self._relax,
@@ -140,11 +157,11 @@ class Console:
             "get": self._get,
             "walk": self._walk,
             "stop": self._stop,
-            "gait": self._gait,
-            "height": self._height,
-            "sonar": self._sonar,
-            "wall": self._wall,
-            "pid": self._pid,
+            "gait": SETTING,
+            "height": SETTING,
+            "sonar": MORE,
+            "wall": SETTING,
+            "pid": SETTING,
             "cal": CAL,
             "trim": CAL,
             "dir": CAL,
@@ -152,10 +169,10 @@ class Console:
             "save": CAL,
             "load": CAL,
             "defaults": CAL,
-            "echo": self._echo,
+            "echo": MORE,
             "selftest": self._selftest,
-            "faults": self._faults,
-            "stream": self._stream,
+            "faults": MORE,
+            "stream": SETTING,
         }
 
     # -- the frame's part ---------------------------------------------------------------
@@ -185,6 +202,11 @@ class Console:
         if self._cal_until >= 0 and self._cal_over():
             self._cal_until = -1
             release(CAL)
+        if self._more_until >= 0:
+            clock = self.runner.clock
+            if clock.ticks_diff(clock.ticks_ms(), self._more_until) >= 0:
+                self._more_until = -1
+                release(MORE, SETTING)
         if self._job is not None:
             self._job_step()
         if self._late is not None and not self.robot.configuring():
@@ -314,7 +336,12 @@ class Console:
         if tag is not None and word in SLOW:
             self.out(tag, "working")  # sent before the command runs: the client waits on
         try:
-            reply = self._calibration(word, args) if fn is CAL else fn(args)
+            if fn is CAL:
+                reply = self._calibration(word, args)
+            elif fn is MORE or fn is SETTING:
+                reply = self._part(fn, word, args)
+            else:
+                reply = fn(args)
         except ValueError as e:
             return "err %s: %s" % (word, e)
         except Exception as e:  # the loop must go on whatever a command hits
@@ -466,43 +493,6 @@ class Console:
 
     # -- commands -------------------------------------------------------------------------
 
-    def _help(self, args):
-        self._args(args, 0, "no arguments")
-        return "ok " + COMMANDS
-
-    def _status(self, args):
-        self._args(args, 0, "no arguments")
-        r = self.runner
-        f = r.follower
-        left = 0
-        if self._walking:
-            left = r.clock.ticks_diff(self._deadline, r.clock.ticks_ms())
-            left = left if left > 0 else 0
-        on = f.mode != follow.OFF
-        return (
-            "ok %s faults %d mode %s gait %s "
-            "walk_ms %d wall %s wall_mode %s wall_d %s wall_angle %s wall_error %s wall_out %s wall_faults %d "
-            "cal %s boot %s battery %s battery_mv %s"
-            % (
-                counters(r),
-                r.robot.faults,
-                tick.MODE_NAMES[r.robot.mode],
-                gait.NAMES[r.robot.gait],
-                left,
-                f.side if on else "off",
-                follow.MODE_NAMES[f.mode],
-                format_fixed(f.distance, 1) if on and f.distance >= 0 else "-",  # no distance (yet)
-                format_fixed(f.angle if on else 0, 2),
-                format_fixed(f.error if on else 0, 1),
-                format_fixed(f.output if on else 0, 2),
-                f.fault_total if on else 0,
-                self.cal_source,
-                BOOT_WORDS[r.boot],
-                "n/a" if r.battery is None else batteries.STATE_NAMES[r.battery.state],
-                "n/a" if r.battery is None else r.battery.level_mv,
-            )
-        )
-
     def _stand(self, args):
         self._args(args, 0, "no arguments")
         self._no_follow()
@@ -551,34 +541,6 @@ class Console:
             self.runner.follow_off()
         return self._mode_reply(self.robot.stop())
 
-    def _gait(self, args):
-        if args:
-            self._args(args, 1, "a gait name (%s)" % ", ".join(gait.NAMES))
-            if args[0] not in gait.NAMES:
-                raise ValueError("%r, allowed %s" % (args[0][:20], ", ".join(gait.NAMES)))
-            # Checked over the next frames (the servo guard's solves), the robot walking on
-            # meanwhile and the console answering other lines: the reply comes when it is done.
-            return self._later("gait", self.robot.set_gait(gait.NAMES.index(args[0]), wait=False))
-        return self._ok_late("gait")
-
-    def _height(self, args):
-        if args:
-            self._args(args, 1, "MM (the body's standing height)")
-            g = self.robot.geometry
-            h = self._num("height", args[0], 1, g.body_height_min, g.body_height_max, "mm")
-            # Standing: the feet move there (checked over the next frames, like a gait); else the
-            # next stand goes to it.
-            return self._later("height", self.robot.set_height(h, wait=False))
-        return self._ok_late("height")
-
-    def _later(self, word, code):
-        if code:
-            return self._refused(code)
-        if self.robot.configuring():
-            self._late = word
-            return None
-        return self._ok_late(word)
-
     def _ok_late(self, word):
         r = self.robot
         if word == "gait":
@@ -596,70 +558,31 @@ class Console:
         self._say(self._late_tag, reply)
         self._late_tag = None
 
-    def _sonar(self, args):
-        self._args(args, 0, "no arguments")
-        r = self.runner
-        parts = ["ok"]
-        for k in range(len(r.distances)):
-            st = r.sonar_status[k]
-            d = r.distances[k]
-            parts.append(sensors.SENSOR_NAMES[k])
-            parts.append(format_fixed(d, 1) if st == sensors.OK and d >= 0 else "-")
-            parts.append(sensors.STATUS_NAMES[st] if 0 <= st < len(sensors.STATUS_NAMES) else "unknown")
-        return " ".join(parts)
-
-    def _wall(self, args):
-        if len(args) == 1 and args[0] == "off":
-            self.runner.follow_off()
-            return "ok wall off"
-        self._args(args, 2, "left|right CM, or off")
-        if args[0] not in limits.SIDES:
-            raise ValueError("side %r, allowed left, right or off" % (args[0][:20],))
-        cm = self._num("set point", args[1], 2, limits.SETPOINT_MIN, limits.SETPOINT_MAX, "cm")
-        self._battery_ok()
-        self._walking = False
-        code = self.runner.follow(args[0], cm)
-        if code:
-            return self._refused(code)
-        return "ok wall %s setpoint %s" % (args[0], format_fixed(cm, 2))
-
-    def _pid(self, args):
-        p = self.runner.follower.pid
-        if args:
-            self._args(args, 3, "KP KI KD (each 0..100, 3 decimals)")
-            top = 100000  # hexapod.pid.GAIN_MAX
-            kp = self._num("kp", args[0], 3, 0, top, "")
-            ki = self._num("ki", args[1], 3, 0, top, "")
-            kd = self._num("kd", args[2], 3, 0, top, "")
-            self.runner.follower.set_gains(kp, ki, kd)
-        return "ok pid %s %s %s" % (format_fixed(p.kp, 3), format_fixed(p.ki, 3), format_fixed(p.kd, 3))
-
-    def _echo(self, args):
-        if len(args) > 1 or (args and args[0] not in ("on", "off")):
-            raise ValueError("need on, off or nothing (ask), got %r" % (" ".join(args)[:20],))
-        if args and args[0] == "on" and self.write is None:
-            raise ValueError("this console has no raw output to echo to")
-        if args:
-            self.echo = args[0] == "on"
-        return "ok echo " + ("on" if self.echo else "off")
-
-    def _faults(self, args):
-        if len(args) > 1 or (args and args[0] != "clear"):
-            raise ValueError("need clear or nothing (list), got %r" % (" ".join(args)[:20],))
-        log = self.runner.faultlog
-        if args:
-            log.clear()
-            return "ok faults cleared"
-        return "ok faults " + fault_text(log, self.runner.bank)
-
-    def _stream(self, args):
-        from drivers import stream  # only now: a board that never streams keeps its heap and names
-
-        return stream.command(self, args)
+    def _part(self, name, word, args):
+        """A reporting or setting command (consoleparts.more or .setting, name): its module stays
+        CAL_KEEP_MS after it (poll lets it go), or goes at once where the board compiles it
+        (compiles)."""
+        if self.compiles:
+            gc.collect()
+        if name is MORE:  # (static imports: hexapod flash ships what it finds imported)
+            from consoleparts import more as part
+        else:
+            from consoleparts import setting as part
+        try:
+            return part.command(self, word, args)
+        finally:
+            part = None
+            if self.compiles:
+                release(name)
+            else:
+                clock = self.runner.clock
+                self._more_until = clock.ticks_add(clock.ticks_ms(), CAL_KEEP_MS)
 
     def _calibration(self, word, args):
         """A jog or calibration command (consolecal): its module stays on the heap for the session
         (poll lets it go, _cal_over); the boot's file load ("boot") lets it go at once."""
+        if self.compiles and CAL not in sys.modules:
+            gc.collect()
         import consolecal
 
         try:
@@ -683,12 +606,14 @@ class Console:
     # -- multi-line replies (selftest) ------------------------------------------------------
 
     def _selftest(self, args):
+        if self.compiles:
+            gc.collect()
         import selftest  # only now: the module leaves the heap again when the job ends
 
         try:
             job = selftest.start(self, args)
         except Exception:
-            sys.modules.pop("selftest", None)
+            release_selftest()
             raise
         if self._job is not None:
             self._job_end(self._job.abort())
@@ -718,7 +643,14 @@ class Console:
         self._job = None
         self._job_tag = None
         self.lines += 1
-        sys.modules.pop("selftest", None)  # its heap goes back once the job is dropped
+        release_selftest()  # its heap goes back once the job is dropped
+
+
+def release_selftest():
+    """selftest (and the bus checks' or the servo sweep's module, when the job loaded it) out of sys.modules."""
+    sys.modules.pop("selftest", None)
+    release("consoleparts.selftestsweep", "consoleparts.selftestbus", "consoleparts.selftestboard")
+    release("consoleparts.selftestsonar")
 
 
 def tag_length(buf, n):

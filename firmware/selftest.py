@@ -1,7 +1,9 @@
 """The console's `selftest` (docs/console.md): hardware checks, and one leg's servos swept.
 
 Imported by console.py only when the command runs, and dropped from sys.modules when it ends, so
-the board's heap carries none of this in normal running. Nothing here runs in the 50 Hz tick: a
+the board's heap carries none of this in normal running; the servo sweep's job lives in
+consoleparts/selftestsweep.py, imported for `selftest servos L` only (a smaller compile for the checks on
+CircuitPython, which compiles a module's source at each import). Nothing here runs in the 50 Hz tick: a
 job's step() runs in Console.poll(), after the frame was sent.
 
 Checks (one reply line each, `ok <check> ...` or `err <check> ...: <hint>`), then the end line
@@ -19,37 +21,7 @@ around the angle it holds and back, at SWEEP_CDEG_PER_S, every step through Robo
 
 import gc
 
-from hexapod import VERSION, sensors, tick
-from hexapod.units import format_fixed
-
-FRAME_MS = 20
-SWEEP_CDEG = 1000  # +-10 degrees around the present angle
-SWEEP_CDEG_PER_S = 2000  # 20 deg/s: 0.4 degree a frame
-STEP_CDEG = SWEEP_CDEG_PER_S * FRAME_MS // 1000
-HEAP_LOW = 16384  # bytes free below which the heap check fails
-JOINTS = ("coxa", "femur", "tibia")
-_RESETS = ("PWRON_RESET", "HARD_RESET", "WDT_RESET", "DEEPSLEEP_RESET", "SOFT_RESET")
-_RESET_WORDS = ("power_on", "hard", "watchdog", "deepsleep", "soft")
-_GROUND = "common ground with the Pico?"
-
-
-def _hex(a):
-    return "0x%02x" % a
-
-
-def jumper_hint(address):
-    """Which address jumpers a PCA9685 board at address (0x40..0x7f) has bridged."""
-    bits = address - 0x40
-    if not 0 <= bits < 64:
-        return "is it a PCA9685 at all?"
-    if not bits:
-        return "are all its address jumpers (A0-A5) open?"
-    on = ["A%d" % i for i in range(6) if bits >> i & 1]
-    return "is its %s jumper bridged (and no other)?" % "+".join(on)
-
-
-def no_answer_hint(address):
-    return "%s is its VCC on 3V3? SDA and SCL wired through? %s" % (jumper_hint(address), _GROUND)
+from hexapod import VERSION, release, sensors, tick
 
 
 class _Watch:
@@ -102,7 +74,13 @@ class Checks:
         w = self.watch
         if w.left == 0 or self.frames >= self.limit:
             self._restore()
-            self._sonars(out)
+            if self.con.compiles:
+                gc.collect()
+            from consoleparts import selftestsonar  # the sonar checks: compiled for the last step only
+
+            selftestsonar.sonars(self, out)
+            selftestsonar = None
+            release("consoleparts.selftestsonar")
             out.append(self.end())
             self.done = True
         return out
@@ -132,306 +110,26 @@ class Checks:
         )
         self._line(out, True, "version " + VERSION)
         chips = getattr(r.bank, "chips", None) or []
-        self._i2c(out, board, chips)
+        if self.con.compiles:  # compiled from source (CircuitPython): on a collected heap
+            gc.collect()
+        from consoleparts import selftestbus  # the bus's checks: a module of their own, a smaller compile each
+
+        selftestbus.i2c(self, out, board, chips)
         for c in chips:
-            self._chip(out, c)
-        self._calibration(out)
-        self._reset(out)
-        self._faults(out)
-        self._heap(out)
-        self._supply(out, getattr(r, "battery", None))
+            selftestbus.chip(self, out, c)
+        selftestbus = None
+        release("consoleparts.selftestbus")  # done with: the next one's compile gets its heap
+        if self.con.compiles:
+            gc.collect()
+        from consoleparts import selftestboard  # the board's own checks
 
-    def _supply(self, out, b):
-        """The battery monitor's pack voltage and state (hexapod.battery), when the board has one."""
-        if b is None:
-            self._line(out, True, "supply n/a (no battery monitor configured)")
-            return
-        from hexapod import battery
-
-        text = "supply %s V, %d cells, %s" % (battery.volts(b.level_mv), b.cells, battery.STATE_NAMES[b.state])
-        if b.state == battery.OK:
-            self._line(out, True, text)
-        else:
-            self._line(out, False, text + ": charge the pack (cut off below %s V)" % battery.volts(b.cutoff_mv))
-
-    def _i2c(self, out, board, chips):
-        if not chips:
-            self._line(out, True, "i2c n/a (no PCA9685 bank on this loop)")
-            return
-        for c in chips:
-            c.sync()  # a background burst (rp2) finishes before the bus is scanned
-        i2c = chips[0].i2c
-        try:
-            locked = hasattr(i2c, "try_lock")  # busio.I2C (CircuitPython) is scanned under its lock
-            while locked and not i2c.try_lock():
-                pass
-            try:
-                found = i2c.scan()
-            finally:
-                if locked:
-                    i2c.unlock()
-        except OSError as e:
-            self._line(out, False, "i2c scan failed (%s): SDA or SCL held low? pull-ups? %s" % (e, _GROUND))
-            return
-        want = [c.address for c in chips]
-        missing = [a for a in want if a not in found]
-        extra = [a for a in found if a not in want]
-        names = " ".join(_hex(a) for a in found) if found else "nothing"
-        text = "i2c found " + names
-        if extra:
-            text += " (not in the board file: %s%s)" % (
-                " ".join(_hex(a) for a in extra),
-                "; 0x70 is a PCA9685's power-on ALLCALL address" if 0x70 in extra else "",
-            )
-        if not found:
-            pins = board["i2c"] if board else {}
-            self._line(
-                out,
-                False,
-                "%s: no chip answers: SDA on %s and SCL on %s? the PCA9685 boards powered (VCC on 3V3)? %s"
-                % (text, pins.get("sda", "?"), pins.get("scl", "?"), _GROUND),
-            )
-        elif missing:
-            self._line(
-                out,
-                False,
-                "%s, missing %s: %s" % (text, " ".join(_hex(a) for a in missing), no_answer_hint(missing[0])),
-            )
-        else:
-            self._line(out, True, text)
-
-    def _chip(self, out, c):
-        name = "pca9685 " + _hex(c.address)
-        mode1, pre = c.read_back()
-        want1 = c.mode1_written()
-        if mode1 < 0 or pre < 0:
-            self._line(out, False, "%s: no answer: %s" % (name, no_answer_hint(c.address)))
-            return
-        got = "MODE1 %s PRE_SCALE %s" % (_hex(mode1), _hex(pre))
-        if mode1 != want1 or pre != c.prescale:
-            self._line(
-                out,
-                False,
-                "%s %s, the driver wrote MODE1 %s PRE_SCALE %s: it reset since start-up (a brownout: servo "
-                "power sagging into its VCC? VCC on 3V3, not on the servo supply) or another I2C master "
-                "writes it; the loop sets it up again within %d frames"
-                % (name, got, _hex(want1), _hex(c.prescale), c._check_every),
-            )
-            return
-        self._line(out, True, "%s %s (%d Hz at osc %d Hz)" % (name, got, c.freq_hz, c.osc_hz))
-
-    def _sonars(self, out):
-        r = self.runner
-        w = self.watch
-        pins = getattr(r, "sonar_pins", None)
-        for k in range(len(w.status)):
-            st = w.status[k]
-            name = "sonar " + sensors.SENSOR_NAMES[k]
-            if st == sensors.OK:
-                self._line(out, True, "%s ok %s mm" % (name, format_fixed(w.distance[k], 1)))
-                continue
-            word = sensors.STATUS_NAMES[st] if 0 <= st < len(sensors.STATUS_NAMES) else "wait"
-            wires = "trigger on pin %s, echo on pin %s" % pins[k] if pins else "its trigger and echo pins"
-            if st == sensors.NO_ECHO:
-                why = "the echo never rose: module on 5 V? %s? the echo's 1k/2k divider in place? %s" % (wires, _GROUND)
-            elif st == sensors.STUCK:
-                why = "the echo was high before the trigger: echo shorted high, or the divider's ground leg open"
-                why += " (%s)" % wires
-            elif st == sensors.OUT_OF_RANGE:
-                why = (
-                    "nothing within %s mm: point it at a wall 10-50 cm away (a soft or slanted target "
-                    % (format_fixed(r.sonars.ring.sensors[k].max_range, 1),)
-                    + "returns no echo)"
-                )
-            elif st == sensors.TOO_CLOSE:
-                why = "closer than 20.0 mm: something on the transducers, or a bent one hearing its own burst"
-            else:
-                why = "no result while the test watched (%d frames): is the loop's round robin running?" % self.frames
-            self._line(out, False, "%s %s: %s" % (name, word, why))
-
-    def _calibration(self, out):
-        store = self.con.store
-        src = self.con.cal_source
-        if store is None:
-            self._line(out, True, "calibration n/a (no filesystem on this console; in force: %s)" % src)
-            return
-        try:
-            crc = store.check()
-        except ValueError as e:
-            self._line(
-                out,
-                False,
-                "calibration %s: the robot file's defaults are in use at boot (in force now: %s): calibrate and "
-                "'save' (docs/jog.md)" % (e, src),
-            )
-            return
-        self._line(out, True, "calibration %s crc %04x (in force: %s)" % (store.path, crc, src))
-
-    def _reset(self, out):
-        try:
-            import machine
-
-            cause = machine.reset_cause()
-        except (ImportError, AttributeError):
-            self._line(out, True, "reset_cause n/a (no machine.reset_cause on this port)")
-            return
-        word = "code_%d" % cause
-        for i in range(len(_RESETS)):
-            if getattr(machine, _RESETS[i], None) == cause:
-                word = _RESET_WORDS[i]
-        if word == "watchdog":
-            self._line(
-                out,
-                False,
-                "reset_cause watchdog: the loop stalled past the board file's watchdog_ms and the watchdog reset "
-                "the board: a traceback at the REPL shows why (run with watchdog_ms None to see it)",
-            )
-            return
-        self._line(out, True, "reset_cause " + word)
-
-    def _faults(self, out):
-        """The fault log (runner.faultlog): a sonar's lost echo is news, the rest is a fault to fix."""
-        import console
-
-        from hexapod import faultlog
-
-        log = self.runner.faultlog
-        text = "faults " + console.fault_text(log, self.runner.bank)
-        serious = False
-        for i in range(log.count()):
-            serious = serious or log.entry(i)[0] != faultlog.SONAR
-        if serious:
-            text += ": fix the cause (docs/console.md, faults), then `faults clear`"
-        self._line(out, not serious, text)
-
-    def _heap(self, out):
-        if not hasattr(gc, "mem_free"):
-            self._line(out, True, "heap n/a (no gc.mem_free on this runtime)")
-            return
-        gc.collect()
-        free = gc.mem_free()
-        if free < HEAP_LOW:
-            self._line(
-                out,
-                False,
-                "heap free %d bytes, below %d: a line or a walk may fail for memory: flash compiled .mpy "
-                "files (hexapod flash does) and remove extra files from the board" % (free, HEAP_LOW),
-            )
-            return
-        self._line(out, True, "heap free %d bytes" % free)
-
-
-class Sweep:
-    """`selftest servos L` as a console job: leg L's joints one after the other, +-SWEEP_CDEG around
-    the present angle and back, STEP_CDEG a frame, through Robot.jog_joint; then `sit` again."""
-
-    def __init__(self, console, leg):
-        self.con = console
-        self.robot = console.robot
-        self.leg = leg
-        self.joint = 0
-        self.count = 0
-        self.failed = 0
-        self.done = False
-        self._begin()
-
-    def _begin(self):
-        k = 3 * self.leg + self.joint
-        self.a0 = self.robot.angles[k]
-        self.offset = 0
-        self.turns = 0  # 0: going up, 1: going down, 2: coming back
-        self.lo = self.hi = self.robot.pulses[k]
-
-    def step(self):
-        out = []
-        r = self.robot
-        j = self.joint
-        if self.turns == 0:
-            self.offset += STEP_CDEG
-            if self.offset >= SWEEP_CDEG:
-                self.offset = SWEEP_CDEG
-                self.turns = 1
-        elif self.turns == 1:
-            self.offset -= STEP_CDEG
-            if self.offset <= -SWEEP_CDEG:
-                self.offset = -SWEEP_CDEG
-                self.turns = 2
-        else:
-            self.offset += STEP_CDEG
-            if self.offset >= 0:
-                self.offset = 0
-                self.turns = 3
-        code = r.jog_joint(self.leg, j, self.a0 + self.offset)
-        k = 3 * self.leg + j
-        if code:
-            why = self.con._refused(code)[4:]
-            back = r.jog_joint(self.leg, j, self.a0)
-            self.count += 1
-            self.failed += 1
-            out.append(
-                "err servo %d %s: refused at %s deg (%s); %s"
-                % (
-                    self.leg + 1,
-                    JOINTS[j],
-                    format_fixed(self.a0 + self.offset, 2),
-                    why,
-                    "it went back to %s deg" % format_fixed(self.a0, 2) if not back else "it stays where it was",
-                )
-            )
-            self._next(out)
-            return out
-        p = r.pulses[k]
-        self.lo = p if p < self.lo else self.lo
-        self.hi = p if p > self.hi else self.hi
-        if self.turns == 3:
-            self.count += 1
-            out.append(
-                "ok servo %d %s swept %s..%s deg at %d deg/s, pulses %d..%d us"
-                % (
-                    self.leg + 1,
-                    JOINTS[j],
-                    format_fixed(self.a0 - SWEEP_CDEG, 2),
-                    format_fixed(self.a0 + SWEEP_CDEG, 2),
-                    SWEEP_CDEG_PER_S // 100,
-                    self.lo,
-                    self.hi,
-                )
-            )
-            self._next(out)
-        return out
-
-    def _next(self, out):
-        if self.joint < 2:
-            self.joint += 1
-            self._begin()
-            return
-        code = self.robot.sit_down()  # every pulse is back where it was: the leg's jog ends at once
-        if code:
-            self.failed += 1
-            why = self.con._refused(code)[4:]
-            out.append("err selftest servos %d: 'sit' afterwards refused: %s" % (self.leg + 1, why))
-        else:
-            out.append(self.end())
-        self.done = True
-
-    def abort(self):
-        self.done = True
-        return (
-            "err selftest servos %d: cut short by a new line during the %s; the leg stays where it is ('sit' "
-            % (
-                self.leg + 1,
-                JOINTS[self.joint],
-            )
-            + "brings it home)"
-        )
-
-    def end(self):
-        return "%s selftest servos %d: %d joints swept, %d failed" % (
-            "err" if self.failed else "ok",
-            self.leg + 1,
-            self.count,
-            self.failed,
-        )
+        selftestboard.calibration(self, out)
+        selftestboard.reset(self, out)
+        selftestboard.faults(self, out)
+        selftestboard.heap(self, out)
+        selftestboard.supply(self, out, getattr(r, "battery", None))
+        selftestboard = None
+        release("consoleparts.selftestboard")
 
 
 def start(console, args):
@@ -451,4 +149,6 @@ def start(console, args):
             "the robot is %s; servos are swept only while it sits (body on the ground, no leg carries it): 'sit' first"
             % tick.MODE_NAMES[r.mode]
         )
+    from consoleparts.selftestsweep import Sweep  # only for this job: dropped with selftest when it ends
+
     return Sweep(console, leg)

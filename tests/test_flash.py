@@ -35,11 +35,16 @@ CP_DRIVERS += ["drivers/cp_clock.py", "drivers/cp_hcsr04_pulsein.py", "drivers/c
 
 def expected(board, entry, drivers):
     # main.py and code.py import console (the serial console), which imports calstore, selftest
-    # inside its `selftest` command, stream inside `stream` and consolecal inside the jog and
+    # inside its `selftest` command (and consoleparts' selftestbus, selftestboard and selftestsonar
+    # for its checks, selftestsweep for `selftest servos L`), consoleparts.more and .setting inside
+    # its reporting and setting commands (stream inside `stream`) and consolecal inside the jog and
     # calibration commands (loaded only when asked for, but on the board all the same).
     # CircuitPython has no viper emitter: the viper modules stay off its drive.
     core = [p for p in CORE if entry == "main.py" or p not in flash.VIPER]
     files = core + drivers + ["runner.py", "console.py", "consolecal.py", "calstore.py", "selftest.py"]
+    files += ["consoleparts/__init__.py", "consoleparts/more.py", "consoleparts/setting.py"]
+    files += ["consoleparts/selftestbus.py", "consoleparts/selftestsonar.py"]
+    files += ["consoleparts/selftestboard.py", "consoleparts/selftestsweep.py"]
     files.append("boards/__init__.py")
     files += ["drivers/stream.py"] + (["drivers/_stream_viper.py"] if entry == "main.py" else [])
     files.append("boards/%s.py" % board)
@@ -127,7 +132,7 @@ def test_dry_run_plan_for_a_fresh_micropython_board(board, arch, tmp_path, capsy
     for p in as_mpy(files):
         assert '"%s"' % p in rename
     assert rename.index('os.rename("hexapod.manifest.new"') > rename.index("os.rename(p + ")  # the manifest last
-    assert mp[1][4].count("os.mkdir") == 1 and '["boards", "drivers", "hexapod", "robots"]' in mp[1][4]
+    assert mp[1][4].count("os.mkdir") == 1 and '["boards", "consoleparts", "drivers", "hexapod", "robots"]' in mp[1][4]
 
 
 def test_second_flash_copies_only_what_changed(tmp_path, capsys):

@@ -137,8 +137,15 @@ def test_every_module_imports_as_mpy_with_the_heap_left(fs):
     core = {n.removesuffix(".__init__") for n in core}
     assert expected | core <= set(names) and not [n for n in names if ".cp_" in n]
     # The console imports stream at the first `stream` (telemetry, kept while the console lives),
-    # selftest for `selftest` (dropped after the command): selftest last, on top of a streaming board.
-    on_demand = ["drivers.stream", "selftest"]
+    # selftest for `selftest` (dropped after the command): selftest last, on top of a streaming board;
+    # consoleparts.selftestbus, selftestboard and selftestsonar come with the checks (one after the
+    # other), consoleparts.selftestsweep with `selftest servos L` only: the last row has all four
+    # (more than either job loads). consoleparts.more and .setting (the reporting and the setting
+    # commands) come at the first of theirs and stay 30 s after the last: first of the on-demand
+    # ones (a `status` just before `selftest` leaves one loaded).
+    on_demand = ["consoleparts.more", "consoleparts.setting", "drivers.stream", "selftest"]
+    on_demand += ["consoleparts.selftestbus", "consoleparts.selftestboard", "consoleparts.selftestsonar"]
+    on_demand.append("consoleparts.selftestsweep")
     resident_names = [n for n in names if n not in on_demand and n != "drivers._stream_viper"]  # stream's twin: with it
     # The calibration commands' module comes and goes: console.start reads the calibration file
     # with it at boot and lets it go (its names stay: qstrs), each calibration command likewise.
@@ -175,11 +182,11 @@ load(%r)
     for name, path, _ in rows:
         assert path.endswith(".mpy") and path.replace("/", ".")[:-4].removesuffix(".__init__") == name, (name, path)
     left = int(rows[len(resident_names) - 1][2])
-    streaming = int(rows[-2][2])
+    streaming = int(rows[len(resident_names) + on_demand.index("drivers.stream")][2])
     in_selftest = int(rows[-1][2])
     print(
         "heap: %d bytes free at start, %d after importing the %d resident modules, %d once main.main has"
-        " released the boot-only ones, %d once `stream` loaded its module, %d while `selftest` runs too"
+        " released the boot-only ones, %d once `stream` loaded its module, %d while `selftest servos` runs too"
         % (free0, left, len(resident_names), resident, streaming, in_selftest)
     )
     # A Pico has ~240 KB of heap. The loop allocates nothing a frame; what the running set must leave

@@ -110,6 +110,7 @@ def test_run_streams_output_and_returns_the_boards_status(tmp_path):
         "calstore.mpy",
         "console.mpy",
         "consolecal.mpy",
+        "consoleparts",
         "drivers",
         "hexapod",
         "hexapod.checked",

@@ -101,7 +101,9 @@ def stage(dest, libs_as="mpy"):
 
 
 def vm(dest, cfg, heapsize):
-    """The VM script's JSON on the image in dest; MemoryError raised as such, other failures as MicroPythonError."""
+    """The VM script's JSON on the image in dest; MemoryError raised as such, other failures as
+    MicroPythonError. A MemoryError the console caught (a command answering `err ...: internal
+    error MemoryError ...` while the loop went on) is one too: the run did not do what it was asked."""
     search = (dest, os.path.join(dest, "lib"), CP_STUBS, STUBS)
     try:
         out = mpvm.run(script=SCRIPT, stdin=json.dumps(cfg), heapsize=str(heapsize), search=search)
@@ -109,7 +111,11 @@ def vm(dest, cfg, heapsize):
         if "MemoryError" in str(err):
             raise MemoryError(str(err).strip().splitlines()[-1]) from None
         raise
-    return json.loads(out.strip().splitlines()[-1])
+    lines = out.strip().splitlines()
+    caught = [line for line in lines[:-1] if "MemoryError" in line]
+    if caught:
+        raise MemoryError(caught[0])
+    return json.loads(lines[-1])
 
 
 def run_cfg(frames=FRAMES, commands=COMMANDS):

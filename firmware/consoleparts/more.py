@@ -1,0 +1,101 @@
+"""The console's reporting commands (`help`, `status`, `sonar`, `echo`, `faults`): console.py hands
+them here (Console._part; the setting commands are consoleparts/setting.py's). The console
+imports this module at the first of them; MicroPython keeps it while they keep coming (let go
+CAL_KEEP_MS after the last one); CircuitPython, which compiles a module's source at each import,
+compiles it for the command and lets it go after (hexapod.release), so the console's own compile
+and the running loop's heap are smaller (docs/flashing.md). The console names the command in
+an err reply; the replies are the console's as before.
+"""
+
+import console
+from runner import BOOT_WORDS, counters
+
+from hexapod import battery as batteries
+from hexapod import follow, gait, sensors, tick
+from hexapod.units import format_fixed
+
+
+def command(con, word, args):
+    """The reply to one of these commands' word and arguments on console con (None: it comes later)."""
+    return _COMMANDS[word](con, args)
+
+
+def _help(con, args):
+    con._args(args, 0, "no arguments")
+    return "ok " + console.COMMANDS
+
+
+def _status(con, args):
+    con._args(args, 0, "no arguments")
+    r = con.runner
+    f = r.follower
+    left = 0
+    if con._walking:
+        left = r.clock.ticks_diff(con._deadline, r.clock.ticks_ms())
+        left = left if left > 0 else 0
+    on = f.mode != follow.OFF
+    return (
+        "ok %s faults %d mode %s gait %s "
+        "walk_ms %d wall %s wall_mode %s wall_d %s wall_angle %s wall_error %s wall_out %s wall_faults %d "
+        "cal %s boot %s battery %s battery_mv %s"
+        % (
+            counters(r),
+            r.robot.faults,
+            tick.MODE_NAMES[r.robot.mode],
+            gait.NAMES[r.robot.gait],
+            left,
+            f.side if on else "off",
+            follow.MODE_NAMES[f.mode],
+            format_fixed(f.distance, 1) if on and f.distance >= 0 else "-",  # no distance (yet)
+            format_fixed(f.angle if on else 0, 2),
+            format_fixed(f.error if on else 0, 1),
+            format_fixed(f.output if on else 0, 2),
+            f.fault_total if on else 0,
+            con.cal_source,
+            BOOT_WORDS[r.boot],
+            "n/a" if r.battery is None else batteries.STATE_NAMES[r.battery.state],
+            "n/a" if r.battery is None else r.battery.level_mv,
+        )
+    )
+
+
+def _sonar(con, args):
+    con._args(args, 0, "no arguments")
+    r = con.runner
+    parts = ["ok"]
+    for k in range(len(r.distances)):
+        st = r.sonar_status[k]
+        d = r.distances[k]
+        parts.append(sensors.SENSOR_NAMES[k])
+        parts.append(format_fixed(d, 1) if st == sensors.OK and d >= 0 else "-")
+        parts.append(sensors.STATUS_NAMES[st] if 0 <= st < len(sensors.STATUS_NAMES) else "unknown")
+    return " ".join(parts)
+
+
+def _echo(con, args):
+    if len(args) > 1 or (args and args[0] not in ("on", "off")):
+        raise ValueError("need on, off or nothing (ask), got %r" % (" ".join(args)[:20],))
+    if args and args[0] == "on" and con.write is None:
+        raise ValueError("this console has no raw output to echo to")
+    if args:
+        con.echo = args[0] == "on"
+    return "ok echo " + ("on" if con.echo else "off")
+
+
+def _faults(con, args):
+    if len(args) > 1 or (args and args[0] != "clear"):
+        raise ValueError("need clear or nothing (list), got %r" % (" ".join(args)[:20],))
+    log = con.runner.faultlog
+    if args:
+        log.clear()
+        return "ok faults cleared"
+    return "ok faults " + console.fault_text(log, con.runner.bank)
+
+
+_COMMANDS = {
+    "help": _help,
+    "status": _status,
+    "sonar": _sonar,
+    "echo": _echo,
+    "faults": _faults,
+}

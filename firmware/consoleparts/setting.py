@@ -1,0 +1,87 @@
+"""The console's setting commands (`gait`, `height`, `wall`, `pid`, `stream`): console.py hands them
+here (Console._part), as it hands the reporting ones to consoleparts/more.py, and loads and lets go
+this module the same way (two smaller compiles on CircuitPython than one; docs/flashing.md). The
+console names the command in an err reply; the replies are the console's as before.
+"""
+
+from hexapod import gait, limits
+from hexapod.units import format_fixed
+
+
+def command(con, word, args):
+    """The reply to one of these commands' word and arguments on console con (None: it comes later)."""
+    return _COMMANDS[word](con, args)
+
+
+def _gait(con, args):
+    if args:
+        con._args(args, 1, "a gait name (%s)" % ", ".join(gait.NAMES))
+        if args[0] not in gait.NAMES:
+            raise ValueError("%r, allowed %s" % (args[0][:20], ", ".join(gait.NAMES)))
+        # Checked over the next frames (the servo guard's solves), the robot walking on
+        # meanwhile and the console answering other lines: the reply comes when it is done.
+        return _later(con, "gait", con.robot.set_gait(gait.NAMES.index(args[0]), wait=False))
+    return con._ok_late("gait")
+
+
+def _height(con, args):
+    if args:
+        con._args(args, 1, "MM (the body's standing height)")
+        g = con.robot.geometry
+        h = con._num("height", args[0], 1, g.body_height_min, g.body_height_max, "mm")
+        # Standing: the feet move there (checked over the next frames, like a gait); else the
+        # next stand goes to it.
+        return _later(con, "height", con.robot.set_height(h, wait=False))
+    return con._ok_late("height")
+
+
+def _later(con, word, code):
+    if code:
+        return con._refused(code)
+    if con.robot.configuring():
+        con._late = word
+        return None
+    return con._ok_late(word)
+
+
+def _wall(con, args):
+    if len(args) == 1 and args[0] == "off":
+        con.runner.follow_off()
+        return "ok wall off"
+    con._args(args, 2, "left|right CM, or off")
+    if args[0] not in limits.SIDES:
+        raise ValueError("side %r, allowed left, right or off" % (args[0][:20],))
+    cm = con._num("set point", args[1], 2, limits.SETPOINT_MIN, limits.SETPOINT_MAX, "cm")
+    con._battery_ok()
+    con._walking = False
+    code = con.runner.follow(args[0], cm)
+    if code:
+        return con._refused(code)
+    return "ok wall %s setpoint %s" % (args[0], format_fixed(cm, 2))
+
+
+def _pid(con, args):
+    p = con.runner.follower.pid
+    if args:
+        con._args(args, 3, "KP KI KD (each 0..100, 3 decimals)")
+        top = 100000  # hexapod.pid.GAIN_MAX
+        kp = con._num("kp", args[0], 3, 0, top, "")
+        ki = con._num("ki", args[1], 3, 0, top, "")
+        kd = con._num("kd", args[2], 3, 0, top, "")
+        con.runner.follower.set_gains(kp, ki, kd)
+    return "ok pid %s %s %s" % (format_fixed(p.kp, 3), format_fixed(p.ki, 3), format_fixed(p.kd, 3))
+
+
+def _stream(con, args):
+    from drivers import stream  # only now: a board that never streams keeps its heap and names
+
+    return stream.command(con, args)
+
+
+_COMMANDS = {
+    "gait": _gait,
+    "height": _height,
+    "wall": _wall,
+    "pid": _pid,
+    "stream": _stream,
+}
