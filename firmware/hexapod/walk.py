@@ -68,10 +68,10 @@ OK = const(0)
 SERVO_SPEED = const(28)  # configure: even a step of nothing would turn a joint too fast
 LIFT_SHARE_PERMILLE = const(900)  # most of the servo budget a swing without a step may use
 
-STEP_MIN = const(50)  # step length (half a stride: seed 003's x amplitude), 0.1 mm
+_STEP_MIN = const(50)  # step length (half a stride: seed 003's x amplitude), 0.1 mm
 STEP_MAX = const(600)
-LIFT_MIN = const(100)  # lift height, 0.1 mm
-LIFT_MAX = const(600)
+_LIFT_MIN = const(100)  # lift height, 0.1 mm
+_LIFT_MAX = const(600)
 SPEED_STEP = const(40)  # most vx or vy changes per tick, 0.1 mm/s (200 mm/s^2)
 YAW_STEP = const(100)  # most the yaw rate changes per tick, cdeg/s
 _HALF_TURN = const(9000)  # half a stance never turns more than this, cdeg
@@ -180,12 +180,12 @@ class Walker:
         self.ground = -height << FINE_SHIFT
 
     def check_step(self, step):
-        if not isinstance(step, int) or isinstance(step, bool) or step < STEP_MIN or step > STEP_MAX:
-            raise ValueError("step_length: %r is outside %d..%d (0.1 mm, half a stride)" % (step, STEP_MIN, STEP_MAX))
+        if not isinstance(step, int) or isinstance(step, bool) or step < _STEP_MIN or step > STEP_MAX:
+            raise ValueError("step_length: %r is outside %d..%d (0.1 mm, half a stride)" % (step, _STEP_MIN, STEP_MAX))
 
     def check_lift(self, lift):
-        if not isinstance(lift, int) or isinstance(lift, bool) or lift < LIFT_MIN or lift > LIFT_MAX:
-            raise ValueError("lift_height: %r is outside %d..%d (0.1 mm)" % (lift, LIFT_MIN, LIFT_MAX))
+        if not isinstance(lift, int) or isinstance(lift, bool) or lift < _LIFT_MIN or lift > _LIFT_MAX:
+            raise ValueError("lift_height: %r is outside %d..%d (0.1 mm)" % (lift, _LIFT_MIN, _LIFT_MAX))
 
     def configure(self, gait, cycle_ms, lift, step, rho, strict=True):
         """Gait, cycle time (ms), lift and step (0.1 mm) with their reach discs; checked, then
