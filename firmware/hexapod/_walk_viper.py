@@ -336,8 +336,8 @@ def swings(walker, lo: int, hi: int, w: int, still: int) -> int:
 @micropython.viper
 def stance(walker, bx: int, by: int, cd: int) -> int:
     """hexapod.walk.Walker._stance: the stance feet at body (bx, by) (fine) turned cd (cdeg) into
-    ax, ay; 1 when a foot would leave its reach disc (and move away from neutral) or go further
-    outside its ease band (hexapod.budget.off_band), else 0."""
+    ax, ay; 1 + the first leg whose foot would leave its reach disc (and move away from neutral) or go
+    further outside its ease band (hexapod.budget.off_band), else 0."""
     c = int(sin(cd + 9000))  # fixmath.cos
     s = int(sin(cd))
     sb = 1
@@ -383,12 +383,12 @@ def stance(walker, bx: int, by: int, cd: int) -> int:
             ox = (((fx[i] ^ sb) - sb) - n0) >> 4
             oy = (((fy[i] ^ sb) - sb) - n1) >> 4
             if dx * dx + dy * dy > ox * ox + oy * oy:
-                return 1
+                return i + 1
         out_x[i] = ax
         out_y[i] = ay
         # The ease band in plain code: written out here it took 290 more bytes of the board's heap.
         if int(off_band(walker, i)):
-            return 1
+            return i + 1
     return 0
 
 
@@ -436,8 +436,9 @@ def move(walker) -> int:
         return 0
     bx = int(walker.bx) + mx
     by = int(walker.by) + my
-    if int(stance(walker, bx, by, (psi + 50) // 100)):
-        walker.held = int(walker.held) + 1
+    i = int(stance(walker, bx, by, (psi + 50) // 100))
+    if i:
+        walker._maybe_lift(i - 1, -1)  # counted, and that foot may lift early (plain code)
         return 0
     walker.cx = cx
     walker.cy = cy

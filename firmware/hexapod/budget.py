@@ -32,16 +32,16 @@ SWING_EASE = const(300)
 # guard's answer is good to 1.6 mm); its swing gets the budget of a half stance srho + STANCE_SLACK / 2
 # (the old hold's longest swing, 2 srho + STANCE_SLACK) and no easing inside STANCE_SLACK, so that a
 # steady walk's swings are never shortened (they were 0.3 mm a swing, and the feet drifted out).
-LIFT_SLACK = const(8)
+_LIFT_SLACK = const(8)
 EASE_DEAD = const(16)
 # gain_steps' swing ticks a job step: ~0.65 ms on the emulated Pico (80 us a tick), under one of the
 # servo guard's IK solves (~0.8 ms), the other steps a configure job takes.
-GAIN_TICKS = const(8)
+_GAIN_TICKS = const(8)
 
 
 def gain_steps(walker, w, s):
     """The stroke's largest share of one tick in a w-tick swing, times w (Q15), into walker.next_gain
-    (s: two words of scratch): a generator yielding every GAIN_TICKS ticks, a configure job's steps
+    (s: two words of scratch): a generator yielding every _GAIN_TICKS ticks, a configure job's steps
     (a gait change on the move then finds it made: 3.4 ms of a Pico frame for the ripple's swing)."""
     last = 0
     best = 0
@@ -50,7 +50,7 @@ def gain_steps(walker, w, s):
         if s[0] - last > best:
             best = s[0] - last
         last = s[0]
-        if u % GAIN_TICKS == 0:
+        if u % _GAIN_TICKS == 0:
             yield
     walker.next_gain = best * w
 
@@ -67,7 +67,7 @@ def swing_budget(walker, g=0):
         g = walker.next_gain
     walker.stroke_gain = g
     for i in range(6):
-        r = walker.srho[i] + LIFT_SLACK
+        r = walker.srho[i] + _LIFT_SLACK
         # The guard's swing: D = 2 r (st + w) / st forward, C = 2 r w / st back.
         walker.swing_max[i] = (2 * r * (st + w) // st * g >> 15) - 2 * r * w // st
         # The ease band: between these squared distances from the coxa axis a lift-off keeps its whole
@@ -76,7 +76,7 @@ def swing_budget(walker, g=0):
         # end further out again (docs/physics.md, issue 22: the feet drifted out and held every cycle).
         # (No new names: a MicroPython function of more than 11 locals + stack slots takes its frame
         # from the heap, and a gait change on the move calls this from the tick.)
-        r += EASE_DEAD - LIFT_SLACK
+        r += EASE_DEAD - _LIFT_SLACK
         st = walker.geometry.neutral_reach
         walker.band[i] = walker.geometry.mount_x[i]
         walker.band[i + 6] = walker.geometry.mount_y[i]

@@ -33,9 +33,6 @@ class Posture:
         self.n = 0  # ticks in the current segment
         self.k = 0  # ticks done in it
 
-    def active(self):
-        return self.index < self.sets
-
     def clear(self):
         self.sets = 0
         self.index = 0

@@ -77,14 +77,14 @@ JOG = const(5)  # single servos or legs placed by hand (console jogging); each f
 MODE_NAMES = ("relaxed", "sitting", "moving", "standing", "walking", "jog")
 
 _WRAP = const(0x3FFFFFFF)  # time.ticks_ms() wraps at 2**30
-# Soft start: a move out of RELAXED switches the servos on a leg group at a time, WAKE_STAGGER
+# Soft start: a move out of RELAXED switches the servos on a leg group at a time, _WAKE_STAGGER
 # frames (160 ms) apart, front pair, middle pair, rear pair, so the supply never sees 18 hobby
 # servos start at once (each jumps to its first pulse at full speed, drawing its stall current);
-# the first pose is held until the last group has had WAKE_STAGGER frames to get there.
-WAKE_STAGGER = const(8)
-WAKE_FRAMES = const(24)  # 3 groups x WAKE_STAGGER: frames the first pose is held
+# the first pose is held until the last group has had _WAKE_STAGGER frames to get there.
+_WAKE_STAGGER = const(8)
+WAKE_FRAMES = const(24)  # 3 groups x _WAKE_STAGGER: frames the first pose is held
 WAKE_GROUP = (0, 1, 2, 2, 1, 0)  # each leg's group (legs 1 RF .. 6 LF)
-RHO_MIN = const(50)  # a leg needs a reach disc this wide (0.1 mm) to walk
+_RHO_MIN = const(50)  # a leg needs a reach disc this wide (0.1 mm) to walk
 # A configure asked with wait=False (the console's) runs in the frames' slack: this many of its IK
 # solves (hexapod.reach's steps, the posture trial's) after each tick's frame. On an emulated Pico
 # a step there costs ~0.6-1.2 ms; a standing frame ~2.4 ms: two keep it near 5 ms. Walking, a frame
@@ -351,7 +351,7 @@ class Robot:
         """While waking (the soft start), the leg groups not yet on get no pulse."""
         p = self.pulses
         for k in range(18):
-            if WAKE_GROUP[k // 3] * WAKE_STAGGER >= self.wake:
+            if WAKE_GROUP[k // 3] * _WAKE_STAGGER >= self.wake:
                 p[k] = 0
 
     def _fault(self, reason, leg, code, excess):
@@ -752,7 +752,7 @@ class Robot:
 
     def _roomy(self, rho):
         for i in range(6):  # noqa: SIM110 (walk() runs every tick: no generator)
-            if rho[i] < RHO_MIN:
+            if rho[i] < _RHO_MIN:
                 return False
         return True
 

@@ -68,10 +68,10 @@ OK = const(0)
 SERVO_SPEED = const(28)  # configure: even a step of nothing would turn a joint too fast
 LIFT_SHARE_PERMILLE = const(900)  # most of the servo budget a swing without a step may use
 
-STEP_MIN = const(50)  # step length (half a stride: seed 003's x amplitude), 0.1 mm
+_STEP_MIN = const(50)  # step length (half a stride: seed 003's x amplitude), 0.1 mm
 STEP_MAX = const(600)
-LIFT_MIN = const(100)  # lift height, 0.1 mm
-LIFT_MAX = const(600)
+_LIFT_MIN = const(100)  # lift height, 0.1 mm
+_LIFT_MAX = const(600)
 SPEED_STEP = const(40)  # most vx or vy changes per tick, 0.1 mm/s (200 mm/s^2)
 YAW_STEP = const(100)  # most the yaw rate changes per tick, cdeg/s
 _HALF_TURN = const(9000)  # half a stance never turns more than this, cdeg
@@ -180,12 +180,12 @@ class Walker:
         self.ground = -height << FINE_SHIFT
 
     def check_step(self, step):
-        if not isinstance(step, int) or isinstance(step, bool) or step < STEP_MIN or step > STEP_MAX:
-            raise ValueError("step_length: %r is outside %d..%d (0.1 mm, half a stride)" % (step, STEP_MIN, STEP_MAX))
+        if not isinstance(step, int) or isinstance(step, bool) or step < _STEP_MIN or step > STEP_MAX:
+            raise ValueError("step_length: %r is outside %d..%d (0.1 mm, half a stride)" % (step, _STEP_MIN, STEP_MAX))
 
     def check_lift(self, lift):
-        if not isinstance(lift, int) or isinstance(lift, bool) or lift < LIFT_MIN or lift > LIFT_MAX:
-            raise ValueError("lift_height: %r is outside %d..%d (0.1 mm)" % (lift, LIFT_MIN, LIFT_MAX))
+        if not isinstance(lift, int) or isinstance(lift, bool) or lift < _LIFT_MIN or lift > _LIFT_MAX:
+            raise ValueError("lift_height: %r is outside %d..%d (0.1 mm)" % (lift, _LIFT_MIN, _LIFT_MAX))
 
     def configure(self, gait, cycle_ms, lift, step, rho, strict=True):
         """Gait, cycle time (ms), lift and step (0.1 mm) with their reach discs; checked, then
@@ -615,6 +615,22 @@ class Walker:
             v[k] += d
 
     def _maybe_lift(self, i, still):
+        if still < 0:
+            # The body holds this tick for leg i's stance foot (_move_body and its viper twin): counted,
+            # and the foot lifts now, before its turn, when the walker stands on five feet (the wave,
+            # stance > 2 swings: four stay down) and neither neighbour is in the air or due to lift
+            # within a swing (no two neighbours up); the body moves on without it from the next tick.
+            # The clock is kept: the foot lands before its turn and steps again, or lands a little
+            # after it and stands that much longer (docs/physics.md, issue 22).
+            self.held += 1
+            c = self.clock
+            if c.stance_ticks <= 2 * c.swing_ticks:
+                return
+            for n in range(i + 1, i + 6, 4):  # the neighbours i + 1 and i - 1
+                n %= 6
+                if self.su[n] >= 0 or (c.start[n] - self.phase) % c.cycle_ticks <= c.swing_ticks:
+                    return
+            still = 0
         if self.pending and not self.fitting:
             return
         if self.state == STOPPING and still:
@@ -719,8 +735,8 @@ class Walker:
 
     def _stance(self, bx, by, cd):
         """The stance feet read back into the body frame with the body at (bx, by) (fine) turned
-        cd (cdeg), into ax, ay; 1 when that would carry a foot out of its reach disc (and further
-        from neutral than it is) or of its ease band (budget.off_band), else 0
+        cd (cdeg), into ax, ay; 1 + the first leg whose foot that would carry out of its reach disc
+        (and further from neutral than it is) or of its ease band (budget.off_band), else 0
         (hexapod/_walk_viper.py's stance is the same in viper)."""
         c = cos(cd)
         s = sin(cd)
@@ -738,11 +754,11 @@ class Walker:
                 ox = (self.fx[i] - self.nx[i]) >> FINE_SHIFT
                 oy = (self.fy[i] - self.ny[i]) >> FINE_SHIFT
                 if dx * dx + dy * dy > ox * ox + oy * oy:
-                    return 1
+                    return i + 1
             self.ax[i] = ax
             self.ay[i] = ay
             if off_band(self, i):
-                return 1
+                return i + 1
         return 0
 
     def _move_body(self):
@@ -773,8 +789,9 @@ class Walker:
         bx = self.bx + mx
         by = self.by + my
         cd = (psi + 50) // 100
-        if self._stance(bx, by, cd):
-            self.held += 1  # this move would carry a stance foot out of reach or its band: hold
+        i = self._stance(bx, by, cd)
+        if i:
+            self._maybe_lift(i - 1, -1)  # this move would carry that stance foot out of reach or its band: hold
             return
         self.bx = bx
         self.by = by
