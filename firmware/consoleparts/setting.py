@@ -1,27 +1,16 @@
-"""The console's setting commands (`gait`, `height`, `wall`, `pid`, `stream`): console.py hands them
+"""The console's setting commands (`height`, `wall`, `pid`, `stream`): console.py hands them
 here (Console._part), as it hands the reporting ones to consoleparts/more.py, and loads and lets go
 this module the same way (two smaller compiles on CircuitPython than one; docs/flashing.md). The
 console names the command in an err reply; the replies are the console's as before.
 """
 
-from hexapod import gait, limits
+from hexapod import limits
 from hexapod.units import format_fixed
 
 
 def command(con, word, args):
     """The reply to one of these commands' word and arguments on console con (None: it comes later)."""
     return _COMMANDS[word](con, args)
-
-
-def _gait(con, args):
-    if args:
-        con._args(args, 1, "a gait name (%s)" % ", ".join(gait.NAMES))
-        if args[0] not in gait.NAMES:
-            raise ValueError("%r, allowed %s" % (args[0][:20], ", ".join(gait.NAMES)))
-        # Checked over the next frames (the servo guard's solves), the robot walking on
-        # meanwhile and the console answering other lines: the reply comes when it is done.
-        return _later(con, "gait", con.robot.set_gait(gait.NAMES.index(args[0]), wait=False))
-    return con._ok_late("gait")
 
 
 def _height(con, args):
@@ -31,17 +20,8 @@ def _height(con, args):
         h = con._num("height", args[0], 1, g.body_height_min, g.body_height_max, "mm")
         # Standing: the feet move there (checked over the next frames, like a gait); else the
         # next stand goes to it.
-        return _later(con, "height", con.robot.set_height(h, wait=False))
+        return con._later("height", con.robot.set_height(h, wait=False))
     return con._ok_late("height")
-
-
-def _later(con, word, code):
-    if code:
-        return con._refused(code)
-    if con.robot.configuring():
-        con._late = word
-        return None
-    return con._ok_late(word)
 
 
 def _wall(con, args):
@@ -79,7 +59,6 @@ def _stream(con, args):
 
 
 _COMMANDS = {
-    "gait": _gait,
     "height": _height,
     "wall": _wall,
     "pid": _pid,
