@@ -146,15 +146,9 @@ def aim_inside(w):
     walker._rescale); the stance discs are the gait walked's (as its _rescale leaves them), so no
     foot now outside the new disc holds the body."""
     srho = w.srho
-    rho = w.rho
     keep = w._keep
+    w.stance_discs(keep)  # the gait walked's, kept
     for i in range(6):
-        # walker._rescale's stance disc for the gait walked: its step, reach and servo discs + slack.
-        lim = rho[i] if rho[i] < w.step else w.step
-        if 0 < srho[i] < lim:
-            lim = srho[i]
-        lim += _SLACK
-        keep[i] = lim if lim < rho[i] else rho[i]
         keep[i + 6] = srho[i]
         lim = w.next_rho[i] if w.next_rho[i] < w.next_srho[i] else w.next_srho[i]
         # Three quarters: the feet then fit with room to spare for the new lift order.
