@@ -141,13 +141,28 @@ def fits(w):
     return 1
 
 
+def stance_discs(w, out):
+    """Each leg's stance disc (0.1 mm) into out[0:6], as walker._rescale leaves stance_rho: the step
+    its reach, step and servo radii allow, the stance's slack more, within its reach (the viper
+    rescale writes the same; here, not in walk.py: the VM compiles walk.py in one piece)."""
+    rho = w.rho
+    srho = w.srho
+    step = w.step
+    for i in range(6):
+        lim = rho[i] if rho[i] < step else step
+        if 0 < srho[i] < lim:
+            lim = srho[i]  # (no room to step at all: walking is refused, keep the reach)
+        lim += _SLACK
+        out[i] = lim if lim < rho[i] else rho[i]
+
+
 def aim_inside(w):
     """The command scaled to both the gait walked and three quarters of the pending one's discs (one
     walker._rescale); the stance discs are the gait walked's (as its _rescale leaves them), so no
     foot now outside the new disc holds the body."""
     srho = w.srho
     keep = w._keep
-    w.stance_discs(keep)  # the gait walked's, kept
+    stance_discs(w, keep)  # the gait walked's, kept
     for i in range(6):
         keep[i + 6] = srho[i]
         lim = w.next_rho[i] if w.next_rho[i] < w.next_srho[i] else w.next_srho[i]

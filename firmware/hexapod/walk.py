@@ -449,26 +449,12 @@ class Walker:
         xy[1] = ty
         if k < 0:
             k = 0
-        self.stance_discs(lims)
+        gaitswitch.stance_discs(self, lims)
         self.scale_permille = k
         self.cmd[0] = vx * k // 1000
         self.cmd[1] = vy * k // 1000
         self.cmd[2] = w * k // 1000
         gaitswitch.goal(self)
-
-    def stance_discs(self, out):
-        """Each leg's stance disc (0.1 mm) into out[0:6], as _rescale leaves stance_rho: the step its
-        reach, step and servo radii allow, STANCE_SLACK more, within its reach (the viper rescale
-        writes the same)."""
-        rho = self.rho
-        srho = self.srho
-        step = self.step
-        for i in range(6):
-            lim = rho[i] if rho[i] < step else step
-            if 0 < srho[i] < lim:
-                lim = srho[i]  # (no room to step at all: walking is refused, keep the reach)
-            lim += STANCE_SLACK
-            out[i] = lim if lim < rho[i] else rho[i]
 
     def aim_for(self, vx, vy, w):
         """Half a stance of body motion at (vx, vy, w): the turn and the shift, into _aim."""
