@@ -208,6 +208,12 @@ def test_a_speed_not_offered_is_refused():
         (["--sim", "--speed", "3"], "--speed: 3, allowed 0.25, 0.5, 1, 2, 4, 8"),
         (["--sim", "--world", "nowhere"], "world nowhere: cannot read"),
         (["--sim", "--setpoint", "2"], "--setpoint: 2 is outside 4..50"),
+        (["--sim", "--fps", "0"], "--fps: 0 is outside 1..60"),
+        (["--sim", "--fps", "61"], "--fps: 61 is outside 1..60"),
+        (["--sim", "--fps", "-5"], "--fps: -5 is outside 1..60"),
+        (["--sim", "--fps", "2.5"], "--fps: '2.5' is not a whole number"),
+        (["--sim", "--fps", "fast"], "--fps: 'fast' is not a whole number"),
+        (["--sim", "--fps", ""], "--fps: '' is not a whole number"),
     ],
 )
 def test_cli_bad_arguments_exit_2(args, message, capsys):
@@ -215,6 +221,39 @@ def test_cli_bad_arguments_exit_2(args, message, capsys):
         cli.main(["view", *args])
     assert exc.value.code == 2
     assert message in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("argv, fps", [([], 20), (["--fps", "1"], 1), (["--fps", "60"], 60), (["--fps", "5"], 5)])
+def test_the_scene_redraws_at_the_fps_asked(argv, fps, monkeypatch):
+    """--fps reaches the page's 3-D scene (NiceGUI's ui.scene fps: its redraws a second); the
+    default is NiceGUI's own, 20."""
+    import asyncio
+
+    from hexapod_host.view import server
+
+    served = []
+
+    def serve(player, host, port, show, fps):
+        served.append(fps)
+        asyncio.run(_scene_fps(player, fps, served))
+
+    monkeypatch.setattr(server, "serve", serve)
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    assert cli.main(["view", "--sim", *argv, "--no-browser", "--listen", "127.0.0.1:%d" % port]) == 0
+    assert served == [fps, fps]  # what run() passed, what the page's scene took
+
+
+async def _scene_fps(player, fps, out):
+    from nicegui.testing.user_simulation import user_simulation
+
+    from hexapod_host.view import page
+
+    views = []
+    async with user_simulation(root=lambda: views.append(page.View(player, page.Driver(player.source), fps))) as user:
+        await user.open("/")
+        out.append(views[0].scene.props["fps"])
 
 
 def test_cli_refuses_a_port_already_taken(capsys):
@@ -236,3 +275,26 @@ def test_a_bare_port_listens_on_this_machine_only():
     assert parse_listen("[::1]:8082") == ("::1", 8082)
     assert is_loopback("127.0.0.1") and is_loopback("::1") and is_loopback("localhost")
     assert not is_loopback("0.0.0.0") and not is_loopback("192.168.1.20")
+
+
+def test_the_virtual_boards_trace_is_read_as_it_grows(tmp_path):
+    """browser.VirtualBoard.trace() parses only what was appended since it last read, and a line
+    still being written (no newline yet) waits for the next call."""
+    from hexapod_host.view.browser import VirtualBoard
+
+    board = object.__new__(VirtualBoard)  # the reader alone: no board started
+    board.trace_path, board._events, board._read = str(tmp_path / "trace.txt"), [], 0
+    assert board.trace() == []  # not written yet
+    path = tmp_path / "trace.txt"
+    path.write_text("L 3 100 walk 40 0 0\nP 4 1")
+    assert board.trace() == [("L", 3, 100, ["walk", "40", "0", "0"])]
+    with open(path, "a") as f:
+        f.write("20 0=1500 5=1454\nM 5 140 3 0 0 0\n")
+    assert board.trace() == [
+        ("L", 3, 100, ["walk", "40", "0", "0"]),
+        ("P", 4, 120, ["0=1500", "5=1454"]),
+        ("M", 5, 140, ["3", "0", "0", "0"]),
+    ]
+    first = board.trace()
+    first.append("a caller's own")
+    assert len(board.trace()) == 3  # each call returns a list of its own

@@ -15,6 +15,10 @@ LISTEN = "127.0.0.1:8080"
 # loaded 2-core machine (main.py's ~4 emulated s of boot: one to several minutes of wall time).
 PICO_BOOT_S = 900
 PICO_REPLY_S = 120
+# The 3-D scene's frame rate (NiceGUI's own default is 20). Without a GPU (SwiftShader) each redraw
+# holds the browser's main thread: at 20 a second a 2-core machine answered 14 WebDriver reads in
+# 15 s, at 5 a second 131 (the telemetry's text and plots keep their own 4-25 Hz beat either way).
+FPS, FPS_MIN, FPS_MAX = 20, 1, 60
 
 
 def register(sub):
@@ -45,6 +49,13 @@ def register(sub):
 
     _sonar_option(p)
     p.add_argument("--speed", default="1", metavar="X", help="simulated seconds per second: %s (default 1)" % _speeds())
+    p.add_argument(
+        "--fps",
+        default=str(FPS),
+        metavar="N",
+        help="the 3-D scene's redraws a second, %d..%d (default %d; lower it where the browser draws in software)"
+        % (FPS_MIN, FPS_MAX, FPS),
+    )
     p.add_argument(
         "--listen",
         default=LISTEN,
@@ -120,6 +131,7 @@ def parse(args):
     if args.sim:
         setpoint = _number(args.setpoint or "12", "--setpoint", 4, 50, "cm (the side sonar's reading)")
         seed = _whole(args.seed or "0", "--seed", 0, 2**62)
+    scene_fps(args)
     speed = _number(args.speed, "--speed", 0, 100, "simulated seconds per second")
     if speed not in player_mod.SPEEDS:
         raise UsageError("--speed: %s, allowed %s" % (args.speed, _speeds()))
@@ -240,6 +252,11 @@ def pico_source(devices):
     return open_board(path, "--pico", "pico", stack.close, boot_s=PICO_BOOT_S, reply_s=PICO_REPLY_S)
 
 
+def scene_fps(args):
+    """--fps N, checked: the scene's redraws a second."""
+    return _whole(args.fps, "--fps", FPS_MIN, FPS_MAX)
+
+
 def run(args):
     source, speed, host, port, record_path = parse(args)
     from hexapod_host.view.player import Player
@@ -265,7 +282,7 @@ def run(args):
         recorder = Recorder(record_path, d)
     player = Player(source, speed, recorder=recorder)
     try:
-        serve(player, host, port, show=not args.no_browser)
+        serve(player, host, port, show=not args.no_browser, fps=scene_fps(args))
     finally:
         player.stop()  # after the server's own shutdown: nothing; after an error or Ctrl-C: finishes the recording
         if recorder is not None:

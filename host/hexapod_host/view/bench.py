@@ -158,7 +158,7 @@ def _page(pythonpath=None):
     if why:
         return {"skipped": why}
     # a long trial: it runs on for the whole window
-    server = vb.Server(("--sim", "--world", "corridor"), pythonpath=pythonpath)
+    server = vb.Server(("--sim", "--world", "corridor"), pythonpath=pythonpath, fps=None)
     driver = vb.open_browser()
     try:
         driver.get(server.url)
@@ -207,7 +207,7 @@ def _drive():
     board = vb.VirtualBoard(os.path.join(tmp.name, "trace.txt"))
     key_ms, walk_ms, walk_frames, page_ms = [], [], [], []
     try:
-        with vb.driving(("--virtual", "--virtual-port", board.path)) as (driver, _):
+        with vb.driving(("--virtual", "--virtual-port", board.path), fps=None) as (driver, _):
             # The keydown's own time in the page, on the host's clock (epoch ms).
             driver.execute_script(
                 "document.addEventListener('keydown',"

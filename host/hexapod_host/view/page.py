@@ -112,8 +112,9 @@ def _place(obj, start, end):
 class View:
     """One tab's elements and how they follow the player."""
 
-    def __init__(self, player, driver):
+    def __init__(self, player, driver, fps=20):
         self.player = player
+        self.fps = fps  # the 3-D scene's redraws a second (hexapod view --fps; 20 is NiceGUI's own)
         self.client = ui.context.client
         ui.add_body_html(PLOTS_JS)
         d = player.described
@@ -164,7 +165,7 @@ class View:
         xs = [v for w in d.get("walls", []) for v in (w[0], w[2])] or [0.0]
         ys = [v for w in d.get("walls", []) for v in (w[1], w[3])] or [0.0]
         size = math.ceil(max(map(abs, xs + ys)) / 1000 + 1) * 2
-        with ui.scene(width=820, height=540, grid=(size, size * 10), background_color="#f4f4f4") as scene:
+        with ui.scene(width=820, height=540, grid=(size, size * 10), background_color="#f4f4f4", fps=self.fps) as scene:
             self.scene = scene
             for x1, y1, x2, y2 in d.get("walls", []):
                 length = math.hypot(x2 - x1, y2 - y1) / 1000
@@ -377,14 +378,15 @@ def _jog_panel(driver):
     return JogPanel(driver)
 
 
-def build(player):
-    """Register the page for this player's source; one Driver for every tab (one of them drives)."""
+def build(player, fps):
+    """Register the page for this player's source; one Driver for every tab (one of them drives);
+    the 3-D scene redraws fps times a second."""
     driver = Driver(player.source)
 
     @ui.page("/")
     def index():
         _log_tab(ui.context.client)
-        View(player, driver)
+        View(player, driver, fps)
 
 
 def _log_tab(client):

@@ -31,13 +31,14 @@ def check_free(host, port):
     return None
 
 
-def serve(player, host, port, show):
-    """Run the page until Ctrl-C; the player steps its source in NiceGUI's event loop."""
+def serve(player, host, port, show, fps):
+    """Run the page until Ctrl-C; the player steps its source in NiceGUI's event loop; the 3-D
+    scene redraws fps times a second."""
     from nicegui import app, ui
 
     from hexapod_host.view import page
 
-    page.build(player)
+    page.build(player, fps)
     app.on_startup(player.run)
     app.on_shutdown(player.stop)
     ui.run(
