@@ -11,7 +11,6 @@ CircuitPython's SerialReader lives in code.py, the tests' BufferReader in the st
 (_stub_serial): a board's heap keeps neither.
 """
 
-import gc
 import sys
 
 from micropython import const
@@ -49,6 +48,25 @@ CAL_KEEP_MS = const(30000)
 # compiles one per command and lets it go after each.
 MORE = "consoleparts.more"
 SETTING = "consoleparts.setting"  # height, wall, pid, stream: loaded and let go as MORE
+SELFTEST = "selftest"  # `selftest`: loaded for the command, let go when its job ends
+
+
+def load(name, compiles=False):
+    """The module `name`, imported: the console's parts loaded on demand (consoleparts, consolecal,
+    selftest). compiles: the board compiles a module's source at its import (CircuitPython:
+    Console.compiles); a module not loaded yet is then compiled on a collected heap (else the
+    collector runs only once an allocation fails, with the parse's first blocks already placed in
+    the small holes the loop's heap has). hexapod.release(name) lets it go again. hexapod flash
+    ships a module loaded so when its name is a module-level constant of the file (MORE =
+    "consoleparts.more": serial.flash._imports). Here, not beside hexapod.release: a Pico keeps 96 B
+    more heap free with it among console's globals than among the hexapod package's (the
+    resident heap of tests/test_pico.py: 73,104 B against 73,008)."""
+    if compiles and name not in sys.modules:
+        import gc
+
+        gc.collect()
+    __import__(name)
+    return sys.modules[name]
 
 
 def fault_text(log, bank):
@@ -584,12 +602,7 @@ class Console:
         """A reporting or setting command (consoleparts.more or .setting, name): its module stays
         CAL_KEEP_MS after it (poll lets it go), or goes at once where the board compiles it
         (compiles)."""
-        if self.compiles:
-            gc.collect()
-        if name is MORE:  # (static imports: hexapod flash ships what it finds imported)
-            from consoleparts import more as part
-        else:
-            from consoleparts import setting as part
+        part = load(name, self.compiles)
         try:
             return part.command(self, word, args)
         finally:
@@ -603,12 +616,9 @@ class Console:
     def _calibration(self, word, args):
         """A jog or calibration command (consolecal): its module stays on the heap for the session
         (poll lets it go, _cal_over); the boot's file load ("boot") lets it go at once."""
-        if self.compiles and CAL not in sys.modules:
-            gc.collect()
-        import consolecal
-
+        cal = load(CAL, self.compiles)
         try:
-            return consolecal.command(self, word, args)
+            return cal.command(self, word, args)
         finally:
             if not self.keep_cal:
                 if word == "boot":
@@ -628,12 +638,9 @@ class Console:
     # -- multi-line replies (selftest) ------------------------------------------------------
 
     def _selftest(self, args):
-        if self.compiles:
-            gc.collect()
-        import selftest  # only now: the module leaves the heap again when the job ends
-
+        st = load(SELFTEST, self.compiles)  # only now: the module leaves the heap again when the job ends
         try:
-            job = selftest.start(self, args)
+            job = st.start(self, args)
         except Exception:
             release_selftest()
             raise
@@ -670,7 +677,7 @@ class Console:
 
 def release_selftest():
     """selftest (and the bus checks' or the servo sweep's module, when the job loaded it) out of sys.modules."""
-    sys.modules.pop("selftest", None)
+    sys.modules.pop(SELFTEST, None)
     release("consoleparts.selftestsweep", "consoleparts.selftestbus", "consoleparts.selftestboard")
     release("consoleparts.selftestsonar")
 

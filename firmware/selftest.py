@@ -19,9 +19,15 @@ around the angle it holds and back, at SWEEP_CDEG_PER_S, every step through Robo
 (the robot file's joint limits and each servo's calibrated range apply); only while sitting.
 """
 
-import gc
+from console import load
 
 from hexapod import VERSION, release, sensors, tick
+
+# The checks' parts (consoleparts/), each a module of its own (on CircuitPython, which compiles a
+# module's source at each import, a smaller compile each), loaded for its step and let go after it:
+BUS = "consoleparts.selftestbus"  # the bus's checks (the first step)
+BOARD = "consoleparts.selftestboard"  # the board's own checks (the first step, after the bus's)
+SONAR = "consoleparts.selftestsonar"  # the sonar checks (the last step)
 
 
 class _Watch:
@@ -74,13 +80,7 @@ class Checks:
         w = self.watch
         if w.left == 0 or self.frames >= self.limit:
             self._restore()
-            if self.con.compiles:
-                gc.collect()
-            from consoleparts import selftestsonar  # the sonar checks: compiled for the last step only
-
-            selftestsonar.sonars(self, out)
-            selftestsonar = None
-            release("consoleparts.selftestsonar")
+            self._run(SONAR, out)
             out.append(self.end())
             self.done = True
         return out
@@ -110,26 +110,17 @@ class Checks:
         )
         self._line(out, True, "version " + VERSION)
         chips = getattr(r.bank, "chips", None) or []
-        if self.con.compiles:  # compiled from source (CircuitPython): on a collected heap
-            gc.collect()
-        from consoleparts import selftestbus  # the bus's checks: a module of their own, a smaller compile each
+        self._run(BUS, out, board, chips)
+        self._run(BOARD, out, getattr(r, "battery", None))
 
-        selftestbus.i2c(self, out, board, chips)
-        for c in chips:
-            selftestbus.chip(self, out, c)
-        selftestbus = None
-        release("consoleparts.selftestbus")  # done with: the next one's compile gets its heap
-        if self.con.compiles:
-            gc.collect()
-        from consoleparts import selftestboard  # the board's own checks
-
-        selftestboard.calibration(self, out)
-        selftestboard.reset(self, out)
-        selftestboard.faults(self, out)
-        selftestboard.heap(self, out)
-        selftestboard.supply(self, out, getattr(r, "battery", None))
-        selftestboard = None
-        release("consoleparts.selftestboard")
+    def _run(self, name, out, *args):
+        """The checks of the part `name` (its run(checks, out, *args)): loaded for them (where the
+        board compiles, on a collected heap: console.load) and let go after, so that the next
+        part's compile gets its heap."""
+        part = load(name, self.con.compiles)
+        part.run(self, out, *args)
+        part = None
+        release(name)
 
 
 def start(console, args):

@@ -38,7 +38,8 @@ def expected(board, entry, drivers):
     # inside its `selftest` command (and consoleparts' selftestbus, selftestboard and selftestsonar
     # for its checks, selftestsweep for `selftest servos L`), consoleparts.more and .setting inside
     # its reporting and setting commands (stream inside `stream`) and consolecal inside the jog and
-    # calibration commands (loaded only when asked for, but on the board all the same).
+    # calibration commands (loaded only when asked for, but on the board all the same; most by
+    # name through console.load: test_a_module_loaded_by_name_counts_as_imported).
     # CircuitPython has no viper emitter: the viper modules stay off its drive.
     core = [p for p in CORE if entry == "main.py" or p not in flash.VIPER]
     files = core + drivers + ["runner.py", "console.py", "consolecal.py", "calstore.py", "selftest.py"]
@@ -133,6 +134,18 @@ def test_dry_run_plan_for_a_fresh_micropython_board(board, arch, tmp_path, capsy
         assert '"%s"' % p in rename
     assert rename.index('os.rename("hexapod.manifest.new"') > rename.index("os.rename(p + ")  # the manifest last
     assert mp[1][4].count("os.mkdir") == 1 and '["boards", "consoleparts", "drivers", "hexapod", "robots"]' in mp[1][4]
+
+
+def test_a_module_loaded_by_name_counts_as_imported(tmp_path):
+    # console.load imports by name: a module-level constant naming a firmware module is an import;
+    # another string, or one inside a function, is not
+    console = flash._imports(os.path.join(FIRMWARE, "console.py"))
+    assert {"consoleparts.more", "consoleparts.setting", "consolecal", "selftest"} <= set(console)
+    selftest = flash._imports(os.path.join(FIRMWARE, "selftest.py"))
+    assert {"consoleparts.selftestbus", "consoleparts.selftestboard", "consoleparts.selftestsonar"} <= set(selftest)
+    src = tmp_path / "m.py"
+    src.write_text('A = "runner"\nB = "no.such.module"\nC = 5\n\n\ndef f():\n    d = "calstore"\n    return d\n')
+    assert flash._imports(str(src)) == ["runner"]
 
 
 def test_second_flash_copies_only_what_changed(tmp_path, capsys):

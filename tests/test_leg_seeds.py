@@ -5,13 +5,14 @@ along the leg and z pointing down; its (theta1, theta2, gamma) are our (theta1, 
 gamma - 180). Seed 004 Tables 4-9 list seven foot points per leg for Table 3's DH leg.
 """
 
+import json
 import math
+import os
 
 import pytest
 
 from hexapod.leg import DEFAULT_LIMITS, OK, Leg
 from hexapod_host.testing import reference
-from tests.data import seed004_tables
 
 # x, y, z (cm) -> theta1, theta2, gamma (degrees, "Calculation Results" column)
 SEED003_TABLE1 = [
@@ -27,6 +28,21 @@ SEED003_TABLE1 = [
     ((-8, 5, 7), (-57.99, -14.96, 124.63)),
 ]
 SEED003_LEG = (300, 450, 620, 0)  # 0.1 mm
+
+# Seed 004 Tables 4-9 (tests/data/seed004_tables.json), per leg: each axis's row of desired foot
+# points (cm), of measured ones and of errors, exactly as printed, one column per point; a leg's
+# i-th point is (X desired[i], Y desired[i], Z desired[i]). DH: Table 3's leg, cm.
+with open(os.path.join(os.path.dirname(__file__), "data", "seed004_tables.json"), encoding="utf-8") as f:
+    _SEED004 = json.load(f)
+SEED004_DH = _SEED004["DH"]
+SEED004_TABLES = {int(leg): table for leg, table in _SEED004["TABLES"].items()}
+
+
+def seed004_points(leg):
+    """The seven desired foot points of one leg, in cm."""
+    t = SEED004_TABLES[leg]
+    return list(zip(t["X"][0], t["Y"][0], t["Z"][0], strict=True))
+
 
 # The one printed value the geometry does not give: row (-8, 5, 3), theta2 = 34.99.
 # The exact solve is 34.731 deg; test_seed003_misprint_shown_by_forward_kinematics proves it.
@@ -75,12 +91,12 @@ def test_seed003_misprint_shown_by_forward_kinematics():
 
 
 def test_seed004_every_table_point_round_trips():
-    g = seed004_tables.DH
+    g = SEED004_DH
     leg = Leg(coxa=300, femur=850, tibia=1250, femur_offset=320)
     out, foot = [0, 0, 0], [0, 0, 0]
     seen = 0
-    for n in seed004_tables.TABLES:
-        for p in seed004_tables.points(n):
+    for n in SEED004_TABLES:
+        for p in seed004_points(n):
             target = tuple(round(v * 100) for v in p)
             assert leg.ik(*target, out) == OK, (n, p, leg.excess)
             leg.fk(out[0], out[1], out[2], foot)
@@ -103,7 +119,7 @@ SEED004_ERROR_MISPRINTS |= {(3, "Z", 5), (4, "Z", 2), (5, "Z", 3)}
 
 def test_seed004_printed_errors_are_desired_minus_test():
     bad = set()
-    for n, table in seed004_tables.TABLES.items():
+    for n, table in SEED004_TABLES.items():
         for axis, (desired, measured, error) in table.items():
             for k in range(7):
                 if abs(abs(desired[k] - measured[k]) - error[k]) > 1e-9:

@@ -28,6 +28,19 @@ VIPER = SIDE != "plain"
 BOTH = PLAIN and VIPER
 assert SIDE in ("both", "plain", "viper"), "SIDE %r: one of both, plain, viper" % SIDE
 h = 0
+plain = fast = before = code = None  # what one side alone never makes
+
+
+def tally(n, plain, fast, *shown):
+    # A case done: its values into the digest; with both sides, a difference counted (the first
+    # three printed, with what the script shows of the case).
+    global h, count, differ
+    if BOTH and plain != fast:
+        differ += 1
+        if differ < 4:
+            print("differ", n, *shown, plain, fast)
+    h = fold(h, plain if PLAIN else fast)
+    count += 1
 """
 
 CASES = (
@@ -111,12 +124,7 @@ for n in range(CASES):
             limit_held += code == tick.FRAME_IK and 3 <= r.fault_code <= 8
             range_held += code == tick.FRAME_SERVO
             edge_held += edge == 3 and code == tick.FRAME_SERVO
-    if BOTH and plain != fast:
-        differ += 1
-        if differ < 4:
-            print("differ", n, code, plain, fast)
-    h = fold(h, plain if PLAIN else fast)
-    count += 1
+    tally(n, plain, fast, code)
 print((count, taken, limit_held, range_held, edge_taken, edge_held, differ, h))
 """
 )
@@ -221,12 +229,7 @@ for n in range(CASES):
     if VIPER:
         start(i, su, fx, fy)
         fast = (swings(w, i, i + 1, wt, still),) + state(i)
-    if BOTH and plain != fast:
-        differ += 1
-        if differ < 4:
-            print("differ", n, plain, fast)
-    h = fold(h, plain if PLAIN else fast)
-    count += 1
+    tally(n, plain, fast)
 print((count, clamped, landed, done, short, differ, h))
 """
 )
@@ -271,12 +274,7 @@ for n in range(CASES):
             w.ax[i] = w.ay[i] = 0
     if VIPER:
         fast = (stance(w, bx, by, cd), list(w.ax), list(w.ay))
-    if BOTH and plain != fast:
-        differ += 1
-        if differ < 4:
-            print("differ", n, plain, fast)
-    h = fold(h, plain if PLAIN else fast)
-    count += 1
+    tally(n, plain, fast)
 print((count, held, banded, differ, h))
 """
 )
@@ -355,12 +353,7 @@ for n in range(CASES):
     if VIPER:
         move(w)
         fast = state()
-    if BOTH and plain != fast:
-        differ += 1
-        if differ < 4:
-            print("differ", n, before, plain, fast)
-    h = fold(h, plain if PLAIN else fast)
-    count += 1
+    tally(n, plain, fast, before)
 print((count, held, still, anchored, lifted, differ, h))
 """
 )
@@ -453,12 +446,7 @@ for n in range(CASES):
         level += b.settled()
     if VIPER:
         fast.append(bool(settled(b)))
-    if BOTH and plain != fast:
-        differ += 1
-        if differ < 4:
-            print("differ", n, before, plain, fast)
-    h = fold(h, plain if PLAIN else fast)
-    count += 1
+    tally(n, plain, fast, before)
 print((count, still, lifted, made, level, differ, h))
 """
 )

@@ -215,18 +215,17 @@ def test_a_live_board_walks_where_its_feet_carry_it():
     sim = SimSource(world.load("wall"), 12, seed=0, disturb=False)
     sim.step()
     truth = []
-    src, _ = source()
-    try:
-        for k in range(1500):
-            s = plain(sim.snapshot())
-            if k % 2 == 0:
-                src.link.feed(_telemetry_line(s))
-                b = src.snapshot()["body"]
-                truth.append(((s["body"]["x"], s["body"]["y"], s["body"]["yaw"]), (b["x"], b["y"], b["yaw"])))
-            sim.step()
-    finally:
-        sim.close()
-        src.close()
+    with source() as (src, _):
+        try:
+            for k in range(1500):
+                s = plain(sim.snapshot())
+                if k % 2 == 0:
+                    src.link.feed(_telemetry_line(s))
+                    b = src.snapshot()["body"]
+                    truth.append(((s["body"]["x"], s["body"]["y"], s["body"]["yaw"]), (b["x"], b["y"], b["yaw"])))
+                sim.step()
+        finally:
+            sim.close()
     (x0, y0, yaw0), _ = truth[0]
     c, si = math.cos(yaw0), math.sin(yaw0)
     worst = (0.0, 0.0)
@@ -250,8 +249,7 @@ def test_a_limp_or_restarted_board_starts_its_odometry_over_where_the_body_was()
         snaps.append(plain(sim.snapshot()))
         sim.step()
     sim.close()
-    src, _ = source()
-    try:
+    with source() as (src, _):
         for s in snaps[:200:2]:
             src.link.feed(_telemetry_line(s))
         before = src.snapshot()["body"]
@@ -263,5 +261,3 @@ def test_a_limp_or_restarted_board_starts_its_odometry_over_where_the_body_was()
         src.link.feed(_telemetry_line({**snaps[100], "frame": 5}))  # the board started over
         again = src.snapshot()["body"]
         assert (again["x"], again["y"], again["yaw"]) == (before["x"], before["y"], before["yaw"])
-    finally:
-        src.close()

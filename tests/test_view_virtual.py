@@ -4,6 +4,7 @@ snapshot they make against a hand-worked case, replies paired with their tags am
 lines, and the Driver's lines for keys, stick, buttons, the deadman and the one driving tab.
 The page on the real virtual board: tests/test_view_drive_browser.py."""
 
+import contextlib
 import queue
 import re
 import time
@@ -59,18 +60,22 @@ class FakePort:
         self.closed = True
 
 
-def source(replies=None):
-    port = FakePort({"stream on 25": "ok stream 25", **(replies or {})})
-    return BoardSource(BoardLink(port, "fake").start(), "pico"), port
+@contextlib.contextmanager
+def source(replies=None, port=None):
+    """(a board source on a fake line, the line) for a with block, closed after it: the line is
+    port, or one answering replies (`stream on 25` with ok unless replies say otherwise)."""
+    port = port or FakePort({"stream on 25": "ok stream 25", **(replies or {})})
+    src = BoardSource(BoardLink(port, "fake").start(), "pico")
+    try:
+        yield src, port
+    finally:
+        src.close()
 
 
 def test_stream_on_25_is_asked_first_and_its_reply_kept():
-    src, port = source()
-    try:
+    with source() as (src, port):
         assert re.fullmatch(r"#\d+ stream on 25\n", port.written[0])
         assert src.stream_reply == "ok stream 25"
-    finally:
-        src.close()
     assert port.closed
 
 
@@ -83,8 +88,7 @@ def _until(cond, timeout=10.0):
 
 
 def test_a_board_that_powers_up_again_is_asked_for_its_stream_and_maps_again():
-    src, port = source()
-    try:
+    with source() as (src, port):
         asked = [w.split(" ", 1)[1].strip() for w in port.written]
         # the fake answers `cal 1 coxa` with a bare ok: the reading stops there (test_view_boardcal)
         assert asked == ["stream on 25", "selftest", "cal 1 coxa"]
@@ -105,56 +109,42 @@ def test_a_board_that_powers_up_again_is_asked_for_its_stream_and_maps_again():
         src.step()
         assert len(port.written) == n  # asked once per power-up line
         assert src.snapshot()["extra"]["stream"] == "ok stream 25 (again, after power-up 1)"
-    finally:
-        src.close()
 
 
 def test_a_board_without_the_stream_command_still_serves_a_resting_robot():
-    src, _ = source({"stream on 25": "err unknown command 'stream' (help lists them)"})
-    try:
+    with source({"stream on 25": "err unknown command 'stream' (help lists them)"}) as (src, _):
         s = src.snapshot()
         assert s["extra"]["stream"].startswith("err unknown command 'stream'")
         assert s["frame"] == 0 and s["mode"] == "-"
         assert s["pulses"] == [0] * 18
         assert s["angles"] == [0, 0, -9000] * 6  # limp joints drawn at their reference angles
         assert s["distances"] == [None] * 5
-    finally:
-        src.close()
 
 
 def test_the_board_is_what_its_selftest_says():
     # selftest's first line names the board (docs/console.md); the rest of its lines come later
     port = FakePort({"stream on 25": "ok stream 25", "selftest": "ok board esp32_devkit robot default"})
     port.after = {"selftest": ["ok version 0.1.0", "ok selftest 14 checks, 0 failed"]}
-    src = BoardSource(BoardLink(port, "fake").start(), "pico")
-    try:
+    with source(port=port) as (src, _):
         assert [w.split(" ", 1)[1] for w in port.written[:2]] == ["stream on 25\n", "selftest\n"]
         assert src.board == "esp32_devkit"  # drawn through its own board file, not pico's
         d = src.describe()
         assert (d["board"], d["board_said"]) == ("esp32_devkit", "board esp32_devkit, robot default")
         assert src.snapshot()["extra"]["board"] == "board esp32_devkit, robot default"
-    finally:
-        src.close()
 
 
 def test_a_board_this_host_has_no_file_for_is_named_and_drawn_as_pico():
-    src, _ = source({"selftest": "ok board hexbot9 robot big"})
-    try:
+    with source({"selftest": "ok board hexbot9 robot big"}) as (src, _):
         assert src.board == "pico"
         assert src.board_text() == "board hexbot9, robot big, drawn with boards/pico.py"
-    finally:
-        src.close()
 
 
 def test_firmware_without_selftest_leaves_the_board_unknown():
-    src, _ = source({"selftest": "err unknown command 'selftest' (help lists them)"})
-    try:
+    with source({"selftest": "err unknown command 'selftest' (help lists them)"}) as (src, _):
         assert src.board == "pico"
         assert src.describe()["board_said"] == (
             "board unknown ('selftest' answered \"err unknown command 'selftest' (help lists them)\")"
         )
-    finally:
-        src.close()
 
 
 def wait(predicate, n=500):
@@ -167,8 +157,7 @@ def wait(predicate, n=500):
 
 
 def test_a_telemetry_line_as_the_snapshot():
-    src, port = source({"wall left 12": "ok wall left setpoint 12.00"})
-    try:
+    with source({"wall left 12": "ok wall left setpoint 12.00"}) as (src, port):
         tag = src.command("wall left 12")  # telemetry has no set point: the reply gives it
         assert wait(lambda: src.reply(tag) is not None)
         port.put(LINE)
@@ -197,8 +186,6 @@ def test_a_telemetry_line_as_the_snapshot():
         assert wait(lambda: src.link.telemetry_lines == 2)
         x = src.snapshot()["extra"]
         assert (x["frame_us"], x["frame_us_max"]) == (3395, 4431)
-    finally:
-        src.close()
 
 
 def test_replies_pair_with_their_tags_among_telemetry_lines():

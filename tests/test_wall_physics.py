@@ -181,30 +181,6 @@ def test_cli_json_and_text(capsys, tmp_path):
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
-@pytest.mark.parametrize(
-    ("args", "message"),
-    [
-        (["--trials", "0"], "--trials: 0 is outside 1..100000"),
-        (["--trials", "many"], "--trials: 'many' is not a whole number"),
-        (["--setpoint", "51"], "--setpoint: 51 is outside 4..50 cm"),
-        (["--setpoint", "inf"], "--setpoint: inf is outside"),
-        (["--jobs", "-2"], "--jobs: -2 is outside 1..256"),
-        (["--world", "moon"], "world moon: cannot read"),
-        (["--follow", "both"], "--follow: 'both', allowed left or right"),
-        (["--plot", "both.svg"], "--plot: 'both.svg', allowed a file name ending in .png"),
-        (["--form", "zigzag"], "--form: 'zigzag', allowed yaw or sweeps"),
-        (["--gains", "101", "0.5", "1"], "--gains P: 101 is outside 0..100"),
-    ],
-)
-def test_cli_bad_arguments_exit_2(args, message, capsys, tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)
-    with pytest.raises(SystemExit) as exc:
-        cli.main(["sim", "wall", "--physics", *args])
-    assert exc.value.code == 2
-    assert message in capsys.readouterr().err
-    assert list(tmp_path.iterdir()) == []
-
-
 def test_a_pair_without_a_path_difference_is_left_out_of_the_row():
     # A trial stopped within its first 30 mm has no comparable path (path_difference gives None):
     # the row's mean and largest difference come from the other pairs (a 200-trial run at 8 cm

@@ -10,6 +10,15 @@ _RESETS = ("PWRON_RESET", "HARD_RESET", "WDT_RESET", "DEEPSLEEP_RESET", "SOFT_RE
 _RESET_WORDS = ("power_on", "hard", "watchdog", "deepsleep", "soft")
 
 
+def run(checks, out, battery):
+    """The board's checks, each a line: calibration, reset_cause, faults, heap, supply."""
+    calibration(checks, out)
+    reset(checks, out)
+    faults(checks, out)
+    heap(checks, out)
+    supply(checks, out, battery)
+
+
 def calibration(checks, out):
     store = checks.con.store
     src = checks.con.cal_source

@@ -25,6 +25,13 @@ def no_answer_hint(address):
     return "%s is its VCC on 3V3? SDA and SCL wired through? %s" % (jumper_hint(address), _GROUND)
 
 
+def run(checks, out, board, chips):
+    """The bus's checks, each a line: the scan, then each chip."""
+    i2c(checks, out, board, chips)
+    for c in chips:
+        chip(checks, out, c)
+
+
 def i2c(checks, out, board, chips):
     """The bus's scan: every chip of the board file answers, nothing else (0x70: ALLCALL)."""
     if not chips:

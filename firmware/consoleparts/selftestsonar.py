@@ -9,7 +9,7 @@ from hexapod.units import format_fixed
 _GROUND = "common ground with the Pico?"  # consoleparts.selftestbus has its own copy
 
 
-def sonars(checks, out):
+def run(checks, out):
     """One line per sonar: what it measured while the test watched, or why it did not."""
     r = checks.runner
     w = checks.watch

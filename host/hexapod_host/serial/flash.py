@@ -119,14 +119,20 @@ def _read(path):
 
 
 def _imports(path):
-    """Module names a file imports anywhere (top level and inside functions)."""
+    """Module names a file imports anywhere (top level and inside functions), and the firmware
+    modules it loads by name: a module-level NAME = "package.module" naming one (console.load)."""
+    tree = ast.parse(_read(path), path)
     names = []
-    for node in ast.walk(ast.parse(_read(path), path)):
+    for node in ast.walk(tree):
         if isinstance(node, ast.Import):
             names += [a.name for a in node.names]
         elif isinstance(node, ast.ImportFrom) and node.module and not node.level:
             names.append(node.module)
             names += [node.module + "." + a.name for a in node.names]
+    for node in tree.body:
+        value = getattr(node, "value", None) if isinstance(node, ast.Assign) else None
+        if isinstance(value, ast.Constant) and isinstance(value.value, str) and _source(value.value):
+            names.append(value.value)
     return names
 
 
