@@ -327,16 +327,27 @@ class Runner:
         # bursts are still on the bus (it then waited ~1.4 ms for them on the emulated Pico).
         self.next_us = self.clock.ticks_us()
         n = 0
-        while frames < 0 or n < frames:
-            self.step()
-            if self.console is not None:
-                self.console.poll()
-            if self.watchdog is not None:
-                self.watchdog.feed()
-            n += 1
-            if status_every and n % status_every == 0:
-                print(status_line(self))
-            self.wait()
+        robot = self.robot
+        robot.defer = True  # a walking configure's step after the console's line, not with it
+        try:
+            while frames < 0 or n < frames:
+                self.step()
+                con = self.console
+                if con is not None:
+                    lines = con.lines
+                    con.poll()
+                    if robot.owed:
+                        robot.pay(con.lines != lines)
+                elif robot.owed:
+                    robot.pay(False)
+                if self.watchdog is not None:
+                    self.watchdog.feed()
+                n += 1
+                if status_every and n % status_every == 0:
+                    print(status_line(self))
+                self.wait()
+        finally:
+            robot.defer = False
 
     def leave(self, hold=False):
         """The loop is being left (Ctrl-C): servos limp at once, or (hold) keep the last frame.

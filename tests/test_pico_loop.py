@@ -138,12 +138,14 @@ def test_boot_reaches_the_first_burst_within_1_s(boot):
     assert json.loads(out)["first_burst_s"] <= 1.0
 
 
-@pytest.mark.xfail(strict=True, reason="issue 22 with a calibration file: 1.1003 s (2026-11-28), goal 1 s")
+@pytest.mark.xfail(strict=True, reason="issue 22 with a calibration file: 1.1092 s (2026-11-28), goal 1 s")
 def test_boot_with_a_calibration_file_reaches_the_first_burst_within_1_s(boot):
     # Issue 22's goal for a calibrated robot: the file's decode and its 18 rows put in force come
     # before the first frame. 1.0886 s on main (766187f; 0.975 s without the file): consolecal's
     # import (only to put the rows in force), the decode and the rows ~87 ms more. Strict: a boot
-    # that meets the goal fails here until the mark goes (docs/pico.md says what was tried).
+    # that meets the goal fails here until the mark goes (docs/pico.md says what was tried). 1.1092 s
+    # (0.9914 s without the file) on 2026-11-28: the file's load (9.8 KB of allocations) finds ~7.3 KB
+    # free and sets off a collection of the full heap (~25-30 ms) before the first frame.
     code, out, _, _ = boot
     assert code == 0
     with_file = json.loads(out)["with_cal_file"]
@@ -194,15 +196,21 @@ def test_stream_on_25_writes_parseable_lines_and_allocates_nothing(fs):
         assert worst >= s["frame_max_us"] - 500, (worst, s)
 
 
-def test_a_gait_change_on_the_move_stays_within_6_ms_a_frame(fs):
-    # Issue 22's "every command within a frame": the drive scenario (walk commands every 10 frames
-    # from frame 60, ripple from the guard table at 110) on the emulated Pico, whose cycle clock is
-    # deterministic. The change is taken on the move at frames 135-137 (hexapod.gaitswitch: the
+def test_the_drive_scenario_stays_within_6_ms_a_frame(fs):
+    # Issue 22's "every command within a frame": the drive scenario's 500 frames (walk commands every
+    # 10 frames from frame 60, ripple from the guard table at 110, the tripod back at 200, the
+    # tripod at 1.2 s, off the table, at 300) on the emulated Pico, whose cycle clock is
+    # deterministic. A change is taken on the move at frames 135-137 (hexapod.gaitswitch: the
     # settings, then the swing budget and the rooms, then the slot, one part a frame): 5,741, 5,511
-    # and 5,833 us (2026-11-28); in one frame, with the stroke gain made there, 12,973 us. The same
-    # scenario's 500 frames still have two over 6 ms (docs/pico.md).
-    status, lines, _, _ = pico_loop.board(140, fs, "drive")
+    # and 5,833 us (2026-11-28); in one frame, with the stroke gain made there, 12,973 us. Then two
+    # frames over 6 ms were left: 300 (6,200 us: a walk command and the `gait` command) and 310
+    # (6,725 us: a walk command and a configure step). Now a walking frame's step waits for the
+    # frame's commands and is skipped in a frame that ran one (Robot.defer, as Runner.run), and a
+    # command with no turn makes its aims without sines: 6,142 (300), then 5,986 (201, the tabled
+    # gait's take), 2026-11-28.
+    status, lines, _, _ = pico_loop.board(500, fs, "drive")
     assert status == 0, "\n".join(lines)
     result = pico_loop.summary(lines)
     assert result["drive"][0][:3] == [110, "gait", 0]  # ripple taken
-    assert result["frame_max_us"] <= 6000, (result["frame_max_us"], result["frame_max_at"])
+    assert result["drive"][2][:3] == [300, "gait", 0]  # the tripod at 1.2 s asked, checked over frames
+    assert result["frames_over_6ms"] == [] and result["frame_max_us"] <= 6000, result["frames_over_6ms"]

@@ -52,3 +52,18 @@ def test_the_ticks_of_a_configure_in_the_slack_allocate_nothing_after_its_first(
     # Its generators and their buffers are made when asked. Measured: the disc search's first
     # resume leaves 96 B in the unix VM (before any of its code runs; not traced further).
     assert len(allocated) <= 1 and sum(allocated) <= 128
+
+
+@pytest.mark.parametrize("pattern", [".", "c.........", "cc..", "c"])
+def test_under_the_runner_a_walking_step_waits_for_the_frames_commands(rt, pattern):
+    # Runner.run sets robot.defer: a walking tick leaves its configure step owed and the loop pays it
+    # after the console's line, skipping it in a frame that ran a command (a walk command ~1.1 ms
+    # and a step ~0.85 ms made a 6.7 ms frame on the emulated Pico), but never two frames running:
+    # a command every frame slows the configure to a step every second frame, never stops it.
+    in_tick, wrong, first, ticks, after, sync = rt.call("scenarios.configure:deferred", pattern)
+    assert in_tick == 0  # nothing solved in a walking tick
+    assert wrong == [], (wrong, first)  # a step paid after each frame, but none after a command
+    # unless the frame before skipped its own
+    starts = {".": [1, 1, 1, 1], "c.........": [0, 1, 1, 1], "cc..": [0, 1, 1, 1], "c": [0, 1, 0, 1]}
+    assert first[:4] == starts[pattern]
+    assert ticks > 100 and after == sync  # the same change, the same integers, only later

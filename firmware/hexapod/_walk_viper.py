@@ -27,6 +27,7 @@ _YAW_STEP = const(100)  # hexapod.walk.YAW_STEP
 _DEG360 = const(3600000)  # hexapod.walk._DEG360
 _REANCHOR = const(4194304)  # hexapod.walk._REANCHOR
 _HALF_TURN = const(9000)  # hexapod.walk._HALF_TURN
+_ONE = const(32768)  # hexapod.fixmath.ONE
 _SLACK = const(16)  # hexapod.walk.STANCE_SLACK
 _EASE = const(300)  # hexapod.budget.SWING_EASE
 _EASE_DEAD = const(16)  # hexapod.budget.EASE_DEAD
@@ -513,14 +514,20 @@ def rescale(walker) -> int:
             key[2] = cw
             key[3] = st
             turn = cw * half_ms // 1000
-            a[0] = int(sin(turn + 9000))
-            a[1] = int(sin(turn))
             cx = cx * half_ms * 16 // 1000
             cy = cy * half_ms * 16 // 1000
-            c = int(sin((turn >> 1) + 9000))
-            s = int(sin(turn >> 1))
-            a[2] = int(mul_q15(cx, c)) - int(mul_q15(cy, s))
-            a[3] = int(mul_q15(cx, s)) + int(mul_q15(cy, c))
+            if turn == 0:  # no turn: Walker._aim_at's values without its four sines
+                a[0] = _ONE
+                a[1] = 0
+                a[2] = int(mul_q15(cx, _ONE))
+                a[3] = int(mul_q15(cy, _ONE))
+            else:
+                a[0] = int(sin(turn + 9000))
+                a[1] = int(sin(turn))
+                c = int(sin((turn >> 1) + 9000))
+                s = int(sin(turn >> 1))
+                a[2] = int(mul_q15(cx, c)) - int(mul_q15(cy, s))
+                a[3] = int(mul_q15(cx, s)) + int(mul_q15(cy, c))
         c = (a[0] ^ sb) - sb
         s = (a[1] ^ sb) - sb
         worst = -1

@@ -476,11 +476,17 @@ class Walker:
         h = self.clock.stance_ticks * TICK_MS >> 1
         t = w * h // 1000
         a = self._aim
-        a[0] = sin(t + 9000)  # cos(t)
-        a[1] = sin(t)
         # The shift is the chord of the arc: the straight move turned by half the turn.
         vx = vx * h * FINE // 1000
         vy = vy * h * FINE // 1000
+        if t == 0:  # no turn: sin(9000) is ONE and sin(0) 0, the same values without four sines
+            a[0] = ONE
+            a[1] = 0
+            a[2] = mul_q15(vx, ONE)
+            a[3] = mul_q15(vy, ONE)
+            return
+        a[0] = sin(t + 9000)  # cos(t)
+        a[1] = sin(t)
         h = sin((t >> 1) + 9000)
         t = sin(t >> 1)
         a[2] = mul_q15(vx, h) - mul_q15(vy, t)

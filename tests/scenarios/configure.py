@@ -139,3 +139,47 @@ def job_heap():
             allocated.append(after - before)
     gc.enable()
     return [allocated, ticks]
+
+
+def deferred(pattern):
+    """A gait asked walking (as spread's), under Runner.run's deferral (robot.defer): each frame one
+    tick, then a walk command when pattern says so (its characters in turn: "c" a command, "."
+    none), then pay() as Runner.run pays after its console. Returns [the most job steps in a tick (the
+    walking step owed instead), the frames whose paid steps were not what the rule says (at most
+    5: frame, paid), the first 40 frames' paid steps, ticks until done, the state after, the state
+    of the same change made without the deferral]."""
+    robot = _robot()
+    now = stand(robot)
+    robot.walk(400, 0, 0)
+    robot.set_gait(RIPPLE, 2400, wait=False)
+    robot.defer = True
+    in_tick = 0
+    wrong = []
+    first = []
+    ticks = 0
+    last = 1
+    while robot.configuring():
+        n = robot.job_steps
+        robot.tick(now)
+        in_tick = max(in_tick, robot.job_steps - n)
+        now += TICK_MS
+        made = pattern[ticks % len(pattern)] == "c"
+        if made:
+            robot.walk(400, 0, 0)  # the same command again: the walk itself unchanged
+        n = robot.job_steps
+        if robot.owed:
+            robot.pay(made)
+        n = robot.job_steps - n
+        want = 0 if made and last else 1
+        if n != want and len(wrong) < 5:
+            wrong.append((ticks, n))
+        last = n
+        if ticks < 40:
+            first.append(n)
+        ticks += 1
+    robot.defer = False
+    sync = _robot()
+    stand(sync)
+    sync.walk(400, 0, 0)
+    sync.set_gait(RIPPLE, 2400, wait=True)
+    return [in_tick, wrong, first, ticks, _state(robot), _state(sync)]
