@@ -125,6 +125,7 @@ class Walker:
         self.sx = _words(6)  # where each swing left the ground, body frame, fine
         self.sy = _words(6)
         self.su = _words(6, -1)  # ticks into the swing, -1 in stance
+        self.lift_cmd = _words(18)  # the command (cmd) at each leg's last lift-off: vx a leg, then vy, yaw
         self.done = _words(6)  # STOPPING: leg has landed at neutral since the command hit zero
         self.ax = _words(6)  # this tick's stance feet, before the reach check
         self.ay = _words(6)
@@ -634,6 +635,10 @@ class Walker:
                 self.done[i] = 1
                 return
         self._early &= ~(1 << i)
+        c = self.cmd
+        self.lift_cmd[i] = c[0]  # the command this swing began for (budget.turned)
+        self.lift_cmd[i + 6] = c[1]
+        self.lift_cmd[i + 12] = c[2]
         self.su[i] = 0
         self.sx[i] = self.fx[i]
         self.sy[i] = self.fy[i]
