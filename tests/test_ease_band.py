@@ -78,7 +78,7 @@ def turned_after(w, lift, now, gait=2, leg=RM):
     """budget.turned for leg's foot lifted at command `lift` (vx, vy, yaw), the command now `now`."""
     w.clock.set(gait, 2280)
     for k in range(3):
-        w.lift_cmd[leg + 6 * k] = lift[k]
+        w.band[24 + leg + 6 * k] = lift[k]
         w.cmd[k] = now[k]
     return budget.turned(w, leg)
 
@@ -138,6 +138,6 @@ def test_the_walker_keeps_each_lifts_command():
         t += 20
         for i in range(6):
             if before[i] < 0 <= w.su[i]:
-                assert [w.lift_cmd[i], w.lift_cmd[i + 6], w.lift_cmd[i + 12]] == list(w.cmd)
+                assert [w.band[24 + i], w.band[30 + i], w.band[36 + i]] == list(w.cmd)
                 lifted.add((k >= 50, i))
     assert len(lifted) == 12  # a tripod cycle is 50 ticks: every leg lifted for each command

@@ -59,7 +59,7 @@ def gain_steps(walker, w, s):
 def swing_budget(walker, g=0):
     """walker.stroke_gain (Q15, gain_steps' for its clock's swing; g when given) and swing_max (0.1 mm,
     per leg) for its clock and srho in force, and walker.band: the coxa axes' x, y (0.1 mm), then
-    band_in, band_out (0.1 mm^2) a leg each."""
+    band_in, band_out (0.1 mm^2) a leg each (its words 24-41, the lift-off commands, are not made here)."""
     w = walker.clock.swing_ticks
     st = walker.clock.stance_ticks
     if not g:
@@ -106,7 +106,7 @@ def off_band(walker, i):
 
 def turned(walker, i):
     """1 when the ripple walks and the command now (walker.cmd) turns more than 60 degrees away from
-    the one leg i's foot lifted for (walker.lift_cmd), else 0.
+    the one leg i's foot lifted for (walker.band[24:42], written by Walker._maybe_lift), else 0.
 
     Such a foot landed for another command (a reversal, a swap of forward and sideways): its stance
     runs across or back along its old one, and the band would hold the body for it until it lifts
@@ -117,7 +117,8 @@ def turned(walker, i):
     counts as the arc a foot at the mean neutral radius sweeps (233.7 mm: 0.4 x cdeg/s in 0.1 mm/s)."""
     if walker.clock.gait != RIPPLE:
         return 0
-    k = walker.lift_cmd
+    k = walker.band
+    i += 24
     v = walker.cmd
     a = k[i] * v[0] + k[i + 6] * v[1] + (k[i + 12] * 2 // 5) * (v[2] * 2 // 5)
     n = isqrt(k[i] * k[i] + k[i + 6] * k[i + 6] + (k[i + 12] * 2 // 5) * (k[i + 12] * 2 // 5))
