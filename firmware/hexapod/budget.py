@@ -22,6 +22,7 @@ from micropython import const
 
 from hexapod.body import FINE_SHIFT
 from hexapod.fixmath import isqrt
+from hexapod.gait import RIPPLE
 from hexapod.trajectory import swing_stroke
 
 # A lift-off this far (0.1 mm) further from or nearer to the coxa axis than the guard's swings reached
@@ -58,7 +59,7 @@ def gain_steps(walker, w, s):
 def swing_budget(walker, g=0):
     """walker.stroke_gain (Q15, gain_steps' for its clock's swing; g when given) and swing_max (0.1 mm,
     per leg) for its clock and srho in force, and walker.band: the coxa axes' x, y (0.1 mm), then
-    band_in, band_out (0.1 mm^2) a leg each."""
+    band_in, band_out (0.1 mm^2) a leg each (its words 24-41, the lift-off commands, are not made here)."""
     w = walker.clock.swing_ticks
     st = walker.clock.stance_ticks
     if not g:
@@ -87,7 +88,8 @@ def swing_budget(walker, g=0):
 
 def off_band(walker, i):
     """1 when leg i's stance foot moved to (ax[i], ay[i]) (body frame, fine) lies outside its ease band
-    and further out of it than the foot is now (fx, fy), else 0 (Walker._stance and its viper twin)."""
+    and further out of it than the foot is now (fx, fy), else 0 (Walker._stance and its viper twin);
+    0 also for a ripple foot the command turned away from (turned())."""
     b = walker.band
     x = (walker.ax[i] >> FINE_SHIFT) - b[i]
     y = (walker.ay[i] >> FINE_SHIFT) - b[i + 6]
@@ -97,7 +99,33 @@ def off_band(walker, i):
     x = (walker.fx[i] >> FINE_SHIFT) - b[i]
     y = (walker.fy[i] >> FINE_SHIFT) - b[i + 6]
     x = x * x + y * y
-    return 1 if (r > x if r > b[i + 18] else r < x) else 0
+    if r > x if r > b[i + 18] else r < x:
+        return 1 - turned(walker, i)
+    return 0
+
+
+def turned(walker, i):
+    """1 when the ripple walks and the command now (walker.cmd) turns more than 60 degrees away from
+    the one leg i's foot lifted for (walker.band[24:42], written by Walker._maybe_lift), else 0.
+
+    Such a foot landed for another command (a reversal, a swap of forward and sideways): its stance
+    runs across or back along its old one, and the band would hold the body for it until it lifts
+    (on each side the ripple's other two legs swing first). It may walk on to its reach disc instead;
+    its next swing, lifting outside the band, is eased (eased(): shorter, within the servo budget). A
+    foot that lifted for the command it walks is held at the band as before, so steady walks keep their
+    place (docs/physics.md, issue 22: the feet drifted out when the band held nothing). The turn
+    counts as the arc a foot at the mean neutral radius sweeps (233.7 mm: 0.4 x cdeg/s in 0.1 mm/s)."""
+    if walker.clock.gait != RIPPLE:
+        return 0
+    k = walker.band
+    i += 24
+    v = walker.cmd
+    a = k[i] * v[0] + k[i + 6] * v[1] + (k[i + 12] * 2 // 5) * (v[2] * 2 // 5)
+    n = isqrt(k[i] * k[i] + k[i + 6] * k[i + 6] + (k[i + 12] * 2 // 5) * (k[i + 12] * 2 // 5))
+    m = isqrt(v[0] * v[0] + v[1] * v[1] + (v[2] * 2 // 5) * (v[2] * 2 // 5))
+    # cos(angle) < 1/2 (joystick stream: 30, 45 or 60 degrees hold the same 40 ticks, 90 degrees 78); |vx|,
+    # |vy| <= 3,000 and 0.4 |yaw| <= 3,600: n, m < 5,600 and every product a board's small int
+    return 1 if n and m and 2 * a < n * m else 0
 
 
 def in_budget(walker, i, t, cv):
