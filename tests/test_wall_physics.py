@@ -192,7 +192,7 @@ def test_cli_json_and_text(capsys, tmp_path):
         (["--world", "moon"], "world moon: cannot read"),
         (["--follow", "both"], "--follow: 'both', allowed left or right"),
         (["--plot", "both.svg"], "--plot: 'both.svg', allowed a file name ending in .png"),
-        (["--form", "zigzag"], "--form: 'zigzag', allowed yaw or sweeps"),
+        (["--form", "zigzag"], "--form: 'zigzag', allowed yaw, sweeps or crab"),
         (["--gains", "101", "0.5", "1"], "--gains P: 101 is outside 0..100"),
     ],
 )

@@ -301,7 +301,7 @@ def test_cli_json(capsys):
         (["--world", "nowhere"], "world nowhere: cannot read"),
         (["--plot", "out.jpg"], "--plot: 'out.jpg', allowed a file name ending in .png"),
         (["--jobs", "0"], "--jobs: 0 is outside 1..256"),
-        (["--form", "wave"], "--form: 'wave', allowed yaw or sweeps"),
+        (["--form", "wave"], "--form: 'wave', allowed yaw, sweeps or crab"),
         (["--setpoint", "40"], "start: at a 40 cm set point the robot stands on wall"),
     ],
 )
