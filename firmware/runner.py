@@ -110,11 +110,11 @@ class Runner:
     def follow(self, side, setpoint, speed=None, form="yaw"):
         """Follow the `side` ("left" or "right") wall at `setpoint` (0.1 mm, the side sonar's
         reading, as in seed 000) walking forward at `speed` (0.1 mm/s, default follow.SPEED);
-        form "yaw" (the PID turns through Robot.walk's yaw rate) or "sweeps" (seed 000's coxa
-        sweeps). Returns 0 when following, else a hexapod.tick reason code (22 not standing,
-        21 busy, 23 unreachable) having changed nothing; bad values raise ValueError naming the
-        value and what is allowed, changing nothing. Again on the same side: new set point and
-        speed on the fly (no derivative kick)."""
+        form "yaw" (the PID turns through Robot.walk's yaw rate), "sweeps" (seed 000's coxa
+        sweeps) or "crab" (the PID walks sideways, docs/wall.md). Returns 0 when following, else
+        a hexapod.tick reason code (22 not standing, 21 busy, 23 unreachable) having changed
+        nothing; bad values raise ValueError naming the value and what is allowed, changing
+        nothing. Again on the same side: new set point and speed on the fly (no derivative kick)."""
         return self.follower.follow(side, setpoint, speed, form)
 
     def follow_off(self):

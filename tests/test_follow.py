@@ -409,7 +409,7 @@ def test_sweeps_form_is_seed_000s_turn():
         (("left", 800, 3001), "speed: 3001"),
         (("left", 800, 80.5), "speed: 80.5"),
         (("left", 800, False), "speed: False"),
-        (("left", 800, None, "coxa"), "form: 'coxa', allowed 'yaw' or 'sweeps'"),
+        (("left", 800, None, "coxa"), "form: 'coxa', allowed 'yaw', 'sweeps' or 'crab'"),
     ],
 )
 def test_bad_follow_requests_are_refused_and_change_nothing(args, match):
@@ -524,3 +524,71 @@ def test_a_sensor_change_keeps_the_integral_and_takes_no_derivative(side):
     assert f.distance_only
     assert f.pid.samples <= 2, f.pid.samples  # reset at the change, then one update or two
     assert f.pid.i >= i_pair, (f.pid.i, i_pair)
+
+
+# --- issue 22 point 5: form crab, sideways to the set point -------------------------------------------
+
+
+def away_y(side, vy):
+    """vy (0.1 mm/s, + to the robot's left) as 'walking away from the wall' (positive) for either side."""
+    return -vy if side == "left" else vy
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_crab_walks_sideways_to_the_set_point_without_turning(side):
+    # Parallel, 4 mm close: the PID holds the distance itself (no look-ahead), P only on the first
+    # sample: u = 25 * 40 = 1000 cdeg/s, walked as a sideways speed of 800 * 1000 / CRAB_DIV (6250) =
+    # 128 (0.1 mm/s) away from the wall; no turn.
+    rig = Rig(side, form="crab")
+    f = rig.cycle(near=760, far=760)
+    assert (f.distance, f.angle, f.error, f.output, f.vx, f.yaw) == (760, 0, 40, 1000, 800, 0)
+    assert away_y(side, f.vy) == 128
+    # The next sample: the walk's prediction has moved the wall by the sideways travel (0.6 mm):
+    # less error, still away.
+    f = rig.cycle(near=760, far=760)
+    assert f.distance == 766 and 0 < f.error < 40 and 0 < away_y(side, f.vy) < 128 and f.yaw == 0
+    rig = Rig(side, form="crab")
+    f = rig.cycle(near=800, far=800)  # at the set point, parallel: straight on
+    assert (f.error, f.output, f.vx, f.vy, f.yaw) == (0, 0, 800, 0, 0)
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_crab_cancels_the_headings_drift_and_turns_only_past_its_band(side):
+    # Nose 1.15 deg toward the wall at the set point (78 and 82 mm): no error, no turn (inside
+    # CRAB_BAND, 4 deg); the sideways speed cancels the heading's drift: 800 * sin(1.15 deg) = 16 away.
+    rig = Rig(side, form="crab")
+    f = rig.cycle(near=780, far=820)
+    assert (f.distance, f.angle, f.error, f.output, f.yaw) == (800, -115, 0, 0, 0) and away_y(side, f.vy) == 16
+    # 5.71 deg toward (70 and 90 mm): 800 * sin(5.71 deg) = 80 away, and a turn away of the excess
+    # over the band per second: 571 - 400 = 171 cdeg/s.
+    rig = Rig(side, form="crab")
+    f = rig.cycle(near=700, far=900)
+    assert (f.distance, f.angle, f.error) == (800, -571, 0)
+    assert away_y(side, f.vy) == 80 and rig.away(f.yaw) == 171
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_crab_turns_as_form_yaw_past_10_degrees_and_on_one_sonar(side):
+    # 11.3 deg toward (60 and 100 mm, after a corner, say): the yaw form's law, look-ahead and all:
+    # e = 0 + 100 mm * sin(11.31 deg) = 19.6 mm -> 25 * 196 = 4900, clamped at YAW_MAX; no sideways step.
+    rig = Rig(side, form="crab")
+    f = rig.cycle(near=600, far=1000)
+    assert (f.angle, f.error, f.output, f.vy) == (-1131, 196, follow.YAW_MAX, 0)
+    assert rig.away(f.yaw) == follow.YAW_MAX
+    # On the rear sonar alone (an outside corner, a gap): the same as form yaw, a turn.
+    for form in ("yaw", "crab"):
+        rig = Rig(side, form=form)
+        f = rig.cycle(near=800, far=800, n=2)
+        f = rig.cycle(near=OOR, far=900, n=3)
+        assert f.distance_only and f.vy == 0
+        if form == "yaw":
+            want = (f.distance, f.error, f.output, f.yaw)
+        else:
+            assert (f.distance, f.error, f.output, f.yaw) == want
+
+
+def test_crab_decisions_are_bit_identical_on_both_runtimes(both_runtimes):
+    cp, mp = both_runtimes.call("scenarios.follow:tour", 1500, "crab")
+    assert cp == mp
+    assert {r[0] for r in cp} >= {follow.FOLLOWING, follow.CORNER} and len(cp) == 60
+    assert any(r[6] for r in cp)  # it did walk sideways

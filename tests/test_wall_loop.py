@@ -30,6 +30,16 @@ def test_a_steady_wall_follow_frame_allocates_nothing(mp):
     assert heap == 0
 
 
+def test_a_steady_crab_frame_allocates_nothing(mp):
+    """The same in form crab (issue 22 point 5: the PID walks sideways): 0 heap bytes."""
+    heap, updates, mode, robot_mode, held, changed = mp.with_heapsize("4m").call(
+        "scenarios.wall_loop:follow_heap", "crab"
+    )
+    assert (mode, robot_mode, held) == ("following", 4, 0)
+    assert updates >= 55 and changed
+    assert heap == 0
+
+
 def test_main_starts_following_from_the_board_setting(both_runtimes):
     # A source, not a call: the test reads the status line main.main prints before the value.
     src = "from scenarios.wall_loop import main_from_board_setting\nprint(main_from_board_setting())\n"

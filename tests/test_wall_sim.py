@@ -301,7 +301,7 @@ def test_cli_json(capsys):
         (["--world", "nowhere"], "world nowhere: cannot read"),
         (["--plot", "out.jpg"], "--plot: 'out.jpg', allowed a file name ending in .png"),
         (["--jobs", "0"], "--jobs: 0 is outside 1..256"),
-        (["--form", "wave"], "--form: 'wave', allowed yaw or sweeps"),
+        (["--form", "wave"], "--form: 'wave', allowed yaw, sweeps or crab"),
         (["--setpoint", "40"], "start: at a 40 cm set point the robot stands on wall"),
         # the same checks before a --physics run (docs/wall.md)
         (["--physics", "--trials", "0"], "--trials: 0 is outside 1..100000"),
@@ -312,7 +312,7 @@ def test_cli_json(capsys):
         (["--physics", "--world", "moon"], "world moon: cannot read"),
         (["--physics", "--follow", "both"], "--follow: 'both', allowed left or right"),
         (["--physics", "--plot", "both.svg"], "--plot: 'both.svg', allowed a file name ending in .png"),
-        (["--physics", "--form", "zigzag"], "--form: 'zigzag', allowed yaw or sweeps"),
+        (["--physics", "--form", "zigzag"], "--form: 'zigzag', allowed yaw, sweeps or crab"),
         (["--physics", "--gains", "101", "0.5", "1"], "--gains P: 101 is outside 0..100"),
     ],
 )

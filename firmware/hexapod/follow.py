@@ -22,6 +22,9 @@ walker's heading change turns the angle, its forward travel at that angle moves 
 sample corrects the prediction by 1/2**EST_SHIFT of the difference. Fed raw, the sonars' 3 mm
 noise made the paper's Kp = 25 (2.5 deg/s per mm) turn about 10 deg/s on average, and every turn
 costs forward speed (the walker scales a command until its feet fit: docs/wall.md).
+Form "crab" (issue 22 point 5) walks the PID's output, on the distance alone, as a sideways speed
+and turns only to keep the angle within CRAB_BAND: a sideways step costs the forward speed next to
+nothing where a turn costs it at once; on one sonar, or past CRAB_ANGLE, it turns as form "yaw".
 
 Modes: off, following, corner (the front sonar sees a wall ahead: arc away from the followed
 wall), lost (no wall on the side: arc toward where it was, radius = the wall distance), then
@@ -126,6 +129,15 @@ SEARCH_MS = const(30000)  # search this long, then stop, ms
 # the difference: the sonars' noise (sd 3 mm) reaches the PID about 1/4 as large (sd x sqrt(K / (2 - K)),
 # K = 1/8), the robot's own turns at once. 1/32 (the first try) let heading slip build into 4-5 mm RMS.
 EST_SHIFT = const(3)
+# Form crab (issue 22 point 5): the sideways speed is speed * PID output / CRAB_DIV (at the paper's Kp = 25 a
+# 1 mm error walks sideways at speed / 25 mm per second: at 48 mm/s it closes in about 0.5 s); the robot
+# turns back toward parallel only past CRAB_BAND, at CRAB_TURN / 1000 of the excess angle per second, and
+# follows as form yaw on one sonar or past CRAB_ANGLE (after a corner). docs/wall.md has the trials.
+CRAB_DIV = const(6250)
+CRAB_BAND = const(400)  # cdeg
+CRAB_TURN = const(1000)  # yaw rate per angle past the band, 1/s x1000
+CRAB_ANGLE = const(1000)  # cdeg
+CRAB_SIDE = const(300)  # the sideways speed at most, per mille of the forward speed
 _EST_HALF = const(4)  # 2**EST_SHIFT / 2: the correction rounded half up, not floored (no drift)
 _COUNT_MAX = const(1000000)  # counters stop here (small ints for ever)
 _DEG180 = const(1800000)  # fixmath.ANGLE_UNIT
@@ -167,7 +179,8 @@ class Follower:
         self.angle = 0  # last angle to the wall, cdeg, positive = nose away (one sensor: by odometry)
         self.error = 0  # last PID error, 0.1 mm
         self.output = 0  # last PID output after the angle guard, cdeg/s (positive = away)
-        self.vx = 0  # last command sent: forward speed 0.1 mm/s, yaw rate cdeg/s
+        self.vx = 0  # last command sent: forward and sideways speed 0.1 mm/s, yaw rate cdeg/s
+        self.vy = 0
         self.yaw = 0
         self.updates = 0  # PID updates since follow()
         self.refused = 0  # walk commands the robot refused
@@ -192,6 +205,10 @@ class Follower:
         self._est = False  # the pair's estimate (_adr, _dist) has been started from a sample
         self._dist = 0  # the pair's midpoint distance estimate, 0.1 mm << 4
         self._walked = 0  # forward speed summed over the frames walked since the last sample, 0.1 mm/s
+        self._slid = 0  # sideways speed away from the wall summed likewise, 0.1 mm/s (form crab)
+        self._crabbing = False  # form crab: the last sample walked sideways (else it turned)
+        self._crab_vy = 0  # ... and the command it asked for: sideways speed (0.1 mm/s), yaw rate (cdeg/s)
+        self._crab_yaw = 0
         self._held = 0  # the walker's held count at the last frame
         self._t0 = 0
         self._sweep = [0, 0]  # seed 000's full turn: vx (0.1 mm/s), |yaw| (cdeg/s)
@@ -200,9 +217,10 @@ class Follower:
 
     def follow(self, side, setpoint, speed=None, form="yaw"):
         """Follow the `side` ("left"/"right") wall at `setpoint` (0.1 mm, the side sonar's reading)
-        walking at `speed` (0.1 mm/s, default SPEED); form "yaw" (Robot.walk) or "sweeps" (seed
-        000's coxa sweeps). Returns 0 (following) or a hexapod.tick reason code (not standing,
-        busy, unreachable) having changed nothing; bad values raise ValueError, changing nothing.
+        walking at `speed` (0.1 mm/s, default SPEED); form "yaw" (Robot.walk), "sweeps" (seed
+        000's coxa sweeps) or "crab" (sideways to the set point). Returns 0 (following) or a
+        hexapod.tick reason code (not standing, busy, unreachable) having changed nothing; bad
+        values raise ValueError, changing nothing.
         Called again on the same side and form it changes set point and speed on the fly."""
         check_request(side, setpoint, speed, form)
         robot = self.robot
@@ -235,7 +253,7 @@ class Follower:
         self._thresholds()
         self._restart()  # after the walk: a walk from a stop starts the walker's heading at 0
         self.vx = speed
-        self.yaw = 0
+        self.vy = self.yaw = 0
         self._sent = True
         return OK
 
@@ -245,7 +263,7 @@ class Follower:
             self.robot.stop()
         self._set_mode(OFF, NO_REASON)
         self._sent = False
-        self.vx = self.yaw = 0
+        self.vx = self.vy = self.yaw = 0
         return OK
 
     def set_gains(self, kp, ki, kd):
@@ -271,6 +289,8 @@ class Follower:
         self._adr = 0
         self._est = False
         self._walked = 0
+        self._slid = 0
+        self._crabbing = False
         self._held = self.robot.walker.held
         self._used = 3
         self.used = USED_NAMES[self._side()][3]
@@ -371,6 +391,7 @@ class Follower:
         if w.held == self._held:
             if self._walked < _COUNT_MAX:
                 self._walked += w.vel[0]
+                self._slid += self._away * w.vel[1]  # away from the wall: + (only form crab walks sideways)
         else:
             self._held = w.held
         self._adr += self._away * d  # turning away from the wall opens the angle
@@ -402,7 +423,7 @@ class Follower:
             self._set_mode(BLOCKED, OBSTACLE)
             self.robot.stop()
             self._sent = False
-            self.vx = self.yaw = 0
+            self.vx = self.vy = self.yaw = 0
             return
         if self.mode == CORNER:
             if ahead >= 0 and ahead < self._corner_at + CORNER_HYST:
@@ -437,7 +458,11 @@ class Follower:
             self._fresh = 0
             self._steer(now, used)
         elif not self._sent:
-            self._walk(self.speed, self._away * self.output)  # not sent yet (refused, or no sample: straight)
+            # Not sent yet (refused, or no sample: straight; crab: the last sideways command).
+            if self._crabbing:
+                self._walk(self.speed, self._crab_yaw, self._crab_vy)
+            else:
+                self._walk(self.speed, self._away * self.output)
 
     def _steer(self, now, used):
         rd = self.reading
@@ -450,8 +475,10 @@ class Follower:
                 # The walk's prediction since the last sample (the angle by the walker's heading each
                 # frame, the distance by its forward travel at that angle), corrected by 1/2**EST_SHIFT
                 # of what the sample says: the PID steers on the wall, not on the sonars' noise.
-                s = sin(to_cdeg(self._adr))
-                self._dist += mul_q15(self._walked * 8 // 25, s)
+                s = to_cdeg(self._adr)
+                self._dist += mul_q15(self._walked * 8 // 25, sin(s))
+                if self._slid:
+                    self._dist += mul_q15(self._slid * 8 // 25, sin(s + 9000))  # x cos(angle)
                 self._adr += (a - self._adr + _EST_HALF) >> EST_SHIFT
                 self._dist += (d - self._dist + _EST_HALF) >> EST_SHIFT
             else:
@@ -472,6 +499,17 @@ class Follower:
             self.distance = rd[k] - mul_q15(x, s)  # the pair's midpoint
             m = self.distance + mul_q15(self.lookahead, s)
         self._walked = 0
+        self._slid = 0
+        if self.form == "crab":
+            # Crab on the pair within CRAB_ANGLE of parallel; on one sonar (an edge, a gap, an outside
+            # corner) or further round (after a corner) it turns as form yaw. A change of law is a
+            # change of measurement: no derivative across it.
+            crab = used == 3 and -CRAB_ANGLE < self.angle < CRAB_ANGLE
+            if crab != self._crabbing:
+                self._crabbing = crab
+                self.pid.reset(True)
+            if crab:
+                return self._crab(now)
         u = self.pid.update(self.setpoint, m, now)
         self.error = self.pid.error
         # Past the guard angle no further turn that way: the pair's beams would lose the wall. On one
@@ -483,6 +521,36 @@ class Follower:
         if self.updates < _COUNT_MAX:
             self.updates += 1
         self._walk(self.speed, self._away * u)
+
+    def _crab(self, now):
+        # Form crab: the PID holds the wall distance itself (no look-ahead) and its output is walked
+        # as a sideways speed, speed * u / CRAB_DIV, plus the sideways speed that cancels the heading's
+        # drift toward or away from the wall (speed * sin(angle)), at most CRAB_SIDE of the speed: the
+        # walker's reach is a disc, so a sideways speed of 10 % of the forward one costs it 0.5 %, where
+        # every degree turned costs about 0.07 s (docs/wall.md). The robot turns only to bring the
+        # angle back inside CRAB_BAND (the heading slips 1 degree a stride, a start is up to 10 degrees
+        # off), so the sonars stay in their beam.
+        u = self.pid.update(self.setpoint, self.distance, now)
+        self.error = self.pid.error
+        self.output = u
+        if self.updates < _COUNT_MAX:
+            self.updates += 1
+        v = self.speed
+        a = self.angle
+        side = v * u // CRAB_DIV - mul_q15(v, sin(a))
+        lim = v * CRAB_SIDE // 1000
+        if side > lim:
+            side = lim
+        elif side < -lim:
+            side = -lim
+        yaw = 0
+        if a > CRAB_BAND:
+            yaw = (CRAB_BAND - a) * CRAB_TURN // 1000
+        elif a < -CRAB_BAND:
+            yaw = (-CRAB_BAND - a) * CRAB_TURN // 1000
+        self._crab_vy = self._away * side
+        self._crab_yaw = self._away * yaw
+        self._walk(v, self._crab_yaw, self._crab_vy)
 
     def _lost(self, now):
         if self.mode != LOST and self.mode != SEARCHING:
@@ -514,6 +582,7 @@ class Follower:
             if mode == FOLLOWING:
                 self.pid.reset()
                 self._est = False
+                self._crabbing = False
                 self.output = 0
                 self._fresh = 0
                 self._sent = False
@@ -524,10 +593,10 @@ class Follower:
         self._set_mode(STOPPED, reason)
         self.robot.stop()
         self._sent = False
-        self.vx = self.yaw = 0
+        self.vx = self.vy = self.yaw = 0
 
-    def _walk(self, vx, yaw):
-        """Send (vx, yaw) unless it is what was sent last; returns the robot's code."""
+    def _walk(self, vx, yaw, vy=0):
+        """Send (vx, vy, yaw) unless it is what was sent last; returns the robot's code."""
         if self.form == "sweeps":
             # Seed 000's form: straight blended with its full turn (left coxas 45, right 10 deg,
             # or mirrored) by the share of the largest yaw rate asked for.
@@ -538,11 +607,11 @@ class Follower:
             vx = vx + (self._sweep[0] - vx) * k // 1000
             w = self._sweep[1] * k // 1000
             yaw = w if yaw >= 0 else -w
-        if self._sent and vx == self.vx and yaw == self.yaw:
+        if self._sent and vx == self.vx and yaw == self.yaw and vy == self.vy:
             return OK
         walker = self.robot.walker
         was_stopped = walker.state == WALKER_STOPPED
-        code = self.robot.walk(vx, 0, yaw)
+        code = self.robot.walk(vx, vy, yaw)
         if code != OK:
             if self.refused < _COUNT_MAX:
                 self.refused += 1
@@ -553,6 +622,7 @@ class Follower:
         if was_stopped:
             self._psi = walker.psi  # a walk from a stop starts the walker's heading at 0
         self.vx = vx
+        self.vy = vy
         self.yaw = yaw
         self._sent = True
         return OK

@@ -19,7 +19,9 @@ SPEED_MAX = const(3000)  # largest |vx|, |vy| a walk accepts, 0.1 mm/s
 YAW_RATE_MAX = const(9000)  # largest |yaw rate| a walk accepts, cdeg/s
 
 SIDES = ("left", "right")  # the wall followed
-FORMS = ("yaw", "sweeps")  # the PID output as a yaw rate (Robot.walk) or as seed 000's coxa sweeps
+# The PID output as a yaw rate (Robot.walk), as seed 000's coxa sweeps, or as a sideways speed (crab: the
+# robot turns only to keep the sonars in their beam; hexapod.follow, docs/wall.md).
+FORMS = ("yaw", "sweeps", "crab")
 SETPOINT_MIN = const(400)  # the follower's set point (the side sonar's reading), 0.1 mm
 SETPOINT_MAX = const(5000)
 SPEED_MIN = const(100)  # the follower's forward speed: SPEED_MIN..SPEED_MAX, 0.1 mm/s
@@ -37,4 +39,4 @@ def check_request(side, setpoint, speed=None, form="yaw"):
     if speed is not None and (not is_whole(speed) or speed < SPEED_MIN or speed > SPEED_MAX):
         raise ValueError("speed: %r is outside %d..%d (0.1 mm/s)" % (speed, SPEED_MIN, SPEED_MAX))
     if form not in FORMS:
-        raise ValueError("form: %r, allowed 'yaw' or 'sweeps'" % (form,))
+        raise ValueError("form: %r, allowed 'yaw', 'sweeps' or 'crab'" % (form,))

@@ -5,16 +5,16 @@ from scenarios.rig import Rig
 from hexapod import follow
 
 
-def tour(ticks):
-    """Per side, every 50th tick: (mode, distance, angle, error, output, vx, yaw, turned, walker psi)
-    of a follower fed a wall that comes and goes, a corner ahead now and then, a fixed noise pattern."""
+def tour(ticks, form="yaw"):
+    """Per side, every 50th tick: (mode, distance, angle, error, output, vx, vy, yaw, turned, walker psi)
+    of a follower (in `form`) fed a wall that comes and goes, a corner ahead now and then, a fixed noise pattern."""
     out = []
     for side in ("left", "right"):
         rig = Rig()
         rig.stand()
         robot = rig.robot
         f = follow.Follower(robot)
-        f.follow(side, 800)
+        f.follow(side, 800, None, form)
         dist = [-1] * 5
         status = [5] * 5
         for n in range(ticks):
@@ -33,5 +33,7 @@ def tour(ticks):
             f.update(rig.t, k, dist, status)
             rig.run(1)
             if n % 50 == 0:
-                out.append((f.mode, f.distance, f.angle, f.error, f.output, f.vx, f.yaw, f.turned, robot.walker.psi))
+                out.append(
+                    (f.mode, f.distance, f.angle, f.error, f.output, f.vx, f.vy, f.yaw, f.turned, robot.walker.psi)
+                )
     return out

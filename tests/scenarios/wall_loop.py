@@ -48,16 +48,16 @@ def follow_left():
     return (code, parallel, toward, off, r.follower.mode_name, r.robot.mode, r.robot.walker.state, bad)
 
 
-def follow_heap():
-    """MicroPython only (gc.mem_alloc): (heap bytes of 300 following frames run twice, PID updates,
-    follower mode, robot mode, frames held, the turn changed)."""
+def follow_heap(form="yaw"):
+    """MicroPython only (gc.mem_alloc): (heap bytes of 300 following frames run twice in `form`, PID
+    updates, follower mode, robot mode, frames held, the command (yaw rate, or crab's sideways speed) changed)."""
     import gc
 
     loop = _standing()
     r = loop.r
     f = r.follower
     loop.at(9000, 780, 800, 9000, 9000)  # 2 mm close, nose 0.6 deg in: the integral moves every update
-    r.follow("left", 800)
+    r.follow("left", 800, None, form)
     loop.frames(100)
 
     def run(n):
@@ -66,7 +66,7 @@ def follow_heap():
             r.wait()
 
     before = f.updates
-    sent = f.yaw
+    sent = (f.yaw, f.vy)
     run(300)
     gc.collect()
     gc.disable()
@@ -74,7 +74,7 @@ def follow_heap():
     run(300)
     heap = gc.mem_alloc() - a
     gc.enable()
-    return (heap, f.updates - before, f.mode_name, r.robot.mode, r.held, sent != f.yaw)
+    return (heap, f.updates - before, f.mode_name, r.robot.mode, r.held, sent != (f.yaw, f.vy))
 
 
 def main_from_board_setting():

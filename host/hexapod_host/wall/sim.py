@@ -42,6 +42,9 @@ TOO_FAR_MM = 150.0  # set point + 15 cm
 STEADY_MM = 300.0  # steady-state error: the mean over the last 30 cm
 TRIALS = 10  # per set point for `make sim`: under 2 minutes on 2 shared cores (docs/wall.md)
 PLOT = "wall_sim.png"
+# The follower's form `hexapod sim wall` asks for unless --form: crab walks sideways to the set point and turns
+# only to stay near parallel (issue 22 point 5: 95-100 % of the top speed where yaw walked 88-91 %; docs/wall.md).
+FORM = "crab"
 # The rig as a script for the VM: it needs no package there, its imports are the board's bare names.
 RIG_SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "rig.py")
 
