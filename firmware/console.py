@@ -16,7 +16,6 @@ import sys
 
 from micropython import const
 
-from hexapod import battery as batteries
 from hexapod import faultlog, gait, release, sensors, tick
 from hexapod.body import FINE_SHIFT
 from hexapod.leg import describe as leg_describe
@@ -48,6 +47,7 @@ CAL_KEEP_MS = const(30000)
 # one: the running loop does not carry them); CircuitPython (Console.compiles, set by code.py)
 # compiles one per command and lets it go after each.
 MORE = "consoleparts.more"
+_CUTOFF = const(2)  # hexapod.battery.CUTOFF
 SETTING = "consoleparts.setting"  # height, wall, pid, stream: loaded and let go as MORE
 
 
@@ -131,7 +131,7 @@ class Console:
         self._walking = False  # a console walk runs, expiring at _deadline (ticks_ms)
         self._deadline = 0
         self._held = False  # a held frame was announced (once, until frames are sent again)
-        self._battery = batteries.OK  # the battery state last announced (a notice at each change)
+        self._battery = 0  # hexapod.battery.OK: the battery state last announced (a notice at each change)
         self.lines = 0  # lines answered
         self._job = None  # a multi-line reply under way (selftest): step() once a frame, abort(), done
         self._job_tag = None  # its request's tag: each of its lines carries it
@@ -452,6 +452,8 @@ class Console:
 
     def battery_line(self):
         """The notice for a battery state change: never 'ok' or 'err'."""
+        from hexapod import battery as batteries  # loaded with the monitor: a board without one never loads it
+
         b = self.runner.battery
         v = batteries.volts
         if b.state == batteries.LOW:
@@ -476,7 +478,9 @@ class Console:
         """ValueError naming the battery and its voltage while it is cut off: every command that
         would drive a servo (stand, sit, walk, wall, the jog) waits for a charged pack."""
         b = self.runner.battery
-        if b is not None and b.state == batteries.CUTOFF:
+        if b is not None and b.state == _CUTOFF:
+            from hexapod import battery as batteries
+
             v = batteries.volts
             raise ValueError(
                 "battery %s V, cut off below %s V (%d cells); charge it: allowed again after 1 s above %s V"
