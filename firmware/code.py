@@ -130,7 +130,7 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000, sampl
         board, robot, table, mounts, pairs, sonar_pins, scl, sda = settings(board_name, robot_name)
     import busio
 
-    from drivers import cp_clock, cp_hcsr04_pulsein, cp_pca9685, hcsr04  # loaded at the top on a board
+    from drivers import cp_clock, cp_hcsr04_pulsein, cp_pca9685, ranger  # loaded at the top on a board
 
     if clock is None:
         clock = cp_clock.Clock()
@@ -145,7 +145,7 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000, sampl
         raise
     i2c = busio.I2C(scl, sda, frequency=board["i2c"]["freq"])
     bank = cp_pca9685.servo_bank(i2c, board["pca9685"], table)
-    sonars = sensors.Sonars(hcsr04.RoundRobin(rangers, tick_ms=FRAME_MS), len(rangers))
+    sonars = sensors.Sonars(ranger.RoundRobin(rangers, tick_ms=FRAME_MS), len(rangers))
     r = Runner(robot, [row[2] for row in table], bank, sonars, clock, mounts)
     r.board = board
     r.sonar_pins = pairs
