@@ -79,13 +79,22 @@ def _release(robot_name):
 # the heap into holes. So on a board the largest compiles come first, on the emptiest heap: the
 # biggest driver, drivers.pca9685 (left last, it was what failed once tick came first), then
 # hexapod.tick (which compiles walk); then the board and robot files, read and let go before
-# the console loads (their checks are not alive while the loop is built); then runner (which
-# compiles the wall follower), then console, whose reporting and setting commands (consoleparts.more)
-# are compiled per command; a collection after each. A board file refused stops
-# code.py here, with the message build() gave before. `hexapod bench feather` (docs/flashing.md)
+# the console loads (their checks are not alive while the loop is built); then console, whose
+# reporting and setting commands (consoleparts.more, .setting) are compiled per command, then
+# runner (which compiles the wall follower); a collection after each. A board file refused stops
+# code.py here, with the message build() gave before. And from the first import until the loop
+# runs (main(): build() and the power-up too), a collection each BOOT_GC_BYTES allocated
+# (gc.threshold): the collector otherwise waits for the heap to fill, by when the compiles' and
+# build()'s garbage lies between everything that stays, and the loop starts on a heap of small
+# holes (56 KB free, the largest hole 2 KB, in the VM). `hexapod bench feather` (docs/flashing.md)
 # has the figures.
+BOOT_GC_BYTES = 4096
+_boot_threshold = None  # gc.threshold() as the board had it, put back when the loop starts
 _settings = None  # settings(BOARD, ROBOT), read at import on a board; build() takes it once
 if sys.implementation.name != "cpython":  # CPython: the tests install fake modules first (and pdb imports a `code`)
+    if hasattr(gc, "threshold"):
+        _boot_threshold = gc.threshold()
+        gc.threshold(BOOT_GC_BYTES)
     from drivers import pca9685  # noqa: F401
 
     gc.collect()
@@ -95,13 +104,15 @@ if sys.implementation.name != "cpython":  # CPython: the tests install fake modu
     _settings = settings()
     _release(ROBOT)
     gc.collect()
+    import console  # noqa: F401
+
+    gc.collect()
     import runner  # noqa: F401  (compiles the wall follower)
 
     gc.collect()
 
 import console  # noqa: E402
 
-gc.collect()
 if sys.implementation.name != "cpython":
     # The jog and calibration commands: kept here, where the next compile would find a fuller heap
     # (MicroPython loads their .mpy per command instead).
@@ -172,6 +183,8 @@ def main(frames=-1, clock=None, board_name=BOARD, robot_name=ROBOT, reader=None,
         watchdog.timeout = r.board["watchdog_ms"] / 1000  # the one float: CircuitPython wants seconds
         watchdog.mode = WatchDogMode.RESET
         r.watchdog = watchdog
+    if _boot_threshold is not None:  # the boot's collections end where the loop's frames begin
+        gc.threshold(_boot_threshold)
     r.serve(frames, 0 if reader is not None else STATUS_FRAMES)
     return r
 
