@@ -792,27 +792,27 @@ class Robot:
 
     def jog_foot(self, leg, x, y, z):
         """Leg `leg` (0..5)'s foot to (x, y, z), 0.1 mm in its leg frame (mode JOG): hexapod.jog.foot."""
-        from hexapod import jog
+        import hexapod.jog  # (not `from hexapod import jog`: that allocates 32 B a call)
 
-        return jog.foot(self, leg, x, y, z)
+        return hexapod.jog.foot(self, leg, x, y, z)
 
     def jog_joint(self, leg, joint, cdeg):
         """One servo (leg 0..5, joint 0 coxa 1 femur 2 tibia) to cdeg (mode JOG): hexapod.jog.joint."""
-        from hexapod import jog
+        import hexapod.jog  # (not `from hexapod import jog`: that allocates 32 B a call)
 
-        return jog.joint(self, leg, joint, cdeg)
+        return hexapod.jog.joint(self, leg, joint, cdeg)
 
     def jog_pulse(self, leg, joint, pulse_us):
         """One servo to a raw pulse width, us (mode JOG): hexapod.jog.pulse."""
-        from hexapod import jog
+        import hexapod.jog  # (not `from hexapod import jog`: that allocates 32 B a call)
 
-        return jog.pulse(self, leg, joint, pulse_us)
+        return hexapod.jog.pulse(self, leg, joint, pulse_us)
 
     def calibrate(self, k, centre_us, direction, min_us, max_us):
         """Servo k (0..17)'s map, the driven servo moved to its new pulse at once: hexapod.jog.calibrate."""
-        from hexapod import jog
+        import hexapod.jog  # (not `from hexapod import jog`: that allocates 32 B a call)
 
-        return jog.calibrate(self, k, centre_us, direction, min_us, max_us)
+        return hexapod.jog.calibrate(self, k, centre_us, direction, min_us, max_us)
 
     def go_limp(self):
         """At once: every servo limp (a frame of zeros sent now), mode RELAXED; the loop is leaving."""
