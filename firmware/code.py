@@ -114,11 +114,13 @@ if sys.implementation.name != "cpython":  # CPython: the tests install fake modu
 import console  # noqa: E402
 
 if sys.implementation.name != "cpython":
-    # The jog and calibration commands: kept here, where the next compile would find a fuller heap
-    # (MicroPython loads their .mpy per command instead).
+    # The jog and calibration commands: compiled here, where the next compile would find a fuller
+    # heap, kept for the first jog session and let go once the robot walks (cal_until_walk: the
+    # loop's commands then have its 8 KB); MicroPython loads their .mpy per command instead.
     import consolecal  # noqa: F401
 
-    console.Console.keep_cal = True
+    del consolecal  # sys.modules holds it: the console lets it go (hexapod.release)
+    console.Console.cal_until_walk = True
     # consoleparts.more and selftest compiled per command on a collected heap, the former let go after
     # each (console.Console.compiles).
     console.Console.compiles = True

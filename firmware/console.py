@@ -96,11 +96,15 @@ class PollReader:
 class Console:
     """Command lines -> calls on a runner.Runner; replies through `out` (print on a board)."""
 
-    # True: consolecal stays loaded once imported (no session end lets it go). CircuitPython's
-    # code.py loads it next to console and keeps it: compiled at boot on a heap with room, not at
-    # a jog session's first command on the loop's (nor at boot for the calibration file's load,
-    # after build(): both measured worse, docs/flashing.md).
+    # True: consolecal stays loaded once imported (no session end lets it go).
     keep_cal = False
+    # True: consolecal, loaded when the console starts, stays until the robot walks or follows a
+    # wall (no CAL_KEEP_MS timeout): CircuitPython's code.py compiles it at boot, on a heap with
+    # room, for the first day's jog session, and lets the loop have its heap once the robot walks
+    # (a jog session after that compiles it again at its first command, on the loop's heap). Not
+    # compiled at a jog session's first command, nor at boot for the calibration file's load after
+    # build(): both measured worse (docs/flashing.md).
+    cal_until_walk = False
     # True where the board compiles a module's source at each import (CircuitPython: code.py sets
     # it): consoleparts.more is let go after each of its commands instead of kept CAL_KEEP_MS (the loop's
     # heap over a compile per command), and the modules loaded on demand (consoleparts.more, consolecal,
@@ -143,7 +147,8 @@ class Console:
         self.base = tuple((s.centre_us, s.direction, s.min_us, s.max_us) for s in self.robot.servos)
         self.trims = [0] * 18
         self.cal_source = "defaults"
-        self._cal_until = -1  # consolecal stays loaded for a jog session until then (ticks_ms); -1: not loaded
+        # consolecal stays loaded for a jog session until then (ticks_ms); -1: not loaded
+        self._cal_until = 0 if self.cal_until_walk and CAL in sys.modules else -1
         self._more_until = -1  # consoleparts.more stays loaded until then (ticks_ms); -1: not loaded
         self._table = {
             "help": MORE,
@@ -626,6 +631,8 @@ class Console:
         the robot walks or follows a wall (none of those commands runs then)."""
         if self.robot.mode == tick.WALKING or self.runner.follower.mode:
             return True
+        if self.cal_until_walk:
+            return False
         clock = self.runner.clock
         return clock.ticks_diff(clock.ticks_ms(), self._cal_until) >= 0
 
