@@ -79,13 +79,22 @@ def _release(robot_name):
 # the heap into holes. So on a board the largest compiles come first, on the emptiest heap: the
 # biggest driver, drivers.pca9685 (left last, it was what failed once tick came first), then
 # hexapod.tick (which compiles walk); then the board and robot files, read and let go before
-# the console loads (their checks are not alive while the loop is built); then runner (which
-# compiles the wall follower), then console, whose reporting and setting commands (consoleparts.more)
-# are compiled per command; a collection after each. A board file refused stops
-# code.py here, with the message build() gave before. `hexapod bench feather` (docs/flashing.md)
+# the console loads (their checks are not alive while the loop is built); then console, whose
+# reporting and setting commands (consoleparts.more, .setting) are compiled per command, then
+# runner (which compiles the wall follower); a collection after each. A board file refused stops
+# code.py here, with the message build() gave before. And from the first import until the loop
+# runs (main(): build() and the power-up too), a collection each BOOT_GC_BYTES allocated
+# (gc.threshold): the collector otherwise waits for the heap to fill, by when the compiles' and
+# build()'s garbage lies between everything that stays, and the loop starts on a heap of small
+# holes (56 KB free, the largest hole 2 KB, in the VM). `hexapod bench feather` (docs/flashing.md)
 # has the figures.
+BOOT_GC_BYTES = 4096
+_boot_threshold = None  # gc.threshold() as the board had it, put back when the loop starts
 _settings = None  # settings(BOARD, ROBOT), read at import on a board; build() takes it once
 if sys.implementation.name != "cpython":  # CPython: the tests install fake modules first (and pdb imports a `code`)
+    if hasattr(gc, "threshold"):
+        _boot_threshold = gc.threshold()
+        gc.threshold(BOOT_GC_BYTES)
     from drivers import pca9685  # noqa: F401
 
     gc.collect()
@@ -95,19 +104,23 @@ if sys.implementation.name != "cpython":  # CPython: the tests install fake modu
     _settings = settings()
     _release(ROBOT)
     gc.collect()
+    import console  # noqa: F401
+
+    gc.collect()
     import runner  # noqa: F401  (compiles the wall follower)
 
     gc.collect()
 
 import console  # noqa: E402
 
-gc.collect()
 if sys.implementation.name != "cpython":
-    # The jog and calibration commands: kept here, where the next compile would find a fuller heap
-    # (MicroPython loads their .mpy per command instead).
+    # The jog and calibration commands: compiled here, where the next compile would find a fuller
+    # heap, kept for the first jog session and let go once the robot walks (cal_until_walk: the
+    # loop's commands then have its 8 KB); MicroPython loads their .mpy per command instead.
     import consolecal  # noqa: F401
 
-    console.Console.keep_cal = True
+    del consolecal  # sys.modules holds it: the console lets it go (hexapod.release)
+    console.Console.cal_until_walk = True
     # consoleparts.more and selftest compiled per command on a collected heap, the former let go after
     # each (console.Console.compiles).
     console.Console.compiles = True
@@ -130,7 +143,7 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000, sampl
         board, robot, table, mounts, pairs, sonar_pins, scl, sda = settings(board_name, robot_name)
     import busio
 
-    from drivers import cp_clock, cp_hcsr04_pulsein, cp_pca9685, hcsr04  # loaded at the top on a board
+    from drivers import cp_clock, cp_hcsr04_pulsein, cp_pca9685, ranger  # loaded at the top on a board
 
     if clock is None:
         clock = cp_clock.Clock()
@@ -145,7 +158,7 @@ def build(board_name=BOARD, robot_name=ROBOT, clock=None, max_range=10000, sampl
         raise
     i2c = busio.I2C(scl, sda, frequency=board["i2c"]["freq"])
     bank = cp_pca9685.servo_bank(i2c, board["pca9685"], table)
-    sonars = sensors.Sonars(hcsr04.RoundRobin(rangers, tick_ms=FRAME_MS), len(rangers))
+    sonars = sensors.Sonars(ranger.RoundRobin(rangers, tick_ms=FRAME_MS), len(rangers))
     r = Runner(robot, [row[2] for row in table], bank, sonars, clock, mounts)
     r.board = board
     r.sonar_pins = pairs
@@ -172,6 +185,8 @@ def main(frames=-1, clock=None, board_name=BOARD, robot_name=ROBOT, reader=None,
         watchdog.timeout = r.board["watchdog_ms"] / 1000  # the one float: CircuitPython wants seconds
         watchdog.mode = WatchDogMode.RESET
         r.watchdog = watchdog
+    if _boot_threshold is not None:  # the boot's collections end where the loop's frames begin
+        gc.threshold(_boot_threshold)
     r.serve(frames, 0 if reader is not None else STATUS_FRAMES)
     return r
 

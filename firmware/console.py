@@ -15,7 +15,6 @@ import sys
 
 from micropython import const
 
-from hexapod import battery as batteries
 from hexapod import faultlog, gait, release, sensors, tick
 from hexapod.body import FINE_SHIFT
 from hexapod.leg import describe as leg_describe
@@ -47,6 +46,7 @@ CAL_KEEP_MS = const(30000)
 # one: the running loop does not carry them); CircuitPython (Console.compiles, set by code.py)
 # compiles one per command and lets it go after each.
 MORE = "consoleparts.more"
+_CUTOFF = const(2)  # hexapod.battery.CUTOFF
 SETTING = "consoleparts.setting"  # height, wall, pid, stream: loaded and let go as MORE
 SELFTEST = "selftest"  # `selftest`: loaded for the command, let go when its job ends
 
@@ -114,11 +114,15 @@ class PollReader:
 class Console:
     """Command lines -> calls on a runner.Runner; replies through `out` (print on a board)."""
 
-    # True: consolecal stays loaded once imported (no session end lets it go). CircuitPython's
-    # code.py loads it next to console and keeps it: compiled at boot on a heap with room, not at
-    # a jog session's first command on the loop's (nor at boot for the calibration file's load,
-    # after build(): both measured worse, docs/flashing.md).
+    # True: consolecal stays loaded once imported (no session end lets it go).
     keep_cal = False
+    # True: consolecal, loaded when the console starts, stays until the robot walks or follows a
+    # wall (no CAL_KEEP_MS timeout): CircuitPython's code.py compiles it at boot, on a heap with
+    # room, for the first day's jog session, and lets the loop have its heap once the robot walks
+    # (a jog session after that compiles it again at its first command, on the loop's heap). Not
+    # compiled at a jog session's first command, nor at boot for the calibration file's load after
+    # build(): both measured worse (docs/flashing.md).
+    cal_until_walk = False
     # True where the board compiles a module's source at each import (CircuitPython: code.py sets
     # it): consoleparts.more is let go after each of its commands instead of kept CAL_KEEP_MS (the loop's
     # heap over a compile per command), and the modules loaded on demand (consoleparts.more, consolecal,
@@ -149,7 +153,7 @@ class Console:
         self._walking = False  # a console walk runs, expiring at _deadline (ticks_ms)
         self._deadline = 0
         self._held = False  # a held frame was announced (once, until frames are sent again)
-        self._battery = batteries.OK  # the battery state last announced (a notice at each change)
+        self._battery = 0  # hexapod.battery.OK: the battery state last announced (a notice at each change)
         self.lines = 0  # lines answered
         self._job = None  # a multi-line reply under way (selftest): step() once a frame, abort(), done
         self._job_tag = None  # its request's tag: each of its lines carries it
@@ -161,7 +165,8 @@ class Console:
         self.base = tuple((s.centre_us, s.direction, s.min_us, s.max_us) for s in self.robot.servos)
         self.trims = [0] * 18
         self.cal_source = "defaults"
-        self._cal_until = -1  # consolecal stays loaded for a jog session until then (ticks_ms); -1: not loaded
+        # consolecal stays loaded for a jog session until then (ticks_ms); -1: not loaded
+        self._cal_until = 0 if self.cal_until_walk and CAL in sys.modules else -1
         self._more_until = -1  # consoleparts.more stays loaded until then (ticks_ms); -1: not loaded
         self._table = {
             "help": MORE,
@@ -470,6 +475,8 @@ class Console:
 
     def battery_line(self):
         """The notice for a battery state change: never 'ok' or 'err'."""
+        from hexapod import battery as batteries  # loaded with the monitor: a board without one never loads it
+
         b = self.runner.battery
         v = batteries.volts
         if b.state == batteries.LOW:
@@ -494,7 +501,9 @@ class Console:
         """ValueError naming the battery and its voltage while it is cut off: every command that
         would drive a servo (stand, sit, walk, wall, the jog) waits for a charged pack."""
         b = self.runner.battery
-        if b is not None and b.state == batteries.CUTOFF:
+        if b is not None and b.state == _CUTOFF:
+            from hexapod import battery as batteries
+
             v = batteries.volts
             raise ValueError(
                 "battery %s V, cut off below %s V (%d cells); charge it: allowed again after 1 s above %s V"
@@ -632,6 +641,8 @@ class Console:
         the robot walks or follows a wall (none of those commands runs then)."""
         if self.robot.mode == tick.WALKING or self.runner.follower.mode:
             return True
+        if self.cal_until_walk:
+            return False
         clock = self.runner.clock
         return clock.ticks_diff(clock.ticks_ms(), self._cal_until) >= 0
 

@@ -18,7 +18,6 @@ State for a reply or the status line: runner.follower.mode_name, .used, .distanc
 
 from micropython import const
 
-from hexapod import battery as batteries
 from hexapod import faultlog as faultlogs
 from hexapod import follow, limits, sensors, tick
 
@@ -30,6 +29,8 @@ _SONAR_WAIT = const(5)  # hexapod.sensors.WAIT
 _SONAR_FAULT = const(3)  # hexapod.faultlog.SONAR
 _SAMPLE_FRAMES = const(10)  # hexapod.battery.SAMPLE_FRAMES
 _CUTOFF = const(2)  # hexapod.battery.CUTOFF
+_NO_CHANGE = const(-1)  # hexapod.battery.NO_CHANGE
+_BATTERY_OK = const(0)  # hexapod.battery.OK
 _RELAXED = const(0)  # hexapod.tick.RELAXED
 _STANDING = const(3)  # hexapod.tick.STANDING
 
@@ -160,7 +161,7 @@ class Runner:
         waits for it). Prints one notice line with out; keeps the outcome in self.boot."""
         if board.get("follow"):
             self.follow_when_standing(board["follow"])
-        if self.battery is not None and self.battery.state == batteries.CUTOFF:
+        if self.battery is not None and self.battery.state == _CUTOFF:
             self._start = None
             self.boot = BOOT_BATTERY
         elif not calibrated:
@@ -265,13 +266,15 @@ class Runner:
     def _battery_changed(self, state):
         """A battery state change (hexapod.battery: NO_CHANGE, OK, LOW, CUTOFF) -> the speed cap,
         the wall follower. The console announces it (console.Console.poll)."""
-        if state == batteries.NO_CHANGE:
+        if state == _NO_CHANGE:
             return
-        if state == batteries.OK:
+        if state == _BATTERY_OK:
             self.robot.cap_speed(0, 0)
             return
+        from hexapod import battery as batteries  # loaded with the monitor: a board without one never loads it
+
         self.robot.cap_speed(batteries.LOW_SPEED, batteries.LOW_YAW)
-        if state == batteries.CUTOFF:
+        if state == _CUTOFF:
             self.faultlog.record(faultlogs.BATTERY, 0, self.frames)
             self._start = None  # a board file's follow waiting for a stand waits no more
             if self.follower.mode:

@@ -16,6 +16,7 @@ from i2c_bus import I2CBus
 from machine import Pin, time_pulse_us
 
 from drivers import hcsr04
+from drivers import ranger as shared
 from hexapod_host.stubs import circuitpython as fakes_cp
 from tests.test_leg_ranges import SMALL, Checker, instrumented
 
@@ -245,7 +246,7 @@ class SlotChecker(Checker):
 
 def test_no_intermediate_leaves_the_small_ints(cp, monkeypatch):
     checker = SlotChecker()
-    monkeypatch.setitem(sys.modules, "drivers.hcsr04", instrumented(hcsr04, checker, {}))
+    monkeypatch.setitem(sys.modules, "drivers.ranger", instrumented(shared, checker, {}))
     ranger = instrumented(cp.ranger, checker, {})
     for temp in (-4000, 6000):
         for rng in (200, 40000):

@@ -25,11 +25,12 @@ MP_DRIVERS = [
     "drivers/faultkeep.py",
     "drivers/hcsr04.py",
     "drivers/pca9685.py",
+    "drivers/ranger.py",
 ]
-# code.py's drivers, and what they import: cp_pca9685 -> pca9685, cp_hcsr04_pulsein -> hcsr04.
-CP_DRIVERS = [
-    p for p in MP_DRIVERS if p not in ("drivers/_pca9685_viper.py", "drivers/_i2c_rp2.py", "drivers/faultkeep.py")
-]
+# code.py's drivers, and what they import: cp_pca9685 -> pca9685, cp_hcsr04_pulsein -> ranger (not
+# hcsr04: MicroPython's pin driver).
+CP_DRIVERS = [p for p in MP_DRIVERS if p not in ("drivers/_pca9685_viper.py", "drivers/_i2c_rp2.py")]
+CP_DRIVERS = [p for p in CP_DRIVERS if p not in ("drivers/faultkeep.py", "drivers/hcsr04.py")]
 CP_DRIVERS += ["drivers/cp_clock.py", "drivers/cp_hcsr04_pulsein.py", "drivers/cp_pca9685.py"]
 
 

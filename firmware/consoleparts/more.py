@@ -10,7 +10,6 @@ an err reply; the replies are the console's as before.
 import console
 from runner import BOOT_WORDS, counters
 
-from hexapod import battery as batteries
 from hexapod import follow, gait, sensors, tick
 from hexapod.units import format_fixed
 
@@ -23,6 +22,18 @@ def command(con, word, args):
 def _help(con, args):
     con._args(args, 0, "no arguments")
     return "ok " + console.COMMANDS
+
+
+def _battery(b, level):
+    """The status line's battery word: its state (level 0) or level in mV (1); "n/a" without a
+    monitor (a board without one never loads hexapod.battery)."""
+    if b is None:
+        return "n/a"
+    if level:
+        return b.level_mv
+    from hexapod import battery
+
+    return battery.STATE_NAMES[b.state]
 
 
 def _status(con, args):
@@ -53,8 +64,8 @@ def _status(con, args):
             f.fault_total if on else 0,
             con.cal_source,
             BOOT_WORDS[r.boot],
-            "n/a" if r.battery is None else batteries.STATE_NAMES[r.battery.state],
-            "n/a" if r.battery is None else r.battery.level_mv,
+            _battery(r.battery, 0),
+            _battery(r.battery, 1),
         )
     )
 

@@ -10,7 +10,7 @@ driver a ping allocates.
 
 import adafruit_hcsr04
 
-from drivers.hcsr04 import MIN_CYCLE_US, MedianRanger, speed_x100
+from drivers.ranger import MIN_CYCLE_US, MedianRanger, speed_x100
 from hexapod.sensors import NO_ECHO, WAIT
 
 ADAFRUIT_SPEED_X100 = 34000000  # adafruit_hcsr04: distance_cm = pulse_us * 0.017, i.e. 340 m/s

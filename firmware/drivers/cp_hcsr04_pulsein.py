@@ -1,6 +1,6 @@
 """HC-SR04 on CircuitPython that never waits for its echo: pulseio.PulseIn times it in the background.
 
-Same interface and units as drivers.hcsr04 (MedianRanger: ping, measure_into, max_block_us;
+Same interface and units as drivers.ranger (MedianRanger: ping, measure_into, max_block_us;
 0.1 mm, 0.01 degC, us), the status codes of hexapod.sensors. On its slot a sensor reads the echo PulseIn captured
 since its previous ping, then fires the next ping (10 us trigger) and returns: it blocks for
 the trigger only, where adafruit_hcsr04 waits up to twice its 50 ms timeout.
@@ -13,7 +13,7 @@ What the capture says (PulseIn with idle_state=False records the high time first
 alternating low/high widths in us, each written when its level ends, 65535 at most):
 - one high width (or three: a stray pulse after ours) -> the echo; wider than timeout_us,
   e.g. the module's 38 ms hold when nothing is within 4 m -> OUT_OF_RANGE; else the
-  distance, with drivers.hcsr04's OUT_OF_RANGE / TOO_CLOSE checks;
+  distance, with drivers.ranger's OUT_OF_RANGE / TOO_CLOSE checks;
 - nothing -> NO_ECHO: no echo rose (missing echo, unplugged), or it never fell (stuck high;
   PulseIn cannot see a level that does not change, so STUCK is not reported here);
 - two widths (the line went high again and stays high), or a full buffer (a noisy line) ->
@@ -29,7 +29,7 @@ import microcontroller
 import pulseio
 from micropython import const
 
-from drivers.hcsr04 import TRIGGER_US, MedianRanger
+from drivers.ranger import TRIGGER_US, MedianRanger
 from hexapod.sensors import NO_ECHO, OUT_OF_RANGE, WAIT
 
 MAXLEN = const(4)  # pulse widths PulseIn keeps: ours, then room to see a stray one

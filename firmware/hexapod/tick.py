@@ -816,14 +816,6 @@ class Robot:
 
     # -- jogging and calibration (the console's single-servo moves) ---------------------
 
-    def _jog_servo_ready(self, leg, joint, name, value, unit):
-        """ValueError for a bad leg, joint or value; else _can_move()'s code."""
-        _check_leg(leg)
-        _check_joint(joint)
-        if not isinstance(value, int) or isinstance(value, bool):
-            raise ValueError("%s: need a whole number (%s), got %r" % (name, unit, value))
-        return self._can_move()
-
     def _servo_refused(self, k, code, excess):
         self.jog_servo = k
         self.jog_code = code
@@ -831,110 +823,28 @@ class Robot:
         return JOG_SERVO
 
     def jog_foot(self, leg, x, y, z):
-        """Leg `leg` (0..5)'s foot to (x, y, z), 0.1 mm in its leg frame, its three servos driven
-        from the next frame on; the other servos keep their pulses (mode JOG). Returns OK, or
-        JOG_IK / JOG_SERVO (jog_code, jog_excess say why) or WALKING_NOW / BUSY, changing nothing."""
-        _check_leg(leg)
-        code = self._can_move()
-        if code != OK:
-            return code
-        k = 3 * leg
-        a = self._angles
-        lg = self.geometry.legs[leg]
-        code = lg.ik(x, y, z, a, k)
-        if code != OK:
-            self.jog_code = code
-            self.jog_excess = lg.excess
-            return JOG_IK
-        p = self._pulses
-        for j in range(k, k + 3):
-            code = self.servos[j].pulse(a[j], p, j)
-            if code != OK:
-                return self._servo_refused(j, code, self.servos[j].excess)
-        for j in range(k, k + 3):
-            self.angles[j] = a[j]
-            self.pulses[j] = p[j]
-        self.mode = JOG
-        return OK
+        """Leg `leg` (0..5)'s foot to (x, y, z), 0.1 mm in its leg frame (mode JOG): hexapod.jog.foot."""
+        import hexapod.jog  # (not `from hexapod import jog`: that allocates 32 B a call)
+
+        return hexapod.jog.foot(self, leg, x, y, z)
 
     def jog_joint(self, leg, joint, cdeg):
-        """One servo (leg 0..5, joint 0 coxa 1 femur 2 tibia) to cdeg, inside the robot file's joint
-        limit and the servo's calibrated range; only that servo changes (mode JOG)."""
-        code = self._jog_servo_ready(leg, joint, "angle", cdeg, "cdeg")
-        if code != OK:
-            return code
-        lim = self.geometry.legs[leg].limits
-        if cdeg < lim[2 * joint]:
-            self.jog_code = 3 + 2 * joint  # hexapod.leg COXA_LOW, FEMUR_LOW, TIBIA_LOW
-            self.jog_excess = lim[2 * joint] - cdeg
-            return JOG_IK
-        if cdeg > lim[2 * joint + 1]:
-            self.jog_code = 4 + 2 * joint
-            self.jog_excess = cdeg - lim[2 * joint + 1]
-            return JOG_IK
-        k = 3 * leg + joint
-        s = self.servos[k]
-        code = s.pulse(cdeg, self._pulses, k)
-        if code != OK:
-            return self._servo_refused(k, code, s.excess)
-        self.angles[k] = cdeg
-        self.pulses[k] = self._pulses[k]
-        self.mode = JOG
-        return OK
+        """One servo (leg 0..5, joint 0 coxa 1 femur 2 tibia) to cdeg (mode JOG): hexapod.jog.joint."""
+        import hexapod.jog  # (not `from hexapod import jog`: that allocates 32 B a call)
+
+        return hexapod.jog.joint(self, leg, joint, cdeg)
 
     def jog_pulse(self, leg, joint, pulse_us):
-        """One servo to a raw pulse width (us) inside its calibrated min..max (calibration); its
-        angle becomes the servo map's inverse of it. Only that servo changes (mode JOG)."""
-        code = self._jog_servo_ready(leg, joint, "pulse", pulse_us, "us")
-        if code != OK:
-            return code
-        k = 3 * leg + joint
-        s = self.servos[k]
-        if pulse_us < s.min_us:
-            return self._servo_refused(k, 1, s.min_us - pulse_us)  # hexapod.servo BELOW_MIN
-        if pulse_us > s.max_us:
-            return self._servo_refused(k, 2, pulse_us - s.max_us)  # ABOVE_MAX
-        self.angles[k] = s.angle(pulse_us)
-        self.pulses[k] = pulse_us
-        self.mode = JOG
-        return OK
+        """One servo to a raw pulse width, us (mode JOG): hexapod.jog.pulse."""
+        import hexapod.jog  # (not `from hexapod import jog`: that allocates 32 B a call)
+
+        return hexapod.jog.pulse(self, leg, joint, pulse_us)
 
     def calibrate(self, k, centre_us, direction, min_us, max_us):
-        """Servo k (0..17)'s map: centre_us (the pulse at its reference angle, ServoMap.ref_cdeg;
-        500..2500), direction 1/-1 (mirrored about the reference) and min_us < max_us within
-        500..2500 (ValueError naming the bad one). Refused (WALKING_NOW, BUSY, or JOG_SERVO with
-        jog_excess) when the servo is driven and its present angle would map outside the new
-        range; otherwise the driven servo moves to its new pulse at once: the frame in force goes
-        out again now with that one pulse changed, so no chip is left driving the old pulse
-        (outside the new range) until a later frame, which may be held."""
-        if not isinstance(k, int) or isinstance(k, bool) or k < 0 or k > 17:
-            raise ValueError("servo: %r, allowed 0..17" % (k,))
-        for name, v in (("centre_us", centre_us), ("min_us", min_us), ("max_us", max_us)):
-            if not isinstance(v, int) or isinstance(v, bool) or v < 500 or v > 2500:
-                raise ValueError("%s: %r is outside 500..2500 us" % (name, v))
-        if min_us >= max_us:
-            raise ValueError("range: min_us %d must be below max_us %d" % (min_us, max_us))
-        if direction != 1 and direction != -1:
-            raise ValueError("direction: %r, allowed 1 or -1" % (direction,))
-        code = self._can_move()
-        if code != OK:
-            return code
-        s = self.servos[k]
-        p = 0
-        if self.pulses[k]:
-            p = s.raw_at(self.angles[k], centre_us, direction)
-            if p < min_us:
-                return self._servo_refused(k, 1, min_us - p)
-            if p > max_us:
-                return self._servo_refused(k, 2, p - max_us)
-        s.direction = direction
-        s.centre_us = centre_us
-        s.min_us = min_us
-        s.max_us = max_us
-        if p:
-            self.pulses[k] = p
-            self.frame.write_frame(self.pulses)
-        return OK
+        """Servo k (0..17)'s map, the driven servo moved to its new pulse at once: hexapod.jog.calibrate."""
+        import hexapod.jog  # (not `from hexapod import jog`: that allocates 32 B a call)
+
+        return hexapod.jog.calibrate(self, k, centre_us, direction, min_us, max_us)
 
     def go_limp(self):
         """At once: every servo limp (a frame of zeros sent now), mode RELAXED; the loop is leaving."""
@@ -946,13 +856,3 @@ class Robot:
         for k in range(18):
             p[k] = 0
         self.frame.write_frame(p)
-
-
-def _check_leg(leg):
-    if not isinstance(leg, int) or isinstance(leg, bool) or leg < 0 or leg > 5:
-        raise ValueError("leg: %r, allowed 0..5 (legs 1..6)" % (leg,))
-
-
-def _check_joint(joint):
-    if not isinstance(joint, int) or isinstance(joint, bool) or joint < 0 or joint > 2:
-        raise ValueError("joint: %r, allowed 0 coxa, 1 femur, 2 tibia" % (joint,))

@@ -82,9 +82,10 @@ def version_1_files():
 
 def cal_module_session():
     """consolecal in sys.modules through a jog session: after the boot's file load, after each of
-    a few commands, 29.98 s and 30 s after the last one, standing and a command again, walking, and
-    with keep_cal: [implementation name, [cal_source, loaded, (reply's first 3 characters,
-    loaded)..., the robot's mode while walking, ...]]."""
+    a few commands, 29.98 s and 30 s after the last one, standing and a command again, walking,
+    with keep_cal, and with cal_until_walk 32 s after a command and then walking: [implementation
+    name, [cal_source, loaded, (reply's first 3 characters, loaded)..., the robot's mode while
+    walking, ...]]."""
     import sys
 
     b = Board()
@@ -111,4 +112,7 @@ def cal_module_session():
     c.keep_cal = True
     seen += [c.do("cal 1 coxa")[:3], frames(1600)]
     c.keep_cal = False
+    c.cal_until_walk = True  # CircuitPython's: no timeout, let go once walking
+    seen += [c.do("cal 1 coxa")[:3], frames(1600), c.do("walk 100 0 0")[:3], frames(1), r.robot.mode]
+    c.cal_until_walk = False
     return [sys.implementation.name, seen]
