@@ -39,6 +39,11 @@ def build(board_name, robot_name, clock=time, max_range=10000, samples=SONAR_SAM
 
     files = wiring.load(board_name, robot_name)
     if files is None:  # not as flashed (or no marker): checked here
+        # Collected first: the checks' modules did not load into the heap the imports left
+        # (MemoryError for 1,280 B with 98 KB free on an emulated Pico, 2026-11-28); a rare path.
+        import gc
+
+        gc.collect()
         from hexapod import board as boards
         from hexapod import robotcal
 

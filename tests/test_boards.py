@@ -81,7 +81,12 @@ MUTATIONS = [
     (P, ("follow",), {"side": "up", "setpoint": 800}, "follow: side: 'up', allowed 'left' or 'right'"),
     (E, ("follow",), {"side": "left", "setpoint": 80}, "follow: setpoint: 80 is outside 400..5000 (0.1 mm"),
     (F, ("follow",), {"side": "right", "setpoint": 800, "speed": 0}, "follow: speed: 0 is outside 100..3000"),
-    (P, ("follow",), {"side": "right", "setpoint": 800, "form": "crab"}, "follow: form: 'crab', allowed 'yaw'"),
+    (
+        P,
+        ("follow",),
+        {"side": "right", "setpoint": 800, "form": "zigzag"},
+        "follow: form: 'zigzag', allowed 'yaw', 'sweeps' or 'crab'",
+    ),
 ]
 
 
