@@ -14,7 +14,10 @@ from hexapod_host.view import browser as vb
 STANDING, WALKING = 3, 4  # hexapod.tick.MODE_NAMES
 PULSE_FRAMES = 2  # a walk that arrives in frame F moves the servos in frame F + 1 (the next tick)
 STOP_FRAMES = 2  # the issue's deadman: released = stopped within 2 frames
-SETTLE_FRAMES = 60  # then the feet come down: one tripod cycle is 50 frames
+# then the feet come down: the tripod at 80 mm/s stopped at each of 200 phases (tests/scenarios
+# Rig, robot.stop()) stood within 63 frames, the same before and after 2026-11-28's changes;
+# +1: the frame the stop line arrives in (60 was one cycle and a margin, and failed at 61)
+SETTLE_FRAMES = 64
 STAND_FRAMES = 150  # stand from relaxed: about 56 frames here (a posture move at its servo speed)
 
 
