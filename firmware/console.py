@@ -707,14 +707,29 @@ def start(runner, reader, os=None, opener=open, out=print, walk_timeout_ms=WALK_
         store = Store(os, opener)
     c = Console(runner, reader, out, store, walk_timeout_ms, write)
     if store is not None:
-        # The file read here (calstore is resident): consolecal, ~26 ms of import on a Pico, only
-        # to put a file's rows in force (and let go again).
+        # The file read here (calstore is resident). A version 2 file on a robot sending no pulse
+        # (every boot) is put in force here as consolecal.put_file would (no refusal can come
+        # but at the first servo, before any change): its import (~26 ms on a Pico, and its heap
+        # setting off a collection before the first frame) only for any other file.
         try:
             found = store.load()
         except ValueError as e:
             reply = "ok defaults (%s)" % (e,)
         else:
-            reply = c._calibration("boot", found)
+            reply = None
+            new = found[0]
+            robot = c.robot
+            if found[2] == 2 and not any(robot.pulses):
+                for k in range(18):
+                    t, d, lo, hi = new[k]
+                    if robot.calibrate(k, c.base[k][0] + t, d, lo, hi):
+                        break
+                    c.trims[k] = t
+                else:
+                    c.cal_source = "file"
+                    reply = "ok loaded"
+            if reply is None:
+                reply = c._calibration("boot", found)
         if reply.startswith("ok defaults ("):
             out("cal: %s; the robot file's calibration is in use" % reply[13:-1])
         elif not reply.startswith("ok loaded"):
