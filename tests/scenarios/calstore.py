@@ -244,3 +244,43 @@ def versions():
 def signed(body):
     """body (a calibration file without its checksum line) with its checksum line."""
     return body + "crc %04x\n" % calstore.crc16(body.encode())
+
+
+def parse_agrees():
+    """calstore.parse (the boot's read of the form `save` writes) against consolecal.decode (every
+    form split() reads) on a file with each character replaced, one at a time, by each of a few,
+    with its checksum as it is and signed again: [variants, parse took, decode alone took, the ones
+    where parse's rows or version differ from decode's]."""
+    import consolecal
+
+    rows = [(k - 9, -1 if k % 2 else 1, 700 + k, 2300 - k) for k in range(18)]
+    text = cal_text(rows)
+    body = text[: text.rfind("crc ")]
+    seen = [0, 0, 0, []]  # variants, parse took, decode alone took, differ
+
+    def check(v):
+        got = calstore.parse(v.encode())
+        try:
+            want = (consolecal.decode(v), consolecal.version(v))
+        except ValueError:
+            want = None
+        seen[0] += 1
+        if got is not None:
+            seen[1] += 1
+            if got != want:
+                seen[3].append(v)
+        elif want is not None:
+            seen[2] += 1
+
+    for v in (text, signed(body.replace("hexapod-cal 2", "hexapod-cal 1")), text.replace("crc ", "crc  ")):
+        check(v)
+    for v in (text.upper(), text[:-1], text + "\n", body + "crc 0x12\n"):
+        check(v)
+    for i in range(len(body)):
+        for c in " -0795+\t\nA":
+            b = body[:i] + c + body[i + 1 :]
+            check(b + text[len(body) :])
+            check(signed(b))
+    release("consolecal")
+    seen[3] = seen[3][:3]
+    return seen
