@@ -39,55 +39,78 @@ def crc16(data):
     return crc
 
 
-def check_row(where, t, d, lo, hi):
-    """ValueError naming where and the bad value unless the row is a valid calibration."""
-    if t < -TRIM_MAX or t > TRIM_MAX:
-        raise ValueError("%s: trim %d is outside -%d..%d us" % (where, t, TRIM_MAX, TRIM_MAX))
-    if d != 1 and d != -1:
-        raise ValueError("%s: direction %d, allowed 1 or -1" % (where, d))
-    if lo < 500 or hi > 2500 or lo >= hi:
-        raise ValueError("%s: range %d..%d, allowed 500 <= min < max <= 2500 us" % (where, lo, hi))
-
-
-def decode(text):
-    """18 rows (trim, direction, min_us, max_us) from the file's text; ValueError says why not."""
-    end = text.rfind("crc ")
-    if end < 0 or not text.endswith("\n"):
-        raise ValueError("truncated (no checksum line)")
-    body = text[:end]
-    want = text[end + 4 :].strip()
-    if len(want) != 4 or "%04x" % crc16(body.encode()) != want:
-        raise ValueError("checksum mismatch (corrupt)")
-    lines = body.split("\n")
-    if version(text) not in READS:
-        raise ValueError(
-            "version line %r, this firmware reads %s"
-            % (lines[0][:20], " or ".join(repr((HEADER % v).strip()) for v in READS))
-        )
-    if len(lines) != 20 or lines[19] != "":
-        raise ValueError("%d rows, need 18" % (len(lines) - 2))
+def parse(data):
+    """(rows, version) from a calibration file's bytes in the form `save` writes (one space between
+    fields, no sign but '-', a lower-case checksum, valid rows); None for any other bytes:
+    consolecal.decode then reads them (the forms split() also takes) or says why not. Reads data
+    in place: only the rows are allocated, so the boot's load fits the heap the loop leaves free
+    (no collection before the first frame)."""
+    n = len(data) - 9  # where "crc XXXX\n" starts
+    if n < 14 or data[n + 8] != 10 or not data.startswith(b"crc ", n) or not data.startswith(b"hexapod-cal "):
+        return None
+    v = data[12] - 48
+    if data[13] != 10 or v not in READS:
+        return None
+    want = 0
+    for p in range(n + 4, n + 8):
+        c = data[p]
+        if 48 <= c <= 57:
+            want = want * 16 + c - 48
+        elif 97 <= c <= 102:
+            want = want * 16 + c - 87
+        else:
+            return None
+    if want != crc16(memoryview(data)[:n]):
+        return None
     rows = []
+    f = [0, 0, 0, 0]
+    p = 14
     for k in range(18):
-        f = lines[k + 1].split()
-        where = "row %d" % (k + 1)
-        if len(f) != 6 or f[0] != str(k // 3 + 1) or f[1] != JOINTS[k % 3]:
-            raise ValueError("%s: expected leg %d %s" % (where, k // 3 + 1, JOINTS[k % 3]))
-        try:
-            row = (int(f[2]), int(f[3]), int(f[4]), int(f[5]))
-        except ValueError:
-            raise ValueError("%s: not whole numbers" % where) from None
-        check_row(where, *row)
-        rows.append(row)
-    return rows
+        name = _NAMES[k % 3]
+        if data[p] != 49 + k // 3 or data[p + 1] != 32 or not data.startswith(name, p + 2):
+            return None
+        p += 2 + len(name)
+        for i in range(4):
+            s = 1
+            if data[p] == 45:
+                s = -1
+                p += 1
+            x = 0
+            q = p
+            while 48 <= data[p] <= 57 and p - q < 5:
+                x = x * 10 + data[p] - 48
+                p += 1
+            if p == q or data[p] != (10 if i == 3 else 32):
+                return None
+            p += 1
+            f[i] = s * x
+        t, d, lo, hi = f
+        if t < -TRIM_MAX or t > TRIM_MAX or (d != 1 and d != -1) or lo < 500 or hi > 2500 or lo >= hi:
+            return None  # consolecal.check_row's refusals
+        rows.append((t, d, lo, hi))
+    return (rows, v) if p == n else None
 
 
-def version(text):
-    """The version number of a calibration file's text (its first line), 0 when it has none."""
-    head = text[: text.find("\n")] if "\n" in text else text
-    for v in READS:
-        if head == (HEADER % v).strip():
-            return v
-    return 0
+_NAMES = (b"coxa ", b"femur ", b"tibia ")
+
+
+def _full(data):
+    """(rows, version) of a file parse() did not take, by consolecal.decode (the forms split() also
+    takes), or its ValueError saying why not; consolecal let go again unless it was loaded."""
+    import sys
+
+    from hexapod import release
+
+    kept = "consolecal" in sys.modules
+    import consolecal
+
+    try:
+        text = data.decode()
+        return consolecal.decode(text), consolecal.version(text)
+    finally:
+        consolecal = None
+        if not kept:
+            release("consolecal")
 
 
 class Store:
@@ -99,12 +122,17 @@ class Store:
         self.path = path
         self.tmp = tmp
 
-    def read(self, name):
-        f = self.open(name, "r")
+    def read(self, name, mode="r"):
+        f = self.open(name, mode)
         try:
             return f.read()
         finally:
             f.close()
+
+    def decode(self, name):
+        """(rows, version) of file name; OSError if unreadable, ValueError says why it is refused."""
+        data = self.read(name, "rb")
+        return parse(data) or _full(data)
 
     def exists(self, name):
         try:
@@ -116,15 +144,15 @@ class Store:
     def load(self):
         """(rows, where, version) from FILE, else from a complete TMP; ValueError says why neither."""
         try:
-            text = self.read(self.path)
-            return decode(text), self.path, version(text)
+            rows, v = self.decode(self.path)
+            return rows, self.path, v
         except OSError as e:
             why = "no %s" % self.path if _errno(e) == 2 else "%s unreadable (%s)" % (self.path, e)
         except ValueError as e:
             why = "%s %s" % (self.path, e)
         try:
-            text = self.read(self.tmp)
-            return decode(text), self.tmp, version(text)
+            rows, v = self.decode(self.tmp)
+            return rows, self.tmp, v
         except (OSError, ValueError):
             raise ValueError(why) from None
 
@@ -132,14 +160,14 @@ class Store:
         """The CRC of FILE as it is on the flash now (a self-test; the calibration in force is not
         touched); ValueError says why the file cannot be used."""
         try:
-            text = self.read(self.path)
+            data = self.read(self.path, "rb")
         except OSError as e:
             raise ValueError("no %s" % self.path if _errno(e) == 2 else "%s unreadable (%s)" % (self.path, e)) from None
         try:
-            decode(text)
+            parse(data) or _full(data)
         except ValueError as e:
             raise ValueError("%s %s" % (self.path, e)) from None
-        return int(text[text.rfind("crc ") + 4 :].strip(), 16)
+        return int(data[data.rfind(b"crc ") + 4 :].strip(), 16)
 
 
 def _errno(e):

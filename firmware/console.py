@@ -718,14 +718,37 @@ def start(runner, reader, os=None, opener=open, out=print, walk_timeout_ms=WALK_
         store = Store(os, opener)
     c = Console(runner, reader, out, store, walk_timeout_ms, write)
     if store is not None:
-        # The file read here (calstore is resident): consolecal, ~26 ms of import on a Pico, only
-        # to put a file's rows in force (and let go again).
+        # The file read here (calstore is resident). A version 2 file on a robot sending no pulse
+        # (every boot) is put in force here as consolecal.put_file would (no refusal can come
+        # but at the first servo, before any change): its import (~26 ms on a Pico, and its heap
+        # setting off a collection before the first frame) only for any other file.
         try:
             found = store.load()
         except ValueError as e:
             reply = "ok defaults (%s)" % (e,)
         else:
-            reply = c._calibration("boot", found)
+            reply = None
+            new = found[0]
+            robot = c.robot
+            if found[2] == 2 and not any(robot.pulses):
+                for k in range(18):
+                    t, d, lo, hi = new[k]
+                    u = c.base[k][0] + t
+                    if k == 0 or u < 500 or u > 2500:
+                        if robot.calibrate(k, u, d, lo, hi):
+                            break
+                    else:  # what calibrate() sets once servo 0 passed its checks (a third of its time)
+                        s = robot.servos[k]
+                        s.direction = d
+                        s.centre_us = u
+                        s.min_us = lo
+                        s.max_us = hi
+                    c.trims[k] = t
+                else:
+                    c.cal_source = "file"
+                    reply = "ok loaded"
+            if reply is None:
+                reply = c._calibration("boot", found)
         if reply.startswith("ok defaults ("):
             out("cal: %s; the robot file's calibration is in use" % reply[13:-1])
         elif not reply.startswith("ok loaded"):

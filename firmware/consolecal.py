@@ -12,6 +12,58 @@ from hexapod import tick
 from hexapod.units import format_fixed
 
 
+def check_row(row, t, d, lo, hi):
+    """ValueError naming the row (1..18) and the bad value unless the row is a valid calibration."""
+    if t < -TRIM_MAX or t > TRIM_MAX:
+        raise ValueError("row %d: trim %d is outside -%d..%d us" % (row, t, TRIM_MAX, TRIM_MAX))
+    if d != 1 and d != -1:
+        raise ValueError("row %d: direction %d, allowed 1 or -1" % (row, d))
+    if lo < 500 or hi > 2500 or lo >= hi:
+        raise ValueError("row %d: range %d..%d, allowed 500 <= min < max <= 2500 us" % (row, lo, hi))
+
+
+def decode(text):
+    """18 rows (trim, direction, min_us, max_us) from the file's text; ValueError says why not.
+    The boot reads the file with calstore.parse, which takes only the form `save` writes (without
+    this code on the heap); calstore.Store comes here for any other text, to read it or say why not."""
+    end = text.rfind("crc ")
+    if end < 0 or not text.endswith("\n"):
+        raise ValueError("truncated (no checksum line)")
+    body = text[:end]
+    want = text[end + 4 :].strip()
+    if len(want) != 4 or "%04x" % calstore.crc16(body.encode()) != want:
+        raise ValueError("checksum mismatch (corrupt)")
+    lines = body.split("\n")
+    if version(text) not in calstore.READS:
+        raise ValueError(
+            "version line %r, this firmware reads %s"
+            % (lines[0][:20], " or ".join(repr((calstore.HEADER % v).strip()) for v in calstore.READS))
+        )
+    if len(lines) != 20 or lines[19] != "":
+        raise ValueError("%d rows, need 18" % (len(lines) - 2))
+    rows = []
+    for k in range(18):
+        f = lines[k + 1].split()
+        if len(f) != 6 or f[0] != str(k // 3 + 1) or f[1] != JOINTS[k % 3]:
+            raise ValueError("row %d: expected leg %d %s" % (k + 1, k // 3 + 1, JOINTS[k % 3]))
+        try:
+            row = (int(f[2]), int(f[3]), int(f[4]), int(f[5]))
+        except ValueError:
+            raise ValueError("row %d: not whole numbers" % (k + 1)) from None
+        check_row(k + 1, *row)
+        rows.append(row)
+    return rows
+
+
+def version(text):
+    """The version number of a calibration file's text (its first line), 0 when it has none."""
+    head = text[: text.find("\n")] if "\n" in text else text
+    for v in calstore.READS:
+        if head == (calstore.HEADER % v).strip():
+            return v
+    return 0
+
+
 def command(con, word, args):
     """The reply to a jog or calibration command line's word and arguments on console con."""
     if word == "boot":  # console.start: the calibration file's (rows, where, version) it read
@@ -263,7 +315,7 @@ def save(store, rows):
         # A save cut between remove and rename left the good copy in TMP: make it FILE first,
         # so writing TMP again never destroys the only good copy.
         try:
-            calstore.decode(store.read(store.tmp))
+            decode(store.read(store.tmp))
             store.os.rename(store.tmp, store.path)
         except ValueError:
             pass

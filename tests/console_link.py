@@ -12,7 +12,7 @@ import _stub_clock as clock
 import _stub_serial
 import calstore
 import console
-from scenarios.calstore import StubFS
+from scenarios.calstore import StubFS, decode
 from scenarios.rig import stand
 from scenarios.runner import Loop
 
@@ -72,7 +72,7 @@ class ConsoleLink:
 
     def saved_rows(self):
         """The calibration file's 18 (trim, direction, min_us, max_us) rows."""
-        return calstore.decode(self.fs.files[calstore.FILE])
+        return decode(self.fs.files[calstore.FILE])
 
 
 def serve_pty(link):

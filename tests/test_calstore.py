@@ -28,6 +28,18 @@ def test_format_round_trips_and_refuses_damage(rt):
     assert out[5][:2] == ["hexapod-cal 2", "1 coxa -9 1 700 2300"] and out[5][2].startswith("crc ")
 
 
+def test_the_boots_parse_reads_what_decode_reads_or_leaves_it_to_decode(both_runtimes):
+    # calstore.parse reads only the form `save` writes, in place (the boot's load then fits the
+    # heap the loop leaves free); any other text goes to consolecal.decode, which says why it is
+    # refused or reads it (a form split() takes: a tab, a '+'). On every variant parse took, its
+    # rows and version are decode's, in both runtimes.
+    cp, mp = both_runtimes.with_heapsize("4m").call("scenarios.calstore:parse_agrees")
+    assert cp == mp
+    n, took, fallback, differ = cp
+    assert differ == [] and n > 7000
+    assert took > 500 and fallback > 100, cp  # parse took most valid ones (804), decode read the others (146)
+
+
 def test_a_save_cut_at_every_step_keeps_old_or_new(rt):
     out = rt.with_heapsize("4m").call("scenarios.calstore:all_cuts")
     for k, (seen, n) in enumerate(out):

@@ -19,6 +19,26 @@ def cal_text(rows):
     return text
 
 
+def decode(text):
+    """consolecal.decode (the file's text read as split() reads it, or why not), consolecal let go after."""
+    import consolecal
+
+    try:
+        return consolecal.decode(text)
+    finally:
+        release("consolecal")
+
+
+def version(text):
+    """consolecal.version, consolecal let go after."""
+    import consolecal
+
+    try:
+        return consolecal.version(text)
+    finally:
+        release("consolecal")
+
+
 def _save(store, rows):
     import consolecal
 
@@ -65,10 +85,10 @@ class StubFS:
         del self.files[name]
 
     def open(self, name, mode="r"):
-        if mode == "r":
+        if mode in ("r", "rb"):
             if name not in self.files:
                 raise OSError(2, "ENOENT")
-            return Reader(self.files[name])
+            return Reader(self.files[name] if mode == "r" else self.files[name].encode())
         if self.readonly:
             raise OSError(30, "EROFS")
         self._op()
@@ -151,11 +171,11 @@ def format_checks():
     text = cal_text(rows)
 
     def why(t):
-        return message(calstore.decode, t)
+        return message(decode, t)
 
     body = text[: text.rfind("crc ")].replace("700 2300", "2400 2300")
     return [
-        calstore.decode(text) == rows,
+        decode(text) == rows,
         [why(text[:n]) for n in (0, 10, len(text) // 2, len(text) - 1)],
         why(text.replace("2 femur -5", "2 femur -6")),
         why(text.replace("hexapod-cal 2", "hexapod-cal 3")),
@@ -181,7 +201,7 @@ class ShortWriter(Writer):
 
 class ShortFS(StubFS):
     def open(self, name, mode="r"):
-        if mode == "r":
+        if mode in ("r", "rb"):
             return StubFS.open(self, name, mode)
         self._op()
         self.files[name] = ""
@@ -201,7 +221,7 @@ def short_write():
 
 
 def versions():
-    """Version 2, 1 and 3 of one file: [[calstore.version of each and of ""], [decodes to its rows,
+    """Version 2, 1 and 3 of one file: [[consolecal.version of each and of ""], [decodes to its rows,
     or the error, of each]]."""
     rows = [(k - 9, -1 if k % 2 else 1, 700 + k, 2300 - k) for k in range(18)]
     v2 = cal_text(rows)
@@ -211,12 +231,12 @@ def versions():
 
     def why(t):
         try:
-            return calstore.decode(t) == rows
+            return decode(t) == rows
         except ValueError as e:
             return str(e)
 
     return [
-        [calstore.version(v2), calstore.version(v1), calstore.version(v3), calstore.version("")],
+        [version(v2), version(v1), version(v3), version("")],
         [why(v2), why(v1), why(v3)],
     ]
 
@@ -224,3 +244,43 @@ def versions():
 def signed(body):
     """body (a calibration file without its checksum line) with its checksum line."""
     return body + "crc %04x\n" % calstore.crc16(body.encode())
+
+
+def parse_agrees():
+    """calstore.parse (the boot's read of the form `save` writes) against consolecal.decode (every
+    form split() reads) on a file with each character replaced, one at a time, by each of a few,
+    with its checksum as it is and signed again: [variants, parse took, decode alone took, the ones
+    where parse's rows or version differ from decode's]."""
+    import consolecal
+
+    rows = [(k - 9, -1 if k % 2 else 1, 700 + k, 2300 - k) for k in range(18)]
+    text = cal_text(rows)
+    body = text[: text.rfind("crc ")]
+    seen = [0, 0, 0, []]  # variants, parse took, decode alone took, differ
+
+    def check(v):
+        got = calstore.parse(v.encode())
+        try:
+            want = (consolecal.decode(v), consolecal.version(v))
+        except ValueError:
+            want = None
+        seen[0] += 1
+        if got is not None:
+            seen[1] += 1
+            if got != want:
+                seen[3].append(v)
+        elif want is not None:
+            seen[2] += 1
+
+    for v in (text, signed(body.replace("hexapod-cal 2", "hexapod-cal 1")), text.replace("crc ", "crc  ")):
+        check(v)
+    for v in (text.upper(), text[:-1], text + "\n", body + "crc 0x12\n"):
+        check(v)
+    for i in range(len(body)):
+        for c in " -0795+\t\nA":
+            b = body[:i] + c + body[i + 1 :]
+            check(b + text[len(body) :])
+            check(signed(b))
+    release("consolecal")
+    seen[3] = seen[3][:3]
+    return seen

@@ -23,7 +23,7 @@ class FlakyFS(StubFS):
     short = False  # writes come out short, reported whole
 
     def open(self, name, mode="r"):
-        if mode == "r" or not self.short:
+        if mode in ("r", "rb") or not self.short:
             return StubFS.open(self, name, mode)
         self.files[name] = ""
         return ShortWriter(self, name)
