@@ -733,16 +733,8 @@ def start(runner, reader, os=None, opener=open, out=print, walk_timeout_ms=WALK_
             if found[2] == 2 and not any(robot.pulses):
                 for k in range(18):
                     t, d, lo, hi = new[k]
-                    u = c.base[k][0] + t
-                    if k == 0 or u < 500 or u > 2500:
-                        if robot.calibrate(k, u, d, lo, hi):
-                            break
-                    else:  # what calibrate() sets once servo 0 passed its checks (a third of its time)
-                        s = robot.servos[k]
-                        s.direction = d
-                        s.centre_us = u
-                        s.min_us = lo
-                        s.max_us = hi
+                    if robot.calibrate(k, c.base[k][0] + t, d, lo, hi):
+                        break
                     c.trims[k] = t
                 else:
                     c.cal_source = "file"
