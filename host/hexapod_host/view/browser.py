@@ -21,11 +21,6 @@ WINDOW = (1500, 1100)
 # each on a loaded 2-core machine (0.1 s at 5). A test of the page, not of its frame rate; the
 # view bench keeps the product's default (fps=None).
 TEST_FPS = 5
-# The scene's redraws a second in the tests' pages (`hexapod view --fps`): SwiftShader's redraws
-# hold the page's main thread, and at the product's 20 a second WebDriver's commands waited ~1 s
-# each on a loaded 2-core machine (0.1 s at 5). A test of the page, not of its frame rate; the
-# view bench keeps the product's default (fps=None).
-TEST_FPS = 5
 
 
 def chromium():
