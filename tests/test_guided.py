@@ -236,6 +236,44 @@ def test_refusals_and_a_dead_link():
     assert guide.render()[1].startswith("DISCONNECTED joint 1 coxa 2.00")
 
 
+def test_a_start_the_board_refuses_ends_the_guide_and_sends_nothing_more(tmp_path):
+    """The robot still walking (a stop just sent: it finishes its steps first) refuses `relax`:
+    the guide ends at once with the board's err, asks nothing after it, and no key moves a servo.
+    A resumed start whose kept trim the board refuses ends the same way."""
+    from hexapod_host.serial import jog
+
+    board = ConsoleLink()
+    assert board.request("walk 80 0 0").startswith("ok")
+    board.frames(25)
+    assert board.request("stop").startswith("ok")  # the feet finish their cycle: still walking
+    maker = Maker(board)
+    guide = guided.Guide(maker)
+    guide.start()
+    refused = "relax: refused: the robot is walking; stop first"
+    assert guide.phase == guided.QUIT and guide.over() and not guide.started
+    assert guide.message == "guided calibration not started: " + refused
+    for key in ("ENTER", "y", "+", "G"):
+        guide.key(key)
+    assert [line for line, _ in maker.seen] == ["relax"]
+    # The jog tool: back to its screen at once, the refusal shown as an error.
+    tool = jog.Jog(maker, sleep=lambda s: None)
+    tool.key("G")
+    assert tool.guide is None and tool.view.error
+    assert jog.render(tool.view)[5] == "ERROR guided calibration not started: " + refused
+    # A progress file whose kept trim the board refuses (out of range): relaxed, then ended.
+    board = ConsoleLink()
+    maker = Maker(board)
+    progress = tmp_path / "guided.json"
+    progress.write_text(json.dumps({"done": [[1, "coxa", 9999, 1]]}))
+    guide = guided.Guide(maker, progress=str(progress))
+    guide.start()
+    assert guide.phase == guided.QUIT
+    assert guide.message.startswith("guided calibration not started: trim: trim 9999 is outside -300..300 us")
+    sent = [line for line, _ in maker.seen]
+    assert sent[0] == "relax" and sent[-1] == "trim 1 coxa 9999"
+    assert not [s for s in sent if s.startswith(("pulse", "joint"))]
+
+
 def test_the_jog_tool_runs_the_guide_on_G_and_comes_back(tmp_path):
     from hexapod_host.serial import jog
 

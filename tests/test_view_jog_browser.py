@@ -18,11 +18,12 @@ import re
 import pytest
 
 from hexapod_host.view import browser as vb
-from tests.test_view_drive_browser import WALKING, click, frames_pass, keys, modes, stand, text
+from tests.test_view_drive_browser import STANDING, WALKING, click, frames_pass, keys, modes, stand, text
 
 ON_CI = os.environ.get("CI") not in (None, "", "false")
 TIBIA_2 = 5  # the trace's channel: 0x40's 0-15 first (boards/pico.py: leg 2 tibia is 0x40 channel 5)
 AT_REFERENCE_US, TRIMMED_US = 1498, 1508  # the model's widths, worked in the docstring
+RELAXED = 0  # hexapod.tick.MODE_NAMES
 NEXT_FRAMES = 2  # trim acts at once (docs/console.md): the pulse changes by the next frame's check
 
 
@@ -71,8 +72,10 @@ def arrived(board, words):
     return [f for f, _, w in vb.commands(board.trace(), words.split()[0]) if w == words.split()]
 
 
-def wait_line(board, words, timeout=30):
-    assert vb.wait_for(lambda: arrived(board, words), timeout=timeout), (
+def wait_line(board, words, before, timeout=30):
+    """The frame at which `words` arrived for the (before + 1)th time: before is the count taken
+    before the click (an earlier test's same line is not this one's)."""
+    assert vb.wait_for(lambda: len(arrived(board, words)) > before, timeout=timeout), (
         "%r never reached the board; its %r lines: %r"
         % (
             words,
@@ -80,7 +83,7 @@ def wait_line(board, words, timeout=30):
             vb.commands(board.trace(), words.split()[0])[-5:],
         )
     )
-    return arrived(board, words)[-1]
+    return arrived(board, words)[before]
 
 
 def widths(events, channel, after=-1):
@@ -95,19 +98,32 @@ def widths(events, channel, after=-1):
     return out
 
 
+def relaxed(driver, board):
+    """Relax the robot (a maker calibrates it relaxed and supported) unless it is already: an
+    earlier test may have left it standing."""
+    if [m[1] for m in modes(board.trace())][-1:] in ([], [RELAXED]):
+        return
+    assert vb.wait_for(lambda: "you drive" in text(driver, "drive-who"), timeout=30), text(driver, "drive-who")
+    click(driver, "drive-relax")
+    assert vb.wait_for(lambda: [m[1] for m in modes(board.trace())][-1:] == [RELAXED], timeout=30)
+
+
 def test_trim_leg_2_tibia_moves_its_pulse_and_save_keeps_it(page):
     driver, board, _, cal_dir = page
+    relaxed(driver, board)
+    n_cal, n_ref = len(arrived(board, "cal 2 tibia")), len(arrived(board, "joint 2 tibia -90.00"))
     pick(driver, "jog-leg", "2")
     pick(driver, "jog-joint", "tibia")
-    wait_line(board, "cal 2 tibia")
+    click(driver, "jog-read")  # a pick of the leg and joint in hand already sends nothing
+    wait_line(board, "cal 2 tibia", n_cal)
     click(driver, "jog-ref")
-    f_ref = wait_line(board, "joint 2 tibia -90.00")
+    f_ref = wait_line(board, "joint 2 tibia -90.00", n_ref)
     assert vb.wait_for(lambda: trim_shown(driver) == 0, timeout=30), text(driver, "jog-text")
     frames_pass(board, 5)
     assert widths(board.trace(), TIBIA_2, f_ref)[-1][1] == AT_REFERENCE_US
-    n_cal = len(arrived(board, "cal 2 tibia"))
+    n_cal, n_trim = len(arrived(board, "cal 2 tibia")), len(arrived(board, "trim 2 tibia 10"))
     click(driver, "jog-trim-plus")  # the us step is 10 to start
-    f_trim = wait_line(board, "trim 2 tibia 10")
+    f_trim = wait_line(board, "trim 2 tibia 10", n_trim)
     # the panel shows the board's own cal line, asked after the trim
     assert vb.wait_for(lambda: len(arrived(board, "cal 2 tibia")) > n_cal, timeout=30), "no cal after the trim"
     assert vb.wait_for(lambda: trim_shown(driver) == 10, timeout=30), text(driver, "jog-text")
@@ -120,8 +136,9 @@ def test_trim_leg_2_tibia_moves_its_pulse_and_save_keeps_it(page):
     others = [w for k, f, _, ws in board.trace() if k == "P" and f > f_ref for w in ws if not w.startswith("5=")]
     assert others == []
     assert not arrived(board, "trim 1 tibia 10") and not arrived(board, "trim 3 tibia 10")
+    n_save = len(arrived(board, "save"))
     click(driver, "jog-save")
-    wait_line(board, "save")
+    wait_line(board, "save", n_save)
     assert vb.wait_for(lambda: "save: ok saved" in text(driver, "jog-text"), timeout=30), text(driver, "jog-text")
     saved = (cal_dir / "hexapod_cal.txt").read_text()
     assert "2 tibia 10 1 600 2400" in saved
@@ -145,18 +162,21 @@ def test_a_trim_the_board_refuses_shows_its_err_and_changes_nothing(page):
         assert vb.wait_for(lambda: len(vb.commands(board.trace(), "walk")) > n_walk, timeout=30), "W sent no walk"
         f_walk = vb.commands(board.trace(), "walk")[n_walk][0]
         assert vb.wait_for(lambda: any(m[1] == WALKING for m in modes(board.trace(), f_walk)), timeout=30)
-        n_cal = len(arrived(board, "cal 2 tibia"))
+        n_cal, n_trim = len(arrived(board, "cal 2 tibia")), len(arrived(board, "trim 2 tibia %d" % (trim + 10)))
         click(driver, "jog-trim-plus")
-        f_trim = wait_line(board, "trim 2 tibia %d" % (trim + 10))
+        f_trim = wait_line(board, "trim 2 tibia %d" % (trim + 10), n_trim)
         assert vb.wait_for(lambda: "ERROR trim 2 tibia %d: " % (trim + 10) in text(driver, "jog-text"), timeout=30), (
             text(driver, "jog-text")
         )
         frames_pass(board, 10)
         assert len(arrived(board, "cal 2 tibia")) == n_cal  # nothing asked after the err
+        n_stop = len(arrived(board, "stop"))
     finally:
         keys(driver, up="w")
-    wait_line(board, "stop")
-    assert [f for f in vb.commands(board.trace(), "stop") if f[0] > f_trim]
+    f_stop = wait_line(board, "stop", n_stop)
+    assert f_stop > f_trim
+    # The feet finish their cycle after a stop: the next test starts from a robot standing still.
+    assert vb.wait_for(lambda: any(m[1] == STANDING for m in modes(board.trace(), f_stop)), timeout=30)
     click(driver, "jog-read")
     assert vb.wait_for(lambda: len(arrived(board, "cal 2 tibia")) > n_cal, timeout=30)
     assert vb.wait_for(lambda: trim_shown(driver) == trim, timeout=30), text(driver, "jog-text")
@@ -166,13 +186,16 @@ def test_a_trim_the_board_refuses_shows_its_err_and_changes_nothing(page):
 def test_the_guided_calibration_starts_and_quits_from_the_page(page):
     driver, board, _, cal_dir = page
     saved = files(cal_dir)
+    # Not walking (the board refuses `relax` then, and the guide would end at once: test_guided)
+    assert vb.wait_for(lambda: [m[1] for m in modes(board.trace())][-1:] != [WALKING], timeout=30)
     n_relax = len(vb.commands(board.trace(), "relax"))
+    n_fit = len(arrived(board, "pulse 1 coxa 1500"))
     click(driver, "jog-guided")
     assert vb.wait_for(lambda: "leg 1 coxa  step: fit" in text(driver, "jog-text"), timeout=60), text(
         driver, "jog-text"
     )
     assert len(vb.commands(board.trace(), "relax")) > n_relax  # it starts by relaxing every servo
-    f_fit = wait_line(board, "pulse 1 coxa 1500")  # the fit step: the reference pulse
+    f_fit = wait_line(board, "pulse 1 coxa 1500", n_fit)  # the fit step: the reference pulse
     frames_pass(board, 5)
     assert widths(board.trace(), 0, f_fit)[-1][1] == AT_REFERENCE_US  # leg 1 coxa: 0x40 channel 0
     click(driver, "guide-quit")

@@ -93,6 +93,7 @@ class Guide:
         self.step_us = 2  # index into STEPS_US
         self.redo = None  # after 'n' at the stand check: the leg picked, waiting for c f t
         self.stood = False  # the standing check's stand finished
+        self.started = False  # start() relaxed the robot (a refused start quits at once)
         self.message = ""
         self.error_shown = False
         self.connected = True
@@ -122,14 +123,23 @@ class Guide:
         """Relax (the robot supported: every servo limp until its turn), put the servos done in an
         earlier session back as they were, and go to the first one not done."""
         self.done = self._load_progress()
-        if not self._relax():
+        if not self._relax() or not self._restore():
+            # A refused start (the robot walking, a battery cutoff) leaves no guide in a phase whose
+            # keys would act on servos it never relaxed: it ends here, the board's word kept.
+            if self.phase != QUIT:
+                self._quit("guided calibration not started: " + self.message)
             return
+        self.started = True
+        self._next()
+
+    def _restore(self):
+        """The servos done in an earlier session as they were (their trim and direction)."""
         for (leg, joint), (trim, direction) in sorted(self.done.items()):
             if self.ask("trim %d %s %d" % (leg, joint, trim)) is None:
-                return
+                return False
             if self.ask("dir %d %s %d" % (leg, joint, direction)) is None:
-                return
-        self._next()
+                return False
+        return True
 
     def _next(self):
         """The first servo not done (fit), else the standing check."""

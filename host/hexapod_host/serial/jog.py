@@ -279,7 +279,7 @@ class Jog:
             self.view.message = g.message
             return
         self.send(refresh(self.view))
-        self.view.error = False
+        self.view.error = not g.started  # the board refused the start: shown as the err it is
         self.view.message = g.message
 
     def screen(self, port=""):
