@@ -274,6 +274,20 @@ def test_a_start_the_board_refuses_ends_the_guide_and_sends_nothing_more(tmp_pat
     assert not [s for s in sent if s.startswith(("pulse", "joint"))]
 
 
+def test_every_key_a_button_sends_does_something_in_its_phase():
+    """The page's buttons (guided.ACTIONS) and the keys Guide.key takes (guided.STEPS) are two
+    tables: none of a button's keys may fall through to 'does nothing here'."""
+    for phase, rows in guided.ACTIONS.items():
+        for _, _, buttons in rows:
+            for key, label in buttons:
+                if phase == guided.STAND:
+                    assert key == "y", label  # _stand_key: y stands, then saves
+                else:
+                    assert key in guided.STEPS[phase], (phase, key, label)
+                    assert hasattr(guided.Guide, guided.STEPS[phase][key][0]), (phase, key)
+    assert set(guided.STEPS) == {guided.FIT, guided.SWEEP, guided.TRIM}
+
+
 def test_the_jog_tool_runs_the_guide_on_G_and_comes_back(tmp_path):
     from hexapod_host.serial import jog
 

@@ -61,6 +61,21 @@ ACTIONS = {
         ("n", "redo a servo (then its leg 1-6 and c f t)", ()),  # the page: its own leg and joint picks
     ),
 }
+# What each key does in the fit, sweep and trim phases: (Guide's method, its arguments). Every
+# key a button of ACTIONS sends is here (tests/test_guided.py); the terminal's [ ] { } trim too,
+# as the jog screen's keys do. The standing check's keys take a leg and joint: Guide._stand_key.
+STEPS = {
+    FIT: {"ENTER": ("_sweep",), "y": ("_sweep",), "p": ("_fit",)},
+    SWEEP: {"y": ("_trim_start",), "n": ("_flip",), "r": ("_sweep",)},
+    TRIM: {
+        **{k: ("_trim", 1) for k in "+}]"},
+        **{k: ("_trim", -1) for k in "-{["},
+        "<": ("_step_size", -1),
+        ">": ("_step_size", 1),
+        "ENTER": ("_joint_done",),
+        "y": ("_joint_done",),
+    },
+}
 # Each phase's keys, a line each (the screen may be 80 columns).
 KEYS = {phase: tuple("%-6s %s" % (keys, what) for keys, what, _ in rows) for phase, rows in ACTIONS.items()}
 
@@ -267,36 +282,18 @@ class Guide:
                 % (len(self.done), ", kept to resume" if self.progress and self.done else "")
             )
             return
-        if self.phase == FIT:
-            if key in ("ENTER", "y"):
-                self._sweep()
-            elif key == "p":
-                self._fit()
-            else:
-                self._refuse(key)
-        elif self.phase == SWEEP:
-            if key == "y":
-                self._trim_start()
-            elif key == "n":
-                self._flip()
-            elif key == "r":
-                self._sweep()
-            else:
-                self._refuse(key)
-        elif self.phase == TRIM:
-            if key in ("+", "}", "]"):
-                self._trim(1)
-            elif key in ("-", "{", "["):
-                self._trim(-1)
-            elif key in ("<", ">"):
-                self.step_us = max(0, min(len(STEPS_US) - 1, self.step_us + (1 if key == ">" else -1)))
-                self.message = "trim step %d us" % STEPS_US[self.step_us]
-            elif key in ("ENTER", "y"):
-                self._joint_done()
-            else:
-                self._refuse(key)
-        else:
+        if self.phase == STAND:
             self._stand_key(key)
+            return
+        step = STEPS[self.phase].get(key)
+        if step is None:
+            self._refuse(key)
+        else:
+            getattr(self, step[0])(*step[1:])
+
+    def _step_size(self, change):
+        self.step_us = max(0, min(len(STEPS_US) - 1, self.step_us + change))
+        self.message = "trim step %d us" % STEPS_US[self.step_us]
 
     def _stand_key(self, key):
         if self.redo is None:
