@@ -18,7 +18,7 @@ PICO_REPLY_S = 120
 # The 3-D scene's frame rate (NiceGUI's own default is 20). Without a GPU (SwiftShader) each redraw
 # holds the browser's main thread: at 20 a second a 2-core machine answered 14 WebDriver reads in
 # 15 s, at 5 a second 131 (the telemetry's text and plots keep their own 4-25 Hz beat either way).
-FPS, FPS_MIN, FPS_MAX = 20, 1, 60
+FPS, FPS_MIN, FPS_MAX = 20, 1, 60  # the scene's redraws a second: 20 is NiceGUI's own default
 
 
 def register(sub):

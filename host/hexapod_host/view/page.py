@@ -112,9 +112,9 @@ def _place(obj, start, end):
 class View:
     """One tab's elements and how they follow the player."""
 
-    def __init__(self, player, driver, fps=20):
+    def __init__(self, player, driver, fps):
         self.player = player
-        self.fps = fps  # the 3-D scene's redraws a second (hexapod view --fps; 20 is NiceGUI's own)
+        self.fps = fps  # the 3-D scene's redraws a second (hexapod view --fps)
         self.client = ui.context.client
         ui.add_body_html(PLOTS_JS)
         d = player.described
