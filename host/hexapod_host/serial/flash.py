@@ -412,6 +412,9 @@ def explain_mpremote(port, text):
 # A board that has not answered an mpremote command in this long is taken as hung (a real board copies
 # the whole tree in seconds; the emulated Pico, at a tenth of real time or less, is given more).
 MPREMOTE_S = 120
+# A board has this long to answer the first probe: a real one answers within a second or two; a
+# silent port (no MicroPython on it) would otherwise keep mpremote waiting for ever.
+PROBE_S = 15
 
 
 def run(cmd, timeout=None):
@@ -498,11 +501,12 @@ def space_needed(staged, copy, block):
     return total
 
 
-def flash_micropython(port, staged, image, say=print, full=False, probe_s=15, verbose=True):
+def flash_micropython(port, staged, image, say=print, full=False, probe_s=None, verbose=True):
     """Probe the board, copy what changed, rename into place, reset. Returns the paths copied.
 
-    probe_s: seconds the board has to answer the probe (mpremote itself waits for ever on a silent port).
+    probe_s: seconds the board has to answer the probe (default PROBE_S)
     verbose: say each mpremote command (with its Python) under its step, not the step alone."""
+    probe_s = PROBE_S if probe_s is None else probe_s
     status, out = run(probe_command(port), timeout=probe_s)
     if status == 124:
         raise FlashError(
