@@ -45,7 +45,7 @@ test: $(STAMP) pico-firmware browser
 	$(BIN)/ruff check .
 	$(BIN)/ruff format --check .
 	@echo "test order: --randomly-seed=$(SEED) (replay: make test SEED=$(SEED))"
-	$(BIN)/pytest -q -n auto --randomly-seed=$(SEED)
+	$(BIN)/pytest -q -n auto --randomly-seed=$(SEED) --durations=25
 
 sim: $(STAMP)
 	$(BIN)/hexapod sim
