@@ -131,7 +131,7 @@ def run(r, frames=-1, robot_name=None, reader=None, boot=None, calibrated=None):
     Ctrl-C relaxes the servos (or holds them, the board file's on_exit)."""
     # The boot-only modules (the board and robot files and their checks): their heap back to the loop.
     release(*BOOT_ONLY, "robots." + robot_name, "robots.%s_cal" % robot_name)
-    r.bring_up(reader, boot, calibrated)
+    r.bring_up(reader, boot, calibrated, True)
     if reader is not None and r.board.get("watchdog_ms"):
         from machine import WDT
 
