@@ -636,40 +636,45 @@ class Console:
         file on a robot sending no pulse (every boot) is put in force here as consolecal.put_file
         would (no refusal can come but at the first servo, before any change): consolecal's import
         (~26 ms on a Pico) only for any other file. calstore and hexapod.jog go again when the boot
-        loaded them. Then runner.power_up(board, calibrated), when board is given."""
+        loaded them. Then runner.power_up(board, calibrated), when board is given. A step that raises
+        (a Ctrl-C) leaves a new load in its place: the next poll or do starts it over."""
         jog = "hexapod.jog" in sys.modules
         cs = "calstore" in sys.modules
-        store = self.cal_store()
-        if store is not None:
-            yield
-            try:
-                found = store.load()
-            except ValueError as e:
-                reply = "ok defaults (%s)" % (e,)
-            else:
-                reply = None
-                robot = self.robot
-                if found[2] == 2 and not any(robot.pulses):
-                    yield
-                    import hexapod.jog  # noqa: F401 (Robot.calibrate's: imported in a frame of its own)
+        try:
+            store = self.cal_store()
+            if store is not None:
+                yield
+                try:
+                    found = store.load()
+                except ValueError as e:
+                    reply = "ok defaults (%s)" % (e,)
+                else:
+                    reply = None
+                    robot = self.robot
+                    if found[2] == 2 and not any(robot.pulses):
+                        yield
+                        import hexapod.jog  # noqa: F401 (Robot.calibrate's: imported in a frame of its own)
 
-                    new = found[0]
-                    for k in range(18):
-                        if k % 6 == 0:
-                            yield
-                        t, d, lo, hi = new[k]
-                        if robot.calibrate(k, self.base[k][0] + t, d, lo, hi):
-                            break
-                        self.trims[k] = t
-                    else:
-                        self.cal_source = "file"
-                        reply = "ok loaded"
-                if reply is None:
-                    reply = self._calibration("boot", found)
-            if reply.startswith("ok defaults ("):
-                self.out("cal: %s; the robot file's calibration is in use" % reply[13:-1])
-            elif not reply.startswith("ok loaded"):
-                self.out("cal: " + reply[4:])
+                        new = found[0]
+                        for k in range(18):
+                            if k % 6 == 0:
+                                yield
+                            t, d, lo, hi = new[k]
+                            if robot.calibrate(k, self.base[k][0] + t, d, lo, hi):
+                                break
+                            self.trims[k] = t
+                        else:
+                            self.cal_source = "file"
+                            reply = "ok loaded"
+                    if reply is None:
+                        reply = self._calibration("boot", found)
+                if reply.startswith("ok defaults ("):
+                    self.out("cal: %s; the robot file's calibration is in use" % reply[13:-1])
+                elif not reply.startswith("ok loaded"):
+                    self.out("cal: " + reply[4:])
+        except BaseException:
+            self._boot = self._booting(board)
+            raise
         if not jog:
             release("hexapod.jog")
         if not cs:

@@ -144,7 +144,7 @@ def test_boot_with_a_calibration_file_reaches_the_first_burst_within_1_s(boot):
     # without) on 2026-11-28, the load setting off a collection of the full heap; 1.0122 s (0.9897
     # s without) with the file read in place (calstore.parse) and its rows put in force without
     # consolecal; 1.0428 s (0.9866 s without) on main once the rows went through `calibrate`
-    # again, which imports hexapod.jog (~19 ms) and costs ~1 ms a row. 0.9768 s (0.9679 s without)
+    # again, which imports hexapod.jog (~19 ms) and costs ~1 ms a row. 0.9757 s (0.9668 s without)
     # since a boot that does not stand leaves the file's load to the first frames (console.start:
     # calstore's import, the read and check, hexapod.jog's import, the rows six a frame; no line
     # is read before the file's calibration is in force, tests/test_power_up.py). The rest of the

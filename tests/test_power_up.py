@@ -97,3 +97,12 @@ def test_a_call_while_the_boot_loads_the_file_finishes_the_load_first(rt, tmp_pa
     reply, maps, want, pending = rt.with_heapsize("4m").call("scenarios.power_up:early_do", str(tmp_path), "status")
     assert pending and maps == want
     assert reply.startswith("ok frames ") and " cal file boot relaxed " in reply, reply
+
+
+def test_a_load_interrupted_in_a_step_starts_over(rt, tmp_path):
+    # A Ctrl-C (here: the file's open raising KeyboardInterrupt) inside one of the load's steps
+    # leaves a new load in its place, not a dead one: the next call finishes it, on the file's
+    # calibration.
+    raised, pending, reply, maps, want = rt.with_heapsize("4m").call("scenarios.power_up:interrupted", str(tmp_path))
+    assert raised == "KeyboardInterrupt" and pending
+    assert maps == want and reply.startswith("ok frames ") and " cal file boot relaxed " in reply, reply

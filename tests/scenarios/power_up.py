@@ -188,3 +188,42 @@ def early_do(folder, line):
     finally:
         os.chdir(here)
     return reply, [(s.centre_us, s.direction, s.min_us, s.max_us) for s in r.robot.servos], want, pending
+
+
+def interrupted(folder):
+    """console.start's deferred load on a built runner (as early_do) whose first open of the file
+    raises KeyboardInterrupt (a Ctrl-C in that step); then console.do("status"): (what the step
+    raised, whether a load was still under way after it, the reply, the servo maps in force then,
+    the file's maps)."""
+    import console
+
+    board = stub_board.reset("pico")
+    stub_board.pca9685_models(board)
+    stub_board.sonar_models(board, [3000 + 1000 * k for k in range(5)])
+    table = stub_board.servo_table(board)
+    __import__("robots.default_guard")
+    opens = []
+
+    def opener(name, mode="r"):
+        opens.append(name)
+        if len(opens) == 1:
+            raise KeyboardInterrupt
+        return open(name, mode)
+
+    here = os.getcwd()
+    os.chdir(folder)
+    try:
+        want = _trimmed(folder, table)
+        r = main.build(clock=clock)
+        c = console.start(r, _stub_serial.BufferReader(), os, opener, out=lambda *parts: None, board=r.board)
+        c.poll()  # calstore's import and the Store
+        raised = None
+        try:
+            c.poll()  # the file's read: interrupted
+        except KeyboardInterrupt:
+            raised = "KeyboardInterrupt"
+        pending = c._boot is not None
+        reply = c.do("status")
+    finally:
+        os.chdir(here)
+    return raised, pending, reply, [(s.centre_us, s.direction, s.min_us, s.max_us) for s in r.robot.servos], want
