@@ -632,13 +632,12 @@ class Console:
     def _booting(self, board):
         """The boot's calibration file load (console.start), a generator whose steps poll runs one a
         frame (each inside the frame's slack on an emulated Pico: calstore's import, the file's read
-        and check, hexapod.jog's import for Robot.calibrate, the rows six at a time). A version 2
+        and check, the rows six at a time through Robot.calibrate). A version 2
         file on a robot sending no pulse (every boot) is put in force here as consolecal.put_file
         would (no refusal can come but at the first servo, before any change): consolecal's import
-        (~26 ms on a Pico) only for any other file. calstore and hexapod.jog go again when the boot
-        loaded them. Then runner.power_up(board, calibrated), when board is given. A step that raises
+        (~26 ms on a Pico) only for any other file. calstore goes again when the boot loaded it.
+        Then runner.power_up(board, calibrated), when board is given. A step that raises
         (a Ctrl-C) leaves a new load in its place: the next poll or do starts it over."""
-        jog = "hexapod.jog" in sys.modules
         cs = "calstore" in sys.modules
         try:
             store = self.cal_store()
@@ -652,9 +651,6 @@ class Console:
                     reply = None
                     robot = self.robot
                     if found[2] == 2 and not any(robot.pulses):
-                        yield
-                        import hexapod.jog  # noqa: F401 (Robot.calibrate's: imported in a frame of its own)
-
                         new = found[0]
                         for k in range(18):
                             if k % 6 == 0:
@@ -675,8 +671,6 @@ class Console:
         except BaseException:
             self._boot = self._booting(board)
             raise
-        if not jog:
-            release("hexapod.jog")
         if not cs:
             release("calstore")
         del self._boot, self.poll  # Console.poll again (console.start put _boot_step in its place)

@@ -146,7 +146,7 @@ def test_every_module_imports_as_mpy_with_the_heap_left(fs):
     on_demand = ["consoleparts.more", "consoleparts.setting", "drivers.stream", "selftest"]
     on_demand += ["consoleparts.selftestbus", "consoleparts.selftestboard", "consoleparts.selftestsonar"]
     on_demand.append("consoleparts.selftestsweep")
-    # hexapod.jog (the Robot's jog and calibration moves) comes with the first jog or calibration
+    # hexapod.jog (the Robot's jog moves; Robot.calibrate is resident) comes with the first jog
     # command, or with the sweep (Robot.jog_joint): the last row has it too.
     on_demand.append("hexapod.jog")
     resident_names = [n for n in names if n not in on_demand and n != "drivers._stream_viper"]  # stream's twin: with it
