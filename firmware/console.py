@@ -130,11 +130,14 @@ class Console:
     # once an allocation failed, with the parse's first blocks already placed in the small holes
     # the loop's heap has (bench.feather: 16 KB more free heap needed without it, 2026-11-28).
     compiles = False
+    fs = None  # (os, open): the filesystem console.start was given (cal_store)
+    _boot = None  # the boot's calibration file load under way (console.start, _booting)
 
     def __init__(self, runner, reader=None, out=print, store=None, walk_timeout_ms=WALK_TIMEOUT_MS, write=None):
         """runner: runner.Runner; reader: has read_byte(); store: calstore.Store or None (no
-        file: save/load answer err); walk_timeout_ms: a console walk's life without renewal;
-        write: raw text out without a line end (sys.stdout.write), for `echo on`."""
+        file: save/load answer err; console.start gives the board's filesystem instead, fs: see
+        cal_store); walk_timeout_ms: a console walk's life without renewal; write: raw text out
+        without a line end (sys.stdout.write), for `echo on`."""
         self.runner = runner
         self.robot = runner.robot
         self.reader = reader
@@ -203,7 +206,8 @@ class Console:
 
     def poll(self):
         """Once per frame: announce a held frame once, take waiting bytes, run a complete line,
-        expire a stale walk. A telemetry line first: it shows the frame just done."""
+        expire a stale walk. A telemetry line first: it shows the frame just done. (While the boot's
+        calibration load is under way, _boot_step stands in for this: console.start.)"""
         t = self.telemetry
         if t is not None:
             t.frame(self.runner)
@@ -225,7 +229,7 @@ class Console:
                     self.robot.stop()
         if self._cal_until >= 0 and self._cal_over():
             self._cal_until = -1
-            release(CAL)
+            release(CAL, CAL if self.compiles else "calstore")  # CircuitPython keeps calstore (a compile)
         if self._more_until >= 0:
             clock = self.runner.clock
             if clock.ticks_diff(clock.ticks_ms(), self._more_until) >= 0:
@@ -330,7 +334,10 @@ class Console:
 
     def do(self, line):
         """Run one command line; the reply line ('ok ...' or 'err ...'), None for a blank line.
-        A tagged line ('#7 get 2') gets its reply after the tag ('#7 ok leg 2 ...')."""
+        A tagged line ('#7 get 2') gets its reply after the tag ('#7 ok leg 2 ...'). The boot's
+        calibration load, if still under way, is finished first."""
+        while self._boot is not None:
+            next(self._boot)
         words = line.replace("\t", " ").split()
         raw = words[0].encode() if words else b""
         tag = words[0] if tag_length(raw, len(raw)) > 0 else None
@@ -622,6 +629,71 @@ class Console:
                 clock = self.runner.clock
                 self._more_until = clock.ticks_add(clock.ticks_ms(), CAL_KEEP_MS)
 
+    def _booting(self, board):
+        """The boot's calibration file load (console.start), a generator whose steps poll runs one a
+        frame (each inside the frame's slack on an emulated Pico: calstore's import, the file's read
+        and check, the rows six at a time through Robot.calibrate). A version 2
+        file on a robot sending no pulse (every boot) is put in force here as consolecal.put_file
+        would (no refusal can come but at the first servo, before any change): consolecal's import
+        (~26 ms on a Pico) only for any other file. calstore goes again when the boot loaded it.
+        Then runner.power_up(board, calibrated), when board is given. A step that raises
+        (a Ctrl-C) leaves a new load in its place: the next poll or do starts it over."""
+        cs = "calstore" in sys.modules
+        try:
+            store = self.cal_store()
+            if store is not None:
+                yield
+                try:
+                    found = store.load()
+                except ValueError as e:
+                    reply = "ok defaults (%s)" % (e,)
+                else:
+                    reply = None
+                    robot = self.robot
+                    if found[2] == 2 and not any(robot.pulses):
+                        new = found[0]
+                        for k in range(18):
+                            if k % 6 == 0:
+                                yield
+                            t, d, lo, hi = new[k]
+                            if robot.calibrate(k, self.base[k][0] + t, d, lo, hi):
+                                break
+                            self.trims[k] = t
+                        else:
+                            self.cal_source = "file"
+                            reply = "ok loaded"
+                    if reply is None:
+                        reply = self._calibration("boot", found)
+                if reply.startswith("ok defaults ("):
+                    self.out("cal: %s; the robot file's calibration is in use" % reply[13:-1])
+                elif not reply.startswith("ok loaded"):
+                    self.out("cal: " + reply[4:])
+        except BaseException:
+            self._boot = self._booting(board)
+            raise
+        if not cs:
+            release("calstore")
+        del self._boot, self.poll  # Console.poll again (console.start put _boot_step in its place)
+        if board is not None:
+            self.runner.power_up(board, self.cal_source == "file")
+        yield
+
+    def _boot_step(self):
+        """poll while the boot's calibration load is under way: one step of it (_booting), and no
+        byte read, so no command runs before the file's calibration is in force (the bytes wait in
+        the port's buffer). The load's end takes this stand-in away: poll itself pays nothing."""
+        next(self._boot)
+
+    def cal_store(self):
+        """The calibration file's calstore.Store: the one handed in, else one on the filesystem
+        console.start was given (calstore is on the heap only while a user needs it: the boot's
+        load, a calibration session, selftest's check), else None (no file here)."""
+        if self.store is not None or self.fs is None:
+            return self.store
+        from calstore import Store
+
+        return Store(*self.fs)
+
     def _calibration(self, word, args):
         """A jog or calibration command (consolecal): its module stays on the heap for the session
         (poll lets it go, _cal_over); the boot's file load ("boot") lets it go at once."""
@@ -631,7 +703,7 @@ class Console:
         finally:
             if not self.keep_cal:
                 if word == "boot":
-                    release(CAL)
+                    release(CAL, CAL if self.compiles else "calstore")
                 else:
                     clock = self.runner.clock
                     self._cal_until = clock.ticks_add(clock.ticks_ms(), CAL_KEEP_MS)
@@ -707,43 +779,19 @@ def tag_length(buf, n):
     return k
 
 
-def start(runner, reader, os=None, opener=open, out=print, walk_timeout_ms=WALK_TIMEOUT_MS, write=None):
+def start(runner, reader, os=None, opener=open, out=print, walk_timeout_ms=WALK_TIMEOUT_MS, write=None, board=None):
     """Attach a console to runner (runner.console) and load the calibration file (os: the
     filesystem module, None: none). Prints one 'cal: ...' line when the file cannot be used.
-    write: raw text out (sys.stdout.write) for `echo on`; None: echo is refused."""
-    store = None
-    if os is not None:
-        from calstore import Store
-
-        store = Store(os, opener)
-    c = Console(runner, reader, out, store, walk_timeout_ms, write)
-    if store is not None:
-        # The file read here (calstore is resident). A version 2 file on a robot sending no pulse
-        # (every boot) is put in force here as consolecal.put_file would (no refusal can come
-        # but at the first servo, before any change): its import (~26 ms on a Pico, and its heap
-        # setting off a collection before the first frame) only for any other file.
-        try:
-            found = store.load()
-        except ValueError as e:
-            reply = "ok defaults (%s)" % (e,)
-        else:
-            reply = None
-            new = found[0]
-            robot = c.robot
-            if found[2] == 2 and not any(robot.pulses):
-                for k in range(18):
-                    t, d, lo, hi = new[k]
-                    if robot.calibrate(k, c.base[k][0] + t, d, lo, hi):
-                        break
-                    c.trims[k] = t
-                else:
-                    c.cal_source = "file"
-                    reply = "ok loaded"
-            if reply is None:
-                reply = c._calibration("boot", found)
-        if reply.startswith("ok defaults ("):
-            out("cal: %s; the robot file's calibration is in use" % reply[13:-1])
-        elif not reply.startswith("ok loaded"):
-            out("cal: " + reply[4:])
+    write: raw text out (sys.stdout.write) for `echo on`; None: echo is refused. board (the board
+    file, for a boot that does not stand: runner.bring_up): the load is left to the console's
+    first polls, a step a frame, and runner.power_up(board, calibrated) follows it there."""
+    c = Console(runner, reader, out, None, walk_timeout_ms, write)
     runner.console = c
+    if os is not None:
+        c.fs = (os, opener)
+    c._boot = c._booting(board)
+    c.poll = c._boot_step
+    if board is None:
+        while c._boot is not None:
+            next(c._boot)
     return c

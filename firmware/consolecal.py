@@ -247,7 +247,7 @@ def apply(con, new):
 
 
 def _save(con):
-    store = con.store
+    store = con.cal_store()
     if store is None:
         raise ValueError("no calibration file on this board")
     try:
@@ -261,10 +261,11 @@ def _save(con):
 
 def load_file(con):
     """Calibration from the store, else the robot file's defaults; returns the reply."""
-    if con.store is None:
+    store = con.cal_store()
+    if store is None:
         raise ValueError("no calibration file on this board")
     try:
-        new, where, version = con.store.load()
+        new, where, version = store.load()
     except ValueError as e:
         return "ok defaults (%s)" % (e,)
     return put_file(con, new, where, version)

@@ -123,27 +123,34 @@ class Runner:
         self._start = None
         return self.follower.off()
 
-    def bring_up(self, reader=None, boot=None, calibrated=None):
+    def bring_up(self, reader=None, boot=None, calibrated=None, later=False):
         """The board entry once built (main.py, code.py): a console on reader, which loads the
         calibration file, then power_up. boot ("relaxed", "stand") overrides the board file's;
         calibrated (True/False) stands in for the file where none is read (host runs; None: the
-        file decides)."""
+        file decides). later (main.py): a boot that does not stand leaves the file's load and
+        power_up to the console's first polls, a step a frame (console.start): the first frame
+        comes sooner, and no command runs before the file's calibration is in force."""
+        board = self.board if boot is None else dict(self.board, boot=boot)
         if reader is not None:
             import os
             import sys
 
             import console
 
+            later = later and calibrated is None and board.get("boot") != "stand"
             console.start(
                 self,
                 reader,
                 os,
                 walk_timeout_ms=self.board.get("walk_timeout_ms") or console.WALK_TIMEOUT_MS,
                 write=sys.stdout.write,
+                board=board if later else None,
             )
+            if later:
+                return self.boot
         if calibrated is None:
             calibrated = self.console is not None and self.console.cal_source == "file"
-        return self.power_up(self.board if boot is None else dict(self.board, boot=boot), calibrated)
+        return self.power_up(board, calibrated)
 
     def serve(self, frames, status_every):
         """run(); Ctrl-C leaves the loop with the servos relaxed, or held (the board file's on_exit)."""

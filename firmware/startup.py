@@ -127,11 +127,12 @@ def run(r, frames=-1, robot_name=None, reader=None, boot=None, calibrated=None):
     ("relaxed", "stand") overrides the board file's; calibrated (True/False) says whether the
     servos are calibrated where no calibration file is read (host runs; None: the file, loaded
     by the console). With a console reader (the board entry: console.PollReader on sys.stdin)
-    the console and the calibration file take over from the status line (docs/console.md);
-    Ctrl-C relaxes the servos (or holds them, the board file's on_exit)."""
+    the console and the calibration file take over from the status line (docs/console.md); a
+    boot that does not stand reads the file and powers up in the first frames (bring_up's later:
+    the first frame sooner). Ctrl-C relaxes the servos (or holds them, the board file's on_exit)."""
     # The boot-only modules (the board and robot files and their checks): their heap back to the loop.
     release(*BOOT_ONLY, "robots." + robot_name, "robots.%s_cal" % robot_name)
-    r.bring_up(reader, boot, calibrated)
+    r.bring_up(reader, boot, calibrated, True)
     if reader is not None and r.board.get("watchdog_ms"):
         from machine import WDT
 

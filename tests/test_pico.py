@@ -146,14 +146,17 @@ def test_every_module_imports_as_mpy_with_the_heap_left(fs):
     on_demand = ["consoleparts.more", "consoleparts.setting", "drivers.stream", "selftest"]
     on_demand += ["consoleparts.selftestbus", "consoleparts.selftestboard", "consoleparts.selftestsonar"]
     on_demand.append("consoleparts.selftestsweep")
-    # hexapod.jog (the Robot's jog and calibration moves) comes with the first jog or calibration
+    # hexapod.jog (the Robot's jog moves; Robot.calibrate is resident) comes with the first jog
     # command, or with the sweep (Robot.jog_joint): the last row has it too.
     on_demand.append("hexapod.jog")
     resident_names = [n for n in names if n not in on_demand and n != "drivers._stream_viper"]  # stream's twin: with it
     # The calibration commands' module comes and goes: console.start reads the calibration file
-    # with it at boot and lets it go (its names stay: qstrs), each calibration command likewise.
-    resident_names.remove("consolecal")
-    resident_names.append("consolecal")
+    # with it at boot and lets it go (its names stay: qstrs), each calibration command likewise;
+    # calstore (the file's read and check) as well: the boot's load, a calibration session (with
+    # consolecal) and selftest's check take it, and let it go.
+    for name in ("calstore", "consolecal"):
+        resident_names.remove(name)
+        resident_names.append(name)
     source = """
 import gc
 gc.collect()
@@ -170,7 +173,7 @@ def load(names):
 load(%r)
 import hexapod
 hexapod.release(*hexapod.BOOT_ONLY, "robots.default", "robots.default_cal")  # as main.main does
-hexapod.release("consolecal")  # as console.start does
+hexapod.release("consolecal", "calstore")  # as console.start does
 gc.collect()
 print("resident", gc.mem_free())
 load(%r)

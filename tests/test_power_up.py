@@ -75,3 +75,34 @@ def test_main_releases_the_boot_only_modules(rt, tmp_path):
     # the tests share one process, keeps them (hexapod.release is a no-op there).
     kept = rt.name == "cpython"
     assert rt.with_heapsize("4m").call("scenarios.power_up:released", str(tmp_path)) == [kept] * 6
+
+
+def test_no_command_runs_before_the_calibration_file_is_in_force(rt, tmp_path):
+    # main.main leaves the calibration file's load to the first frames (issue 22: the first frame
+    # sooner). A client's lines already waiting at power-up wait for it: `status` tells the file's
+    # calibration and the boot's outcome, a `pulse` inside the robot file's range but outside the
+    # file's is refused, and every frame that drives a servo (the `stand`) does so on the file's
+    # calibration, never on the robot file's.
+    typed = ["status", "pulse 1 coxa LO", "stand"]
+    said, seen, want, mode = rt.with_heapsize("4m").call("scenarios.power_up:early", str(tmp_path), typed)
+    assert len(said) == 3 and said[0].startswith("ok frames ") and " cal file boot relaxed " in said[0], said
+    assert said[1].startswith("err "), said
+    assert said[2].startswith("ok "), said
+    assert mode == STANDING and seen == [want], (said, seen[:1], want)
+
+
+def test_a_call_while_the_boot_loads_the_file_finishes_the_load_first(rt, tmp_path):
+    # console.do (the REPL's way in, after a Ctrl-C in the first frames) runs on the file's
+    # calibration too: the load under way is finished first.
+    reply, maps, want, pending = rt.with_heapsize("4m").call("scenarios.power_up:early_do", str(tmp_path), "status")
+    assert pending and maps == want
+    assert reply.startswith("ok frames ") and " cal file boot relaxed " in reply, reply
+
+
+def test_a_load_interrupted_in_a_step_starts_over(rt, tmp_path):
+    # A Ctrl-C (here: the file's open raising KeyboardInterrupt) inside one of the load's steps
+    # leaves a new load in its place, not a dead one: the next call finishes it, on the file's
+    # calibration.
+    raised, pending, reply, maps, want = rt.with_heapsize("4m").call("scenarios.power_up:interrupted", str(tmp_path))
+    assert raised == "KeyboardInterrupt" and pending
+    assert maps == want and reply.startswith("ok frames ") and " cal file boot relaxed " in reply, reply

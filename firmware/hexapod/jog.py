@@ -1,6 +1,8 @@
-"""Jogging and calibration: the console's single-servo moves on a hexapod.tick.Robot (mode JOG).
+"""Jogging: the console's single-servo moves on a hexapod.tick.Robot (mode JOG).
 
-Robot.jog_foot, jog_joint, jog_pulse and calibrate call these; a module of its own so that a
+Robot.jog_foot, jog_joint and jog_pulse call these (Robot.calibrate stays in the resident tick:
+the boot puts a calibration file's rows in force with it, where this module's import would take
+a frame); a module of its own so that a
 board's heap holds this code only once a jog session begins (a CircuitPython board compiles it at
 the first jog command; a loop that never jogs never loads it: docs/flashing.md). The results, the
 refusals and the ValueErrors are the Robot methods' own (tests/test_tick_jog.py).
@@ -102,42 +104,4 @@ def pulse(r, leg, joint, pulse_us):
     r.angles[k] = s.angle(pulse_us)
     r.pulses[k] = pulse_us
     r.mode = _JOG
-    return OK
-
-
-def calibrate(r, k, centre_us, direction, min_us, max_us):
-    """Servo k (0..17)'s map: centre_us (the pulse at its reference angle, ServoMap.ref_cdeg;
-    500..2500), direction 1/-1 (mirrored about the reference) and min_us < max_us within
-    500..2500 (ValueError naming the bad one). Refused (WALKING_NOW, BUSY, or JOG_SERVO with
-    jog_excess) when the servo is driven and its present angle would map outside the new
-    range; otherwise the driven servo moves to its new pulse at once: the frame in force goes
-    out again now with that one pulse changed, so no chip is left driving the old pulse
-    (outside the new range) until a later frame, which may be held."""
-    if not isinstance(k, int) or isinstance(k, bool) or k < 0 or k > 17:
-        raise ValueError("servo: %r, allowed 0..17" % (k,))
-    for name, v in (("centre_us", centre_us), ("min_us", min_us), ("max_us", max_us)):
-        if not isinstance(v, int) or isinstance(v, bool) or v < 500 or v > 2500:
-            raise ValueError("%s: %r is outside 500..2500 us" % (name, v))
-    if min_us >= max_us:
-        raise ValueError("range: min_us %d must be below max_us %d" % (min_us, max_us))
-    if direction != 1 and direction != -1:
-        raise ValueError("direction: %r, allowed 1 or -1" % (direction,))
-    code = r._can_move()
-    if code != OK:
-        return code
-    s = r.servos[k]
-    p = 0
-    if r.pulses[k]:
-        p = s.raw_at(r.angles[k], centre_us, direction)
-        if p < min_us:
-            return r._servo_refused(k, 1, min_us - p)
-        if p > max_us:
-            return r._servo_refused(k, 2, p - max_us)
-    s.direction = direction
-    s.centre_us = centre_us
-    s.min_us = min_us
-    s.max_us = max_us
-    if p:
-        r.pulses[k] = p
-        r.frame.write_frame(r.pulses)
     return OK

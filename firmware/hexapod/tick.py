@@ -841,10 +841,43 @@ class Robot:
         return hexapod.jog.pulse(self, leg, joint, pulse_us)
 
     def calibrate(self, k, centre_us, direction, min_us, max_us):
-        """Servo k (0..17)'s map, the driven servo moved to its new pulse at once: hexapod.jog.calibrate."""
-        import hexapod.jog  # (not `from hexapod import jog`: that allocates 32 B a call)
-
-        return hexapod.jog.calibrate(self, k, centre_us, direction, min_us, max_us)
+        """Servo k (0..17)'s map (here, not in hexapod.jog: the boot puts a calibration file's rows
+        in force with it, a row a call, where that module's import would take a frame): centre_us
+        (the pulse at its reference angle, ServoMap.ref_cdeg; 500..2500), direction 1/-1 (mirrored
+        about the reference) and min_us < max_us within 500..2500 (ValueError naming the bad one).
+        Refused (WALKING_NOW, BUSY, or JOG_SERVO with
+        jog_excess) when the servo is driven and its present angle would map outside the new
+        range; otherwise the driven servo moves to its new pulse at once: the frame in force goes
+        out again now with that one pulse changed, so no chip is left driving the old pulse
+        (outside the new range) until a later frame, which may be held."""
+        if not isinstance(k, int) or isinstance(k, bool) or k < 0 or k > 17:
+            raise ValueError("servo: %r, allowed 0..17" % (k,))
+        for name, v in (("centre_us", centre_us), ("min_us", min_us), ("max_us", max_us)):
+            if not isinstance(v, int) or isinstance(v, bool) or v < 500 or v > 2500:
+                raise ValueError("%s: %r is outside 500..2500 us" % (name, v))
+        if min_us >= max_us:
+            raise ValueError("range: min_us %d must be below max_us %d" % (min_us, max_us))
+        if direction != 1 and direction != -1:
+            raise ValueError("direction: %r, allowed 1 or -1" % (direction,))
+        code = self._can_move()
+        if code != OK:
+            return code
+        s = self.servos[k]
+        p = 0
+        if self.pulses[k]:
+            p = s.raw_at(self.angles[k], centre_us, direction)
+            if p < min_us:
+                return self._servo_refused(k, 1, min_us - p)
+            if p > max_us:
+                return self._servo_refused(k, 2, p - max_us)
+        s.direction = direction
+        s.centre_us = centre_us
+        s.min_us = min_us
+        s.max_us = max_us
+        if p:
+            self.pulses[k] = p
+            self.frame.write_frame(self.pulses)
+        return OK
 
     def go_limp(self):
         """At once: every servo limp (a frame of zeros sent now), mode RELAXED; the loop is leaving."""
