@@ -91,7 +91,9 @@ def _release(robot_name):
 BOOT_GC_BYTES = 4096
 _boot_threshold = None  # gc.threshold() as the board had it, put back when the loop starts
 _settings = None  # settings(BOARD, ROBOT), read at import on a board; build() takes it once
+_on_board = False  # the board's own boot (not the host's tests): main() lets the builders go (_let_go_builders)
 if sys.implementation.name != "cpython":  # CPython: the tests install fake modules first (and pdb imports a `code`)
+    _on_board = True
     if hasattr(gc, "threshold"):
         _boot_threshold = gc.threshold()
         gc.threshold(BOOT_GC_BYTES)
@@ -178,6 +180,8 @@ def main(frames=-1, clock=None, board_name=BOARD, robot_name=ROBOT, reader=None,
     r = runner = build(board_name, robot_name, clock)
     _release(robot_name)  # when build read them: their heap back to the loop
     r.bring_up(reader, boot, calibrated)
+    if _on_board:
+        _let_go_builders()
     if reader is not None and r.board.get("watchdog_ms"):
         from microcontroller import watchdog
         from watchdog import WatchDogMode
@@ -189,6 +193,41 @@ def main(frames=-1, clock=None, board_name=BOARD, robot_name=ROBOT, reader=None,
         gc.threshold(_boot_threshold)
     r.serve(frames, 0 if reader is not None else STATUS_FRAMES)
     return r
+
+
+def _let_go_builders():
+    """The code that only builds the loop and powers it up, out of the heap once that is done (the
+    board's boot, main()): the constructors of the objects built once, console.start, the sonar
+    slot planner, the servo bank's builders and code.py's own settings() and build(). On
+    CircuitPython each was compiled at import and its bytecode would stay with its class or module
+    for the whole run: about 9.5 KB of the running heap in the VM (bench.feather, 2026-11-28), the
+    room a command's compile needs (docs/flashing.md). A class's __init__ becomes None (a later
+    construction fails: none is made after boot; Ctrl-D reloads everything), a module function is
+    deleted. A new constructor run after boot must not be listed here."""
+    import runner as loop  # `runner` here is main()'s Runner
+
+    from drivers import cp_clock, cp_hcsr04_pulsein, cp_pca9685, pca9685, ranger
+    from hexapod import faultlog, gait, posture, tick, walk
+
+    built_once = (tick.Robot, tick._Feet, walk.Walker, gait.GaitClock, posture.Posture, faultlog.FaultLog)
+    built_once += (pca9685.PCA9685, pca9685.ServoBank, cp_pca9685.PCA9685, cp_hcsr04_pulsein.HCSR04)
+    built_once += (ranger.MedianRanger, ranger.RoundRobin, sensors.Sonars, cp_clock.Clock, loop.Runner)
+    built_once += (console.Console,)
+    for cls in built_once:
+        cls.__init__ = None  # assigned, not deleted: a deleted class attribute's slot kept the function
+    loop.Runner.bring_up = loop.Runner.power_up = None
+    for module, names in (
+        (console, ("start", "PollReader")),
+        (pca9685, ("servo_bank",)),
+        (cp_pca9685, ("servo_bank",)),
+        (ranger, ("plan", "_place")),
+    ):
+        for name in names:
+            delattr(module, name)
+    here = globals()
+    for name in ("settings", "build", "board_pin", "_release", "_let_go_builders"):
+        del here[name]
+    gc.collect()
 
 
 class SerialReader:

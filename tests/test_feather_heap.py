@@ -89,6 +89,8 @@ def test_deploy_runs_1000_frames_within_todays_heap_plus_8_kb(run):
     assert run["frames"] == 1000
     assert run["follow"] == "following"  # `stand` then `wall left 12` took: the whole loop ran
     assert run["bus_failed"] == 0 and run["sonar_faults"] == 0
+    # code.main let go of the code that only builds the loop (code._let_go_builders) once it ran
+    assert run["builders_kept"] == []
 
 
 def test_fit_heap_gives_the_deploy_what_a_feather_has(drive):
