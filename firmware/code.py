@@ -76,18 +76,20 @@ def _release(robot_name):
 # Import order matters where the board compiles .py at import (CircuitPython cannot load
 # MicroPython's .mpy): compiling a module needs several times its source in free heap, every module
 # loaded before it leaves less, and the compiles' garbage left between the modules that stay cuts
-# the heap into holes. So on a board the largest compiles come first, on the emptiest heap: the
-# biggest driver, drivers.pca9685 (left last, it was what failed once tick came first), then
-# hexapod.tick (which compiles walk); then the board and robot files, read and let go before
-# the console loads (their checks are not alive while the loop is built); then console, whose
-# reporting and setting commands (consoleparts.more, .setting) are compiled per command, then
-# runner (which compiles the wall follower); a collection after each. A board file refused stops
-# code.py here, with the message build() gave before. And from the first import until the loop
-# runs (main(): build() and the power-up too), a collection each BOOT_GC_BYTES allocated
-# (gc.threshold): the collector otherwise waits for the heap to fill, by when the compiles' and
-# build()'s garbage lies between everything that stays, and the loop starts on a heap of small
-# holes (56 KB free, the largest hole 2 KB, in the VM). `hexapod bench feather` (docs/flashing.md)
-# has the figures.
+# the heap into holes. A module's compile ends before its own imports run, so importing a module
+# first compiles it on the emptiest heap and the modules it imports after it. On a board: the wall
+# follower (hexapod.follow, 25 KB of source: compiled last, under everything else, it was what
+# bound) and with it the core (hexapod.tick, which compiles walk); then console, whose reporting
+# and setting commands (consoleparts.more, .setting) are compiled per command; then the biggest
+# driver, drivers.pca9685; then the board and robot files, read and let go at once (their checks
+# are not alive while the loop is built), then runner; a collection after each (docs/flashing.md:
+# 4-6 KB less free heap needed at boot than pca9685, tick, the files, console, runner, 2026-11-28).
+# A board file refused stops code.py here, with the message build() gave before. And from the first
+# import until the loop runs (main(): build() and the power-up too), a collection each
+# BOOT_GC_BYTES allocated (gc.threshold): the collector otherwise waits for the heap to fill, by
+# when the compiles' and build()'s garbage lies between everything that stays, and the loop starts
+# on a heap of small holes (56 KB free, the largest hole 2 KB, in the VM). `hexapod bench feather`
+# (docs/flashing.md) has the figures.
 BOOT_GC_BYTES = 4096
 _boot_threshold = None  # gc.threshold() as the board had it, put back when the loop starts
 _settings = None  # settings(BOARD, ROBOT), read at import on a board; build() takes it once
@@ -97,19 +99,19 @@ if sys.implementation.name != "cpython":  # CPython: the tests install fake modu
     if hasattr(gc, "threshold"):
         _boot_threshold = gc.threshold()
         gc.threshold(BOOT_GC_BYTES)
-    from drivers import pca9685  # noqa: F401
+    import hexapod.follow  # noqa: F401  (and the core: hexapod.tick, hexapod.walk, ...)
 
     gc.collect()
-    import hexapod.tick  # noqa: F401
+    import console  # noqa: F401
+
+    gc.collect()
+    from drivers import pca9685  # noqa: F401
 
     gc.collect()
     _settings = settings()
     _release(ROBOT)
     gc.collect()
-    import console  # noqa: F401
-
-    gc.collect()
-    import runner  # noqa: F401  (compiles the wall follower)
+    import runner  # noqa: F401
 
     gc.collect()
 
@@ -198,29 +200,32 @@ def main(frames=-1, clock=None, board_name=BOARD, robot_name=ROBOT, reader=None,
 def _let_go_builders():
     """The code that only builds the loop and powers it up, out of the heap once that is done (the
     board's boot, main()): the constructors of the objects built once, console.start, the sonar
-    slot planner, the servo bank's builders and code.py's own settings() and build(). On
+    slot planner, the servo bank's builders, the robot geometry's loaders and code.py's own
+    settings() and build(). On
     CircuitPython each was compiled at import and its bytecode would stay with its class or module
     for the whole run: about 9.5 KB of the running heap in the VM (bench.feather, 2026-11-28), the
     room a command's compile needs (docs/flashing.md). A class's __init__ becomes None (a later
     construction fails: none is made after boot; Ctrl-D reloads everything), a module function is
     deleted. A new constructor run after boot must not be listed here."""
+    import calstore
     import runner as loop  # `runner` here is main()'s Runner
 
     from drivers import cp_clock, cp_hcsr04_pulsein, cp_pca9685, pca9685, ranger
-    from hexapod import faultlog, gait, posture, tick, walk
+    from hexapod import faultlog, gait, geometry, leg, posture, tick, walk
 
     built_once = (tick.Robot, tick._Feet, walk.Walker, gait.GaitClock, posture.Posture, faultlog.FaultLog)
     built_once += (pca9685.PCA9685, pca9685.ServoBank, cp_pca9685.PCA9685, cp_hcsr04_pulsein.HCSR04)
     built_once += (ranger.MedianRanger, ranger.RoundRobin, sensors.Sonars, cp_clock.Clock, loop.Runner)
-    built_once += (console.Console,)
+    built_once += (console.Console, calstore.Store, geometry.Geometry, leg.Leg, SerialReader)
     for cls in built_once:
         cls.__init__ = None  # assigned, not deleted: a deleted class attribute's slot kept the function
-    loop.Runner.bring_up = loop.Runner.power_up = None
+    loop.Runner.bring_up = loop.Runner.power_up = loop.Runner.follow_when_standing = None
     for module, names in (
         (console, ("start", "PollReader")),
         (pca9685, ("servo_bank",)),
         (cp_pca9685, ("servo_bank",)),
         (ranger, ("plan", "_place")),
+        (geometry, ("leg_from", "load", "from_data")),
     ):
         for name in names:
             delattr(module, name)

@@ -105,13 +105,14 @@ def test_deploy_fits_a_feather(drive):
 
 
 def test_code_py_compiles_the_largest_modules_first(drive):
-    # code.py's board-only start (docs/flashing.md): the driver, then the tick (which compiles walk),
-    # then the board and robot files, then the console, then runner (which loads the wall follower);
-    # with the board files first the tick's compile, then the driver's, bound at up to 8 KB more heap
-    # (0-8 KB by the staging folder: docs/flashing.md); with the boot's collections (BOOT_GC_BYTES)
-    # the console before runner needs 5 KB less (2026-11-28)
+    # code.py's board-only start (docs/flashing.md): the wall follower (whose imports compile the tick
+    # and walk after it), then the console, then the driver, then the board and robot files, then
+    # runner; with the board files first the tick's compile, then the driver's, bound at up to 8 KB
+    # more heap (0-8 KB by the staging folder: docs/flashing.md); with the boot's collections
+    # (BOOT_GC_BYTES) the console before runner needs 5 KB less (2026-11-28); the follower first
+    # (it was compiled last, by runner) 4-6 KB less again (feather5, 2026-11-28)
     order = feather.vm(drive, dict(feather.rig(), mode="order"), "2m")["order"]
-    firsts = ["drivers.pca9685", "hexapod.tick", "hexapod.walk", "hexapod.board", "console", "runner", "hexapod.follow"]
+    firsts = ["hexapod.follow", "hexapod.tick", "hexapod.walk", "console", "drivers.pca9685", "hexapod.board", "runner"]
     assert sorted(firsts, key=order.index) == firsts, order
 
 
