@@ -181,9 +181,11 @@ def main(frames=-1, clock=None, board_name=BOARD, robot_name=ROBOT, reader=None,
     global runner
     r = runner = build(board_name, robot_name, clock)
     _release(robot_name)  # when build read them: their heap back to the loop
+    if _on_board:
+        _let_go_builders(False)
     r.bring_up(reader, boot, calibrated)
     if _on_board:
-        _let_go_builders()
+        _let_go_builders(True)
     if reader is not None and r.board.get("watchdog_ms"):
         from microcontroller import watchdog
         from watchdog import WatchDogMode
@@ -197,40 +199,45 @@ def main(frames=-1, clock=None, board_name=BOARD, robot_name=ROBOT, reader=None,
     return r
 
 
-def _let_go_builders():
-    """The code that only builds the loop and powers it up, out of the heap once that is done (the
-    board's boot, main()): the constructors of the objects built once, console.start, the sonar
+def _let_go_builders(up):
+    """The code that only builds the loop and powers it up, out of the heap once it ran (the board's
+    boot, main()). up False, after build(): the constructors of the objects built once, the sonar
     slot planner, the servo bank's builders, the robot geometry's loaders and code.py's own
-    settings() and build(). On
-    CircuitPython each was compiled at import and its bytecode would stay with its class or module
-    for the whole run: about 9.5 KB of the running heap in the VM (bench.feather, 2026-11-28), the
-    room a command's compile needs (docs/flashing.md). A class's __init__ becomes None (a later
-    construction fails: none is made after boot; Ctrl-D reloads everything), a module function is
-    deleted. A new constructor run after boot must not be listed here."""
-    import calstore
+    settings() and build(); up True, after the power-up: the console's and runner's start-up
+    (console.start, which may compile hexapod.jog for a calibration file's rows, gets the room of
+    the first; hexapod.jog goes too). On CircuitPython each was compiled at import and its bytecode would stay with its
+    class or module for the whole run: about 9.5 KB of the running heap in the VM (bench.feather,
+    2026-11-28), the room a command's compile needs (docs/flashing.md). A class's __init__ becomes
+    None (a later construction fails: none is made after boot; Ctrl-D reloads everything), a
+    module function is deleted. A new constructor run after boot must not be listed here."""
     import runner as loop  # `runner` here is main()'s Runner
 
-    from drivers import cp_clock, cp_hcsr04_pulsein, cp_pca9685, pca9685, ranger
-    from hexapod import faultlog, gait, geometry, leg, posture, tick, walk
+    if up:
+        import calstore
 
-    built_once = (tick.Robot, tick._Feet, walk.Walker, gait.GaitClock, posture.Posture, faultlog.FaultLog)
-    built_once += (pca9685.PCA9685, pca9685.ServoBank, cp_pca9685.PCA9685, cp_hcsr04_pulsein.HCSR04)
-    built_once += (ranger.MedianRanger, ranger.RoundRobin, sensors.Sonars, cp_clock.Clock, loop.Runner)
-    built_once += (console.Console, calstore.Store, geometry.Geometry, leg.Leg, SerialReader)
+        built_once = (console.Console, calstore.Store, SerialReader)
+        loop.Runner.bring_up = loop.Runner.power_up = loop.Runner.follow_when_standing = None
+        gone = ((console, ("start", "PollReader")),)
+        names = ("_let_go_builders",)
+        console.release("hexapod.jog")  # compiled by a calibration file's load: again at a jog command
+    else:
+        from drivers import cp_clock, cp_hcsr04_pulsein, cp_pca9685, pca9685, ranger
+        from hexapod import faultlog, gait, geometry, leg, posture, tick, walk
+
+        built_once = (tick.Robot, tick._Feet, walk.Walker, gait.GaitClock, posture.Posture, faultlog.FaultLog)
+        built_once += (pca9685.PCA9685, pca9685.ServoBank, cp_pca9685.PCA9685, cp_hcsr04_pulsein.HCSR04)
+        built_once += (ranger.MedianRanger, ranger.RoundRobin, sensors.Sonars, cp_clock.Clock, loop.Runner)
+        built_once += (geometry.Geometry, leg.Leg)
+        gone = ((pca9685, ("servo_bank",)), (cp_pca9685, ("servo_bank",)), (ranger, ("plan", "_place")))
+        gone += ((geometry, ("leg_from", "load", "from_data")),)
+        names = ("settings", "build", "board_pin", "_release")
     for cls in built_once:
         cls.__init__ = None  # assigned, not deleted: a deleted class attribute's slot kept the function
-    loop.Runner.bring_up = loop.Runner.power_up = loop.Runner.follow_when_standing = None
-    for module, names in (
-        (console, ("start", "PollReader")),
-        (pca9685, ("servo_bank",)),
-        (cp_pca9685, ("servo_bank",)),
-        (ranger, ("plan", "_place")),
-        (geometry, ("leg_from", "load", "from_data")),
-    ):
-        for name in names:
+    for module, attrs in gone:
+        for name in attrs:
             delattr(module, name)
     here = globals()
-    for name in ("settings", "build", "board_pin", "_release", "_let_go_builders"):
+    for name in names:
         del here[name]
     gc.collect()
 
