@@ -96,6 +96,25 @@ def test_deploy_runs_1000_frames_within_todays_heap_plus_8_kb(run):
     assert run["builders_kept"] == []
 
 
+# Every console command after code.main let go of the loop's builders (code._let_go_builders): none
+# may need one of them (an AttributeError or a None called would answer `internal error`). Not
+# `save`: the VM's file system is the test's working directory.
+AFTER_BOOT = ("stand", "joint 2 femur 10", "trim 2 femur 5", "cal 2 femur", "status", "selftest", "load")
+AFTER_BOOT += ("defaults", "stand", "walk 50 0 0", "gait ripple", "height 80", "stop", "pid 20 0.5 1")
+AFTER_BOOT += ("wall right 15", "wall off", "foot 2 110 0 -90", "nudge 2 0 0 5", "pulse 2 femur 1500", "get 2")
+AFTER_BOOT += ("sit", "relax", "faults", "sonar", "help", "echo off", "dir 2 femur 1", "range 2 femur 700 2300")
+
+
+def test_every_command_runs_after_the_builders_are_let_go(drive):
+    commands = [[100 + 1000 * k, line + "\n"] for k, line in enumerate(AFTER_BOOT)]
+    cfg = feather.run_cfg(frames=50 * len(AFTER_BOOT) + 100, commands=commands)
+    search = (drive, os.path.join(drive, "lib"), feather.CP_STUBS, feather.STUBS)
+    out = feather.mpvm.run(script=feather.SCRIPT, stdin=json.dumps(cfg), heapsize="1m", search=search)
+    replies = [line for line in out.splitlines()[:-1] if line.startswith(("ok", "err"))]
+    assert json.loads(out.splitlines()[-1])["builders_kept"] == []
+    assert len(replies) >= len(AFTER_BOOT) and not [r for r in replies if "internal error" in r], replies
+
+
 def test_fit_heap_gives_the_deploy_what_a_feather_has(drive):
     cfg = dict(feather.rig(), mode="modules", modules=[])
     free = feather.vm(drive, cfg, FIT_HEAP)["free"]
