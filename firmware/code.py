@@ -76,38 +76,42 @@ def _release(robot_name):
 # Import order matters where the board compiles .py at import (CircuitPython cannot load
 # MicroPython's .mpy): compiling a module needs several times its source in free heap, every module
 # loaded before it leaves less, and the compiles' garbage left between the modules that stay cuts
-# the heap into holes. So on a board the largest compiles come first, on the emptiest heap: the
-# biggest driver, drivers.pca9685 (left last, it was what failed once tick came first), then
-# hexapod.tick (which compiles walk); then the board and robot files, read and let go before
-# the console loads (their checks are not alive while the loop is built); then console, whose
-# reporting and setting commands (consoleparts.more, .setting) are compiled per command, then
-# runner (which compiles the wall follower); a collection after each. A board file refused stops
-# code.py here, with the message build() gave before. And from the first import until the loop
-# runs (main(): build() and the power-up too), a collection each BOOT_GC_BYTES allocated
-# (gc.threshold): the collector otherwise waits for the heap to fill, by when the compiles' and
-# build()'s garbage lies between everything that stays, and the loop starts on a heap of small
-# holes (56 KB free, the largest hole 2 KB, in the VM). `hexapod bench feather` (docs/flashing.md)
-# has the figures.
+# the heap into holes. A module's compile ends before its own imports run, so importing a module
+# first compiles it on the emptiest heap and the modules it imports after it. On a board: the wall
+# follower (hexapod.follow, 25 KB of source: compiled last, under everything else, it was what
+# bound) and with it the core (hexapod.tick, which compiles walk); then console, whose reporting
+# and setting commands (consoleparts.more, .setting) are compiled per command; then the biggest
+# driver, drivers.pca9685; then the board and robot files, read and let go at once (their checks
+# are not alive while the loop is built), then runner; a collection after each (docs/flashing.md:
+# 4-6 KB less free heap needed at boot than pca9685, tick, the files, console, runner, 2026-11-28).
+# A board file refused stops code.py here, with the message build() gave before. And from the first
+# import until the loop runs (main(): build() and the power-up too), a collection each
+# BOOT_GC_BYTES allocated (gc.threshold): the collector otherwise waits for the heap to fill, by
+# when the compiles' and build()'s garbage lies between everything that stays, and the loop starts
+# on a heap of small holes (56 KB free, the largest hole 2 KB, in the VM). `hexapod bench feather`
+# (docs/flashing.md) has the figures.
 BOOT_GC_BYTES = 4096
 _boot_threshold = None  # gc.threshold() as the board had it, put back when the loop starts
 _settings = None  # settings(BOARD, ROBOT), read at import on a board; build() takes it once
+_on_board = False  # the board's own boot (not the host's tests): main() lets the builders go (_let_go_builders)
 if sys.implementation.name != "cpython":  # CPython: the tests install fake modules first (and pdb imports a `code`)
+    _on_board = True
     if hasattr(gc, "threshold"):
         _boot_threshold = gc.threshold()
         gc.threshold(BOOT_GC_BYTES)
-    from drivers import pca9685  # noqa: F401
+    import hexapod.follow  # noqa: F401  (and the core: hexapod.tick, hexapod.walk, ...)
 
     gc.collect()
-    import hexapod.tick  # noqa: F401
+    import console  # noqa: F401
+
+    gc.collect()
+    from drivers import pca9685  # noqa: F401
 
     gc.collect()
     _settings = settings()
     _release(ROBOT)
     gc.collect()
-    import console  # noqa: F401
-
-    gc.collect()
-    import runner  # noqa: F401  (compiles the wall follower)
+    import runner  # noqa: F401
 
     gc.collect()
 
@@ -177,7 +181,11 @@ def main(frames=-1, clock=None, board_name=BOARD, robot_name=ROBOT, reader=None,
     global runner
     r = runner = build(board_name, robot_name, clock)
     _release(robot_name)  # when build read them: their heap back to the loop
+    if _on_board:
+        _let_go_builders(False)
     r.bring_up(reader, boot, calibrated)
+    if _on_board:
+        _let_go_builders(True)
     if reader is not None and r.board.get("watchdog_ms"):
         from microcontroller import watchdog
         from watchdog import WatchDogMode
@@ -189,6 +197,49 @@ def main(frames=-1, clock=None, board_name=BOARD, robot_name=ROBOT, reader=None,
         gc.threshold(_boot_threshold)
     r.serve(frames, 0 if reader is not None else STATUS_FRAMES)
     return r
+
+
+def _let_go_builders(up):
+    """The code that only builds the loop and powers it up, out of the heap once it ran (the board's
+    boot, main()). up False, after build(): the constructors of the objects built once, the sonar
+    slot planner, the servo bank's builders, the robot geometry's loaders and code.py's own
+    settings() and build(); up True, after the power-up: the console's and runner's start-up
+    (console.start, which may compile hexapod.jog for a calibration file's rows, gets the room of
+    the first; hexapod.jog goes too). On CircuitPython each was compiled at import and its bytecode would stay with its
+    class or module for the whole run: about 9.5 KB of the running heap in the VM (bench.feather,
+    2026-11-28), the room a command's compile needs (docs/flashing.md). A class's __init__ becomes
+    None (a later construction fails: none is made after boot; Ctrl-D reloads everything), a
+    module function is deleted. A new constructor run after boot must not be listed here."""
+    import runner as loop  # `runner` here is main()'s Runner
+
+    if up:
+        import calstore
+
+        built_once = (console.Console, calstore.Store, SerialReader)
+        loop.Runner.bring_up = loop.Runner.power_up = loop.Runner.follow_when_standing = None
+        gone = ((console, ("start", "PollReader")),)
+        names = ("_let_go_builders",)
+        console.release("hexapod.jog")  # compiled by a calibration file's load: again at a jog command
+    else:
+        from drivers import cp_clock, cp_hcsr04_pulsein, cp_pca9685, pca9685, ranger
+        from hexapod import faultlog, gait, geometry, leg, posture, tick, walk
+
+        built_once = (tick.Robot, tick._Feet, walk.Walker, gait.GaitClock, posture.Posture, faultlog.FaultLog)
+        built_once += (pca9685.PCA9685, pca9685.ServoBank, cp_pca9685.PCA9685, cp_hcsr04_pulsein.HCSR04)
+        built_once += (ranger.MedianRanger, ranger.RoundRobin, sensors.Sonars, cp_clock.Clock, loop.Runner)
+        built_once += (geometry.Geometry, leg.Leg)
+        gone = ((pca9685, ("servo_bank",)), (cp_pca9685, ("servo_bank",)), (ranger, ("plan", "_place")))
+        gone += ((geometry, ("leg_from", "load", "from_data")),)
+        names = ("settings", "build", "board_pin", "_release")
+    for cls in built_once:
+        cls.__init__ = None  # assigned, not deleted: a deleted class attribute's slot kept the function
+    for module, attrs in gone:
+        for name in attrs:
+            delattr(module, name)
+    here = globals()
+    for name in names:
+        del here[name]
+    gc.collect()
 
 
 class SerialReader:

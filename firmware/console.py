@@ -94,7 +94,6 @@ class PollReader:
 
     def __init__(self, stream=None):
         import select
-        import sys
 
         stream = sys.stdin if stream is None else stream
         self._poll = select.poll()
@@ -617,7 +616,10 @@ class Console:
     def _part(self, name, word, args):
         """A reporting or setting command (consoleparts.more or .setting, name): its module stays
         CAL_KEEP_MS after it (poll lets it go), or goes at once where the board compiles it
-        (compiles)."""
+        (compiles). Where consolecal waits for the robot to walk (cal_until_walk), `wall` lets it
+        go before its module's compile (a jog command after it compiles consolecal again)."""
+        if self.cal_until_walk and word == "wall":
+            release(CAL)
         part = load(name, self.compiles)
         try:
             return part.command(self, word, args)
@@ -761,8 +763,12 @@ class Console:
 def release_selftest():
     """selftest (and the bus checks' or the servo sweep's module, when the job loaded it) out of sys.modules."""
     sys.modules.pop(SELFTEST, None)
-    release("consoleparts.selftestsweep", "consoleparts.selftestbus", "consoleparts.selftestboard")
-    release("consoleparts.selftestsonar")
+    release(
+        "consoleparts.selftestsweep",
+        "consoleparts.selftestbus",
+        "consoleparts.selftestboard",
+        "consoleparts.selftestsonar",
+    )
 
 
 def tag_length(buf, n):

@@ -140,11 +140,13 @@ def test_the_jog_and_calibration_commands_module_stays_for_a_jog_session(rt):
     # (hexapod.release) 30 s (CAL_KEEP_MS) after the last one or once the robot walks; the boot's
     # file load lets it go at once. On CPython release does nothing (the host's tests share one
     # process). CircuitPython's code.py compiles it at boot and keeps it until the robot walks
-    # (cal_until_walk: no timeout).
+    # (cal_until_walk: no timeout), and lets it go at `wall` before the compile of the command's
+    # module (`wall off` too).
     name, seen = rt.with_heapsize("4m").call(CONSOLE + "cal_module_session")
     kept = name == "cpython"
     assert seen == (
         ["file", kept, "ok ", True, "err", True, "err", True, "ok ", True, True, kept]
         + ["ok ", kept, "ok ", True, "ok ", kept, 4, "ok ", True]
         + ["ok ", True, "ok ", kept, 4]
+        + ["ok ", kept, 3, "ok ", "ok ", kept, "ok ", "ok ", kept, "ok "]
     )

@@ -83,9 +83,9 @@ def version_1_files():
 def cal_module_session():
     """consolecal in sys.modules through a jog session: after the boot's file load, after each of
     a few commands, 29.98 s and 30 s after the last one, standing and a command again, walking,
-    with keep_cal, and with cal_until_walk 32 s after a command and then walking: [implementation
-    name, [cal_source, loaded, (reply's first 3 characters, loaded)..., the robot's mode while
-    walking, ...]]."""
+    with keep_cal, and with cal_until_walk 32 s after a command and then walking, then standing, a
+    command, `wall off`, a command and `wall left 12`: [implementation name, [cal_source, loaded, (reply's
+    first 3 characters, loaded)..., the robot's mode while walking, ...]]."""
     import sys
 
     b = Board()
@@ -114,5 +114,9 @@ def cal_module_session():
     c.keep_cal = False
     c.cal_until_walk = True  # CircuitPython's: no timeout, let go once walking
     seen += [c.do("cal 1 coxa")[:3], frames(1600), c.do("walk 100 0 0")[:3], frames(1), r.robot.mode]
+    # and `wall` lets it go before its own module's compile (`wall off` too): standing again
+    seen += [c.do("stop")[:3], frames(150), r.robot.mode, c.do("cal 1 coxa")[:3], c.do("wall off")[:3]]
+    seen += ["consolecal" in sys.modules, c.do("cal 1 coxa")[:3], c.do("wall left 12")[:3]]
+    seen += ["consolecal" in sys.modules, c.do("wall off")[:3]]
     c.cal_until_walk = False
     return [sys.implementation.name, seen]

@@ -68,6 +68,10 @@ def run():
     r = code.main(frames=cfg["frames"], reader=reader)
     sample()
     loaded = sorted(sys.modules)
+    tick = sys.modules["hexapod.tick"]
+    kept = [n for n in ("settings", "build", "board_pin") if hasattr(code, n)]  # code.main let them go
+    kept += [n for n in ("start", "PollReader") if hasattr(sys.modules["console"], n)]
+    kept += ["Robot.__init__"] if tick.Robot.__init__ is not None else []
     gc.collect()
     return {
         "loaded": loaded,
@@ -79,6 +83,7 @@ def run():
         "bus_failed": r.bank.failed_frames,
         "sonar_faults": r.sonar_faults,
         "follow": r.follower.mode_name,
+        "builders_kept": kept,
     }
 
 
