@@ -694,7 +694,10 @@ class Console:
             return self.store
         from calstore import Store
 
-        return Store(*self.fs)
+        store = Store(*self.fs)
+        if self.compiles:  # CircuitPython keeps calstore (a compile) and this Store: code.py lets its __init__ go
+            self.store = store
+        return store
 
     def _calibration(self, word, args):
         """A jog or calibration command (consolecal): its module stays on the heap for the session
