@@ -220,10 +220,10 @@ class Follower:
 
     # -- commands ----------------------------------------------------------------------
 
-    def follow(self, side, setpoint, speed=None, form="yaw"):
+    def follow(self, side, setpoint, speed=None, form="crab"):
         """Follow the `side` ("left"/"right") wall at `setpoint` (0.1 mm, the side sonar's reading)
-        walking at `speed` (0.1 mm/s, default SPEED); form "yaw" (Robot.walk), "sweeps" (seed
-        000's coxa sweeps) or "crab" (sideways to the set point). Returns 0 (following) or a
+        walking at `speed` (0.1 mm/s, default SPEED); form "crab" (the default: sideways to the set
+        point), "yaw" (Robot.walk's turn) or "sweeps" (seed 000's coxa sweeps). Returns 0 (following) or a
         hexapod.tick reason code (not standing, busy, unreachable) having changed nothing; bad
         values raise ValueError, changing nothing.
         Called again on the same side and form it changes set point and speed on the fly."""
