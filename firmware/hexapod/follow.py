@@ -130,13 +130,13 @@ SEARCH_MS = const(30000)  # search this long, then stop, ms
 # K = 1/8), the robot's own turns at once. 1/32 (the first try) let heading slip build into 4-5 mm RMS.
 EST_SHIFT = const(3)
 # Form crab (issue 22 point 5): the sideways speed is speed * PID output / CRAB_DIV (at the paper's Kp = 25 a
-# 1 mm error walks sideways at speed / 50 mm per second: at 48 mm/s it closes in about 1 s; 6250, twice as
-# stiff, followed the corrugated wall's bumps out of phase); the robot turns back toward parallel only past
+# 1 mm error walks sideways at speed / 36 mm per second: at 48 mm/s it closes in about 0.75 s; 6250, stiffer,
+# followed the corrugated wall's bumps out of phase); the robot turns back toward parallel only past
 # CRAB_BAND, at CRAB_TURN / 1000 of the excess angle per second, and follows as form yaw on one sonar, past
 # CRAB_ANGLE (after a corner) or when a pair's own sample reads the nose _CRAB_EDGE away (the wall's end
 # drawing away: an outside corner, a gap); handed over on the angle, it stays yaw while the wall is more than
 # _CRAB_NEAR beyond the set point (sliding toward a corner's end cuts it). docs/wall.md has the trials.
-CRAB_DIV = const(12500)
+CRAB_DIV = const(9000)
 CRAB_BAND = const(400)  # cdeg
 CRAB_TURN = const(1000)  # yaw rate per angle past the band, 1/s x1000
 CRAB_ANGLE = const(1000)  # cdeg
