@@ -24,7 +24,9 @@ noise made the paper's Kp = 25 (2.5 deg/s per mm) turn about 10 deg/s on average
 costs forward speed (the walker scales a command until its feet fit: docs/wall.md).
 Form "crab" (issue 22 point 5) walks the PID's output, on the distance alone, as a sideways speed
 and turns only to keep the angle within CRAB_BAND: a sideways step costs the forward speed next to
-nothing where a turn costs it at once; on one sonar, or past CRAB_ANGLE, it turns as form "yaw".
+nothing where a turn costs it at once; on one sonar, past CRAB_ANGLE, or at a wall's end (a pair
+sample alone reading the nose 6 degrees away: turned so while the wall reads over set point + 10 mm)
+it turns as form "yaw". Crab is the default form (Runner.follow, the board file, the console).
 
 Modes: off, following, corner (the front sonar sees a wall ahead: arc away from the followed
 wall), lost (no wall on the side: arc toward where it was, radius = the wall distance), then
