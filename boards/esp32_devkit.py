@@ -36,6 +36,6 @@ BOARD = {
         ("right_rear", 33, 32),
     ),
     # Wall following at power-up (hexapod.follow): None, or e.g. {"side": "left", "setpoint": 800}
-    # (set point 0.1 mm, the side sonar's reading; optional "speed" 0.1 mm/s, "form" "yaw"/"sweeps"/"crab").
+    # (set point 0.1 mm, the side sonar's reading; optional "speed" 0.1 mm/s, "form" "crab" (default)/"yaw"/"sweeps").
     "follow": None,
 }

@@ -38,7 +38,7 @@ BOARD = {
         ("right_rear", 14, 15),
     ),
     # Wall following at power-up (hexapod.follow): None, or e.g. {"side": "left", "setpoint": 800}
-    # (set point 0.1 mm, the side sonar's reading; optional "speed" 0.1 mm/s, "form" "yaw"/"sweeps"/"crab").
+    # (set point 0.1 mm, the side sonar's reading; optional "speed" 0.1 mm/s, "form" "crab" (default)/"yaw"/"sweeps").
     "follow": None,
     # Battery monitor (hexapod.battery): None, or the pack through a divider on an ADC pin, e.g.
     # {"pin": 28, "divider_permille": 333} (2S LiPo through 20k over 10k, docs/wiring.md "Battery";

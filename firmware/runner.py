@@ -108,11 +108,12 @@ class Runner:
                 raise ValueError("adc: a battery monitor needs an ADC with read_u16(), got %r" % (adc,))
             self._battery_changed(battery.update(adc.read_u16()))
 
-    def follow(self, side, setpoint, speed=None, form="yaw"):
+    def follow(self, side, setpoint, speed=None, form="crab"):
         """Follow the `side` ("left" or "right") wall at `setpoint` (0.1 mm, the side sonar's
         reading, as in seed 000) walking forward at `speed` (0.1 mm/s, default follow.SPEED);
-        form "yaw" (the PID turns through Robot.walk's yaw rate), "sweeps" (seed 000's coxa
-        sweeps) or "crab" (the PID walks sideways, docs/wall.md). Returns 0 when following, else
+        form "crab" (the default: the PID walks sideways, turning only to stay near parallel,
+        docs/wall.md), "yaw" (the PID turns through Robot.walk's yaw rate) or "sweeps" (seed 000's
+        coxa sweeps). Returns 0 when following, else
         a hexapod.tick reason code (22 not standing, 21 busy, 23 unreachable) having changed
         nothing; bad values raise ValueError naming the value and what is allowed, changing
         nothing. Again on the same side: new set point and speed on the fly (no derivative kick)."""
@@ -184,7 +185,7 @@ class Runner:
     def follow_when_standing(self, setting):
         """Start following once the robot stands (main.py's start-up): setting is a board
         file's "follow" dict (side, setpoint, optional speed and form), checked now."""
-        limits.check_request(setting["side"], setting["setpoint"], setting.get("speed"), setting.get("form", "yaw"))
+        limits.check_request(setting["side"], setting["setpoint"], setting.get("speed"), setting.get("form", "crab"))
         self._start = setting
 
     def step(self):
@@ -217,7 +218,7 @@ class Runner:
         elif self._start is not None and robot.mode == _STANDING:
             s = self._start
             self._start = None
-            self.follow(s["side"], s["setpoint"], s.get("speed"), s.get("form", "yaw"))
+            self.follow(s["side"], s["setpoint"], s.get("speed"), s.get("form", "crab"))
         code = robot.tick(now)
         bank = self.bank
         # The bank's counters asked here, the log's bookkeeping called only when one moved or the

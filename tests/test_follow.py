@@ -370,7 +370,7 @@ def test_other_sensors_are_ignored(side):
 def test_set_point_changes_on_the_fly_without_a_derivative_kick():
     rig = Rig()
     f = rig.cycle(near=800, far=800, n=3)
-    assert f.follow("left", 1000) == 0
+    assert f.follow("left", 1000, None, "yaw") == 0  # the rig's form (the follower's default is crab)
     f = rig.cycle(near=800, far=800)
     # e jumps to 200 (20 mm): P = 5000 -> clamped; the D term sees the still measurement: 0.
     assert (f.setpoint, f.error, f.pid.d, f.pid.p) == (1000, 200, 0, 5000) and f.output == follow.YAW_MAX
@@ -537,16 +537,16 @@ def away_y(side, vy):
 @pytest.mark.parametrize("side", SIDES)
 def test_crab_walks_sideways_to_the_set_point_without_turning(side):
     # Parallel, 4 mm close: the PID holds the distance itself (no look-ahead), P only on the first
-    # sample: u = 25 * 40 = 1000 cdeg/s, walked as a sideways speed of 800 * 1000 / CRAB_DIV (6250) =
-    # 128 (0.1 mm/s) away from the wall; no turn.
+    # sample: u = 25 * 40 = 1000 cdeg/s, walked as a sideways speed of 800 * 1000 / CRAB_DIV (9000) =
+    # 88 (0.1 mm/s) away from the wall; no turn.
     rig = Rig(side, form="crab")
     f = rig.cycle(near=760, far=760)
     assert (f.distance, f.angle, f.error, f.output, f.vx, f.yaw) == (760, 0, 40, 1000, 800, 0)
-    assert away_y(side, f.vy) == 128
-    # The next sample: the walk's prediction has moved the wall by the sideways travel (0.6 mm):
+    assert follow.CRAB_DIV == 9000 and away_y(side, f.vy) == 88
+    # The next sample: the walk's prediction has moved the wall by the sideways travel (0.4 mm):
     # less error, still away.
     f = rig.cycle(near=760, far=760)
-    assert f.distance == 766 and 0 < f.error < 40 and 0 < away_y(side, f.vy) < 128 and f.yaw == 0
+    assert f.distance == 764 and 0 < f.error < 40 and 0 < away_y(side, f.vy) < 88 and f.yaw == 0
     rig = Rig(side, form="crab")
     f = rig.cycle(near=800, far=800)  # at the set point, parallel: straight on
     assert (f.error, f.output, f.vx, f.vy, f.yaw) == (0, 0, 800, 0, 0)
@@ -585,6 +585,42 @@ def test_crab_turns_as_form_yaw_past_10_degrees_and_on_one_sonar(side):
             want = (f.distance, f.error, f.output, f.yaw)
         else:
             assert (f.distance, f.error, f.output, f.yaw) == want
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_crab_turns_at_the_walls_end_and_until_back_near_the_set_point(side):
+    # The wall 20 mm beyond the 8 cm set point, parallel: crab (sideways toward it, no turn). Then the
+    # front sonar reads 23 mm farther than the rear (the wall's end leaving its beam: 6.56 deg nose
+    # away in this one sample, 0.82 deg in the estimate): form yaw's turn toward the wall, no sideways
+    # step, and form yaw it stays while the estimate reads the wall over set point + 10 mm (an outside
+    # corner reads far until the robot is round it), even with the pair parallel again.
+    rig = Rig(side, form="crab")
+    f = rig.cycle(near=1000, far=1000, n=12)
+    assert f.distance == 930 and f.yaw == 0 and away_y(side, f.vy) < 0
+    f = rig.cycle(near=1230, far=1000)
+    assert (f.distance, f.angle, f.vy) == (941, 82, 0) and rig.away(f.yaw) == -follow.YAW_MAX
+    for _ in range(8):
+        f = rig.cycle(near=1000, far=1000)
+        assert f.vy == 0 and rig.away(f.yaw) == -follow.YAW_MAX and f.distance > SP + 100
+    seen = []
+    for _ in range(5):
+        f = rig.cycle(near=SP, far=SP)
+        seen.append((f.distance, f.vy == 0))
+    # Turning while the estimate is over 90 mm (95.2, 93.2, 91.4 mm), sideways again once within it.
+    assert [turning for _, turning in seen] == [True, True, True, False, False]
+    assert seen[2][0] > SP + 100 >= seen[3][0]
+    assert rig.away(f.yaw) == 0 and away_y(side, f.vy) < 0
+
+
+@pytest.mark.parametrize("side", SIDES)
+def test_crab_after_one_sonar_crabs_at_once_on_the_pair(side):
+    # A turn on one sonar (a gap's edge) is not held: back on the pair 15 mm far, it crabs again.
+    rig = Rig(side, form="crab")
+    f = rig.cycle(near=SP, far=SP, n=2)
+    f = rig.cycle(near=OOR, far=950, n=3)
+    assert f.distance_only and f.vy == 0
+    f = rig.cycle(near=950, far=950, n=2)
+    assert not f.distance_only and f.distance > SP + 100 and away_y(side, f.vy) < 0
 
 
 def test_crab_decisions_are_bit_identical_on_both_runtimes(both_runtimes):

@@ -3,22 +3,40 @@ models set at distances, the virtual clock, runner.Runner.follow / follow_off, i
 
 The firmware side is tests/scenarios/wall_loop.py."""
 
+import pytest
+
 
 def test_follow_left_wall_through_the_loop(both_runtimes):
+    # The board's default form, crab (issue 22 point 5): the same readings, hand-worked as in form yaw
+    # below; nose in 1.72 deg (inside CRAB_BAND) and too close: no turn, a sideways step away (right).
     cp, mp = both_runtimes.with_heapsize("4m").call("scenarios.wall_loop:follow_left")
     assert cp == mp
     code, parallel, toward, off, mode, robot_mode, walker_state, bad = cp
     assert code == 0
+    assert parallel == ("following", "left_front+left_rear", 800, 0, 0, 0, 800, 0, 0, 4)
+    name, used, d, angle, e, u, vx, vy, yaw, _ = toward
+    # 76.1 mm by the estimate (form yaw's figure below) plus the sideways travel away the walk predicts
+    # (about 1 mm); the angle as form yaw's, less the turn crab does not make.
+    assert name == "following" and 761 <= d <= 780 and -172 < angle < 0
+    assert e > 0 and u > 0 and vy < 0 and yaw == 0  # too close: step right, away from the wall
+    assert off == 0 and mode == "off" and robot_mode == 3 and walker_state == 0 and bad == []
+
+
+def test_follow_left_wall_through_the_loop_in_form_yaw(both_runtimes):
+    cp, mp = both_runtimes.with_heapsize("4m").call("scenarios.wall_loop:follow_left", "yaw")
+    assert cp == mp
+    code, parallel, toward, off, mode, robot_mode, walker_state, bad = cp
+    assert code == 0
     # Parallel at the set point: straight on at the default speed, no turn.
-    assert parallel == ("following", "left_front+left_rear", 800, 0, 0, 0, 800, 0, 4)
-    name, used, d, angle, e, u, vx, yaw, _ = toward
+    assert parallel == ("following", "left_front+left_rear", 800, 0, 0, 0, 800, 0, 0, 4)
+    name, used, d, angle, e, u, vx, vy, yaw, _ = toward
     # Hand-worked: the sonars say 73 mm and atan(-6 / 200) = -1.72 deg (the chain reads 0.1 mm long:
     # HC-SR04 model and driver round up). After 30 frames (6 pair samples) the estimate has come
     # 1 - (7/8)^6 = 55 % of the way from the parallel 80 mm: 80 - 0.55 * 7.05 = 76.1 mm, plus what the
     # walk's prediction adds for the robot's own turn away since (under a mm); the angle 55 % of
     # -1.72 deg less that turn (a few tenths): too close, so turn right.
     assert name == "following" and 761 <= d <= 770 and -172 < angle < 100
-    assert e > 0 and u > 0 and yaw < 0  # too close: turn right, away from the wall
+    assert e > 0 and u > 0 and yaw < 0 and vy == 0  # too close: turn right, away from the wall
     assert off == 0 and mode == "off" and robot_mode == 3 and walker_state == 0 and bad == []
 
 
@@ -40,18 +58,24 @@ def test_a_steady_crab_frame_allocates_nothing(mp):
     assert heap == 0
 
 
-def test_main_starts_following_from_the_board_setting(both_runtimes):
+@pytest.mark.parametrize("form", [None, "yaw"])
+def test_main_starts_following_from_the_board_setting(both_runtimes, form):
     # A source, not a call: the test reads the status line main.main prints before the value.
-    src = "from scenarios.wall_loop import main_from_board_setting\nprint(main_from_board_setting())\n"
+    src = "from scenarios.wall_loop import main_from_board_setting\nprint(main_from_board_setting(%r))\n" % form
     cp, mp = both_runtimes(src, heapsize="4m")
     assert cp == mp
     notice, *lines = cp.strip().splitlines()
     assert notice == "boot: standing up (the board file's boot setting is stand, the servos are calibrated)"
     assert lines[0].startswith("frames 250 ") and " wall left following d 11" in lines[0]
-    # 5 mm inside the 12 cm set point: it turned away from the wall (right, clockwise). The readings
-    # stay 115 mm while the walk says the wall draws away: the estimate lies between the two.
-    mode, side, setpoint, speed, updated, d, right, robot_mode = eval(lines[-1])  # noqa: S307
-    assert (mode, side, setpoint, speed, updated, right, robot_mode) == ("following", "left", 1200, 600, True, True, 4)
+    # 5 mm inside the 12 cm set point. Without a form in the setting, crab: a sideways step away from
+    # the wall (right), no turn; "form": "yaw": it turned away (right, clockwise). The readings stay
+    # 115 mm while the walk says the wall draws away: the estimate lies between the two.
+    mode, got, side, setpoint, speed, updated, d, turned, vy, robot_mode = eval(lines[-1])  # noqa: S307
+    assert (mode, side, setpoint, speed, updated, robot_mode) == ("following", "left", 1200, 600, True, 4)
+    if form is None:
+        assert got == "crab" and turned == 0 and vy < 0
+    else:
+        assert got == "yaw" and turned < 0 and vy == 0
     assert 1150 <= d <= 1200
 
 

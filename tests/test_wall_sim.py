@@ -246,6 +246,17 @@ def test_micropython_gives_the_same_trajectory(mp):
     assert a == b and len(a["trace"]) == 50 and a["path_mm"] > 150  # (the guard scales 80 mm/s to 48 and less)
 
 
+def test_crab_round_the_corridors_outside_corner_is_the_same_on_micropython(mp):
+    # Form crab (the board's default) through the corridor's inside corner and round its outside one
+    # (3,400 frames, 2.55 m of path: the wall's-end hand-over to form yaw and its hold while far).
+    w = world.load("corridor")
+    seed = sim_wall.trial_seed(0, "corridor", 12, 0)
+    kw = {"record": True, "max_frames": 3400, "form": "crab", "bus": "sink"}
+    a = sim_wall.run_trial(w, 12, seed, runtime="cpython", **kw)
+    b = sim_wall.run_trial(w, 12, seed, runtime="micropython", **kw)
+    assert a == b and a["path_mm"] > 2500
+
+
 def test_success_needs_the_finish_no_contact_and_staying_near():
     w = world.load("wall")
     # Undisturbed, the 1.5 m wall is done, held within a few mm after the first 30 cm.

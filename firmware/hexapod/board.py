@@ -177,7 +177,7 @@ def _follow(ck, board):
         return
     ck.dict_of("follow", setting, _FOLLOW, _FOLLOW_OPTIONAL)
     try:
-        check_request(setting["side"], setting["setpoint"], setting.get("speed"), setting.get("form", "yaw"))
+        check_request(setting["side"], setting["setpoint"], setting.get("speed"), setting.get("form", "crab"))
     except ValueError as e:
         ck.fail("follow", str(e))
 

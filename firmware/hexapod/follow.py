@@ -24,7 +24,9 @@ noise made the paper's Kp = 25 (2.5 deg/s per mm) turn about 10 deg/s on average
 costs forward speed (the walker scales a command until its feet fit: docs/wall.md).
 Form "crab" (issue 22 point 5) walks the PID's output, on the distance alone, as a sideways speed
 and turns only to keep the angle within CRAB_BAND: a sideways step costs the forward speed next to
-nothing where a turn costs it at once; on one sonar, or past CRAB_ANGLE, it turns as form "yaw".
+nothing where a turn costs it at once; on one sonar, past CRAB_ANGLE, or at a wall's end (a pair
+sample alone reading the nose 6 degrees away: turned so while the wall reads over set point + 10 mm)
+it turns as form "yaw". Crab is the default form (Runner.follow, the board file, the console).
 
 Modes: off, following, corner (the front sonar sees a wall ahead: arc away from the followed
 wall), lost (no wall on the side: arc toward where it was, radius = the wall distance), then
@@ -130,14 +132,19 @@ SEARCH_MS = const(30000)  # search this long, then stop, ms
 # K = 1/8), the robot's own turns at once. 1/32 (the first try) let heading slip build into 4-5 mm RMS.
 EST_SHIFT = const(3)
 # Form crab (issue 22 point 5): the sideways speed is speed * PID output / CRAB_DIV (at the paper's Kp = 25 a
-# 1 mm error walks sideways at speed / 25 mm per second: at 48 mm/s it closes in about 0.5 s); the robot
-# turns back toward parallel only past CRAB_BAND, at CRAB_TURN / 1000 of the excess angle per second, and
-# follows as form yaw on one sonar or past CRAB_ANGLE (after a corner). docs/wall.md has the trials.
-CRAB_DIV = const(6250)
+# 1 mm error walks sideways at speed / 36 mm per second: at 48 mm/s it closes in about 0.75 s; 6250, stiffer,
+# followed the corrugated wall's bumps out of phase); the robot turns back toward parallel only past
+# CRAB_BAND, at CRAB_TURN / 1000 of the excess angle per second, and follows as form yaw on one sonar, past
+# CRAB_ANGLE (after a corner) or when a pair's own sample reads the nose _CRAB_EDGE away (the wall's end
+# drawing away: an outside corner, a gap); handed over on the angle, it stays yaw while the wall is more than
+# _CRAB_NEAR beyond the set point (sliding toward a corner's end cuts it). docs/wall.md has the trials.
+CRAB_DIV = const(9000)
 CRAB_BAND = const(400)  # cdeg
 CRAB_TURN = const(1000)  # yaw rate per angle past the band, 1/s x1000
 CRAB_ANGLE = const(1000)  # cdeg
 CRAB_SIDE = const(300)  # the sideways speed at most, per mille of the forward speed
+_CRAB_EDGE = const(60000)  # 6 degrees, fixmath.ANGLE_UNIT
+_CRAB_NEAR = const(100)  # 0.1 mm
 _EST_HALF = const(4)  # 2**EST_SHIFT / 2: the correction rounded half up, not floored (no drift)
 _COUNT_MAX = const(1000000)  # counters stop here (small ints for ever)
 _DEG180 = const(1800000)  # fixmath.ANGLE_UNIT
@@ -206,7 +213,7 @@ class Follower:
         self._dist = 0  # the pair's midpoint distance estimate, 0.1 mm << 4
         self._walked = 0  # forward speed summed over the frames walked since the last sample, 0.1 mm/s
         self._slid = 0  # sideways speed away from the wall summed likewise, 0.1 mm/s (form crab)
-        self._crabbing = False  # form crab: the last sample walked sideways (else it turned)
+        self._crabbing = 0  # form crab, the last sample's law: 1 sideways, 2 turned (the angle), 3 turned (one sonar)
         self._crab_vy = 0  # ... and the command it asked for: sideways speed (0.1 mm/s), yaw rate (cdeg/s)
         self._crab_yaw = 0
         self._held = 0  # the walker's held count at the last frame
@@ -215,10 +222,10 @@ class Follower:
 
     # -- commands ----------------------------------------------------------------------
 
-    def follow(self, side, setpoint, speed=None, form="yaw"):
+    def follow(self, side, setpoint, speed=None, form="crab"):
         """Follow the `side` ("left"/"right") wall at `setpoint` (0.1 mm, the side sonar's reading)
-        walking at `speed` (0.1 mm/s, default SPEED); form "yaw" (Robot.walk), "sweeps" (seed
-        000's coxa sweeps) or "crab" (sideways to the set point). Returns 0 (following) or a
+        walking at `speed` (0.1 mm/s, default SPEED); form "crab" (the default: sideways to the set
+        point), "yaw" (Robot.walk's turn) or "sweeps" (seed 000's coxa sweeps). Returns 0 (following) or a
         hexapod.tick reason code (not standing, busy, unreachable) having changed nothing; bad
         values raise ValueError, changing nothing.
         Called again on the same side and form it changes set point and speed on the fly."""
@@ -285,21 +292,17 @@ class Follower:
         self.walk_code = OK
         self.front = -1
         self.distance = -1
-        self.angle = self.error = self.output = 0
+        self.angle = self.error = 0
         self._adr = 0
-        self._est = False
         self._walked = 0
         self._slid = 0
-        self._crabbing = False
         self._held = self.robot.walker.held
         self._used = 3
         self.used = USED_NAMES[self._side()][3]
         self.distance_only = False
-        self._fresh = 0
-        self.pid.reset()
         self._psi = self.robot.walker.psi
-        self.mode = OFF  # a new follow starts afresh whatever the mode was
-        self._set_mode(FOLLOWING, NO_REASON)
+        self.mode = OFF  # a new follow starts afresh whatever the mode was: _set_mode resets the PID, the
+        self._set_mode(FOLLOWING, NO_REASON)  # estimate, the law, the output and the fresh readings
 
     def _side(self):
         return 0 if self._f == LEFT_FRONT else 1
@@ -420,11 +423,7 @@ class Follower:
                 return
             self._set_mode(FOLLOWING, NO_REASON)
         elif ahead >= 0 and ahead < self._stop_at:
-            self._set_mode(BLOCKED, OBSTACLE)
-            self.robot.stop()
-            self._sent = False
-            self.vx = self.vy = self.yaw = 0
-            return
+            return self._halt(OBSTACLE, BLOCKED)
         if self.mode == CORNER:
             if ahead >= 0 and ahead < self._corner_at + CORNER_HYST:
                 if self._turn > CORNER_TURN * 100 or self._turn < -CORNER_TURN * 100:
@@ -459,7 +458,7 @@ class Follower:
             self._steer(now, used)
         elif not self._sent:
             # Not sent yet (refused, or no sample: straight; crab: the last sideways command).
-            if self._crabbing:
+            if self._crabbing == 1:
                 self._walk(self.speed, self._crab_yaw, self._crab_vy)
             else:
                 self._walk(self.speed, self._away * self.output)
@@ -502,27 +501,42 @@ class Follower:
         self._slid = 0
         if self.form == "crab":
             # Crab on the pair within CRAB_ANGLE of parallel; on one sonar (an edge, a gap, an outside
-            # corner) or further round (after a corner) it turns as form yaw. A change of law is a
-            # change of measurement: no derivative across it.
-            crab = used == 3 and -CRAB_ANGLE < self.angle < CRAB_ANGLE
-            if crab != self._crabbing:
-                self._crabbing = crab
+            # corner), further round (after a corner) or when this sample alone reads the nose _CRAB_EDGE
+            # away (the wall's end leaving the front beam: the estimate takes a few samples to follow) it
+            # turns as form yaw, and once turned for the angle it stays so while the wall is farther than
+            # set point + _CRAB_NEAR: at an outside corner the pair reads far until round it, and crabbing
+            # toward the wall's end cut the corner (docs/wall.md). A change of law is a change of
+            # measurement: no derivative across it.
+            law = 3
+            if used == 3:
+                law = 2
+                if (
+                    -CRAB_ANGLE < self.angle < CRAB_ANGLE
+                    and a < _CRAB_EDGE
+                    and (self._crabbing != 2 or self.distance - self.setpoint <= _CRAB_NEAR)
+                ):
+                    law = 1
+            if (law == 1) != (self._crabbing == 1):
                 self.pid.reset(True)
-            if crab:
-                return self._crab(now)
+            self._crabbing = law
+            if law == 1:
+                m = self.distance  # crab holds the wall distance itself (no look-ahead)
         u = self.pid.update(self.setpoint, m, now)
         self.error = self.pid.error
+        if self.updates < _COUNT_MAX:
+            self.updates += 1
+        if self._crabbing == 1:
+            self.output = u
+            return self._crab(u)
         # Past the guard angle no further turn that way: the pair's beams would lose the wall. On one
         # sonar the angle is odometry, and at an outside corner the rear sonar sees the wall's end
         # drawing away at the guard angle: the turn toward it must go on (corridor world).
         if used == 3 and ((u > 0 and self.angle >= ANGLE_GUARD) or (u < 0 and self.angle <= -ANGLE_GUARD)):
             u = 0
         self.output = u
-        if self.updates < _COUNT_MAX:
-            self.updates += 1
         self._walk(self.speed, self._away * u)
 
-    def _crab(self, now):
+    def _crab(self, u):
         # Form crab: the PID holds the wall distance itself (no look-ahead) and its output is walked
         # as a sideways speed, speed * u / CRAB_DIV, plus the sideways speed that cancels the heading's
         # drift toward or away from the wall (speed * sin(angle)), at most CRAB_SIDE of the speed: the
@@ -530,11 +544,6 @@ class Follower:
         # every degree turned costs about 0.07 s (docs/wall.md). The robot turns only to bring the
         # angle back inside CRAB_BAND (the heading slips 1 degree a stride, a start is up to 10 degrees
         # off), so the sonars stay in their beam.
-        u = self.pid.update(self.setpoint, self.distance, now)
-        self.error = self.pid.error
-        self.output = u
-        if self.updates < _COUNT_MAX:
-            self.updates += 1
         v = self.speed
         a = self.angle
         side = v * u // CRAB_DIV - mul_q15(v, sin(a))
@@ -545,9 +554,10 @@ class Follower:
             side = -lim
         yaw = 0
         if a > CRAB_BAND:
-            yaw = (CRAB_BAND - a) * CRAB_TURN // 1000
+            yaw = CRAB_BAND - a
         elif a < -CRAB_BAND:
-            yaw = (-CRAB_BAND - a) * CRAB_TURN // 1000
+            yaw = -CRAB_BAND - a
+        yaw = yaw * CRAB_TURN // 1000
         self._crab_vy = self._away * side
         self._crab_yaw = self._away * yaw
         self._walk(v, self._crab_yaw, self._crab_vy)
@@ -582,15 +592,15 @@ class Follower:
             if mode == FOLLOWING:
                 self.pid.reset()
                 self._est = False
-                self._crabbing = False
+                self._crabbing = 0
                 self.output = 0
                 self._fresh = 0
                 self._sent = False
         self.reason = reason
         self.reason_name = REASON_NAMES[reason]
 
-    def _halt(self, reason):
-        self._set_mode(STOPPED, reason)
+    def _halt(self, reason, mode=STOPPED):
+        self._set_mode(mode, reason)
         self.robot.stop()
         self._sent = False
         self.vx = self.vy = self.yaw = 0

@@ -27,7 +27,7 @@ SETPOINT_MAX = const(5000)
 SPEED_MIN = const(100)  # the follower's forward speed: SPEED_MIN..SPEED_MAX, 0.1 mm/s
 
 
-def check_request(side, setpoint, speed=None, form="yaw"):
+def check_request(side, setpoint, speed=None, form="crab"):
     """ValueError naming the first bad value of a wall-follow request among side, setpoint
     (0.1 mm), speed (0.1 mm/s, None: the follower's default) and form."""
     if side not in SIDES:

@@ -21,7 +21,7 @@ class Loop(runner.Loop):
 
     def state(self):
         f = self.r.follower
-        return (f.mode_name, f.used, f.distance, f.angle, f.error, f.output, f.vx, f.yaw, self.r.robot.mode)
+        return (f.mode_name, f.used, f.distance, f.angle, f.error, f.output, f.vx, f.vy, f.yaw, self.r.robot.mode)
 
 
 def _standing():
@@ -31,13 +31,13 @@ def _standing():
     return loop
 
 
-def follow_left():
+def follow_left(form=None):
     """(follow's code, state parallel at 80 mm, state nose in at 73 mm, follow_off's code, follower mode,
-    robot mode, walker state, unsafe outputs after) through the loop."""
+    robot mode, walker state, unsafe outputs after) through the loop, in `form` (None: the default)."""
     loop = _standing()
     r = loop.r
     loop.at(9000, 800, 800, 9000, 9000)
-    code = r.follow("left", 800)
+    code = r.follow("left", 800) if form is None else r.follow("left", 800, None, form)
     loop.frames(30)
     parallel = loop.state()
     loop.at(9000, 700, 760, 9000, 9000)  # 7 cm at the front sensor, nose toward the wall
@@ -50,7 +50,8 @@ def follow_left():
 
 def follow_heap(form="yaw"):
     """MicroPython only (gc.mem_alloc): (heap bytes of 300 following frames run twice in `form`, PID
-    updates, follower mode, robot mode, frames held, the command (yaw rate, or crab's sideways speed) changed)."""
+    updates, follower mode, robot mode, frames held, the command (yaw rate, or crab's sideways speed) changed
+    during the runs)."""
     import gc
 
     loop = _standing()
@@ -60,13 +61,19 @@ def follow_heap(form="yaw"):
     r.follow("left", 800, None, form)
     loop.frames(100)
 
+    last = [f.yaw, f.vy]  # the command last seen, and how often it changed (small ints: nothing allocated)
+    changes = [0]
+
     def run(n):
         for _ in range(n):
             r.step()
             r.wait()
+            if f.yaw != last[0] or f.vy != last[1]:
+                last[0] = f.yaw
+                last[1] = f.vy
+                changes[0] += 1
 
     before = f.updates
-    sent = (f.yaw, f.vy)
     run(300)
     gc.collect()
     gc.disable()
@@ -74,23 +81,27 @@ def follow_heap(form="yaw"):
     run(300)
     heap = gc.mem_alloc() - a
     gc.enable()
-    return (heap, f.updates - before, f.mode_name, r.robot.mode, r.held, sent != (f.yaw, f.vy))
+    return (heap, f.updates - before, f.mode_name, r.robot.mode, r.held, changes[0] > 0)
 
 
-def main_from_board_setting():
-    """main.main for 300 frames with the board's follow setting (left, 120 mm, 60 mm/s), the left wall at
-    115 mm: (mode, side, setpoint, speed, updated, distance, turned right, robot mode)."""
+def main_from_board_setting(form=None):
+    """main.main for 300 frames with the board's follow setting (left, 120 mm, 60 mm/s, `form` unless None),
+    the left wall at 115 mm: (mode, form, side, setpoint, speed, updated, distance, heading change (cdeg),
+    sideways speed, robot mode)."""
     import boards.pico
 
     loop = Loop()
     loop.at(9000, 1150, 1150, 9000, 9000)
-    boards.pico.BOARD["follow"] = {"side": "left", "setpoint": 1200, "speed": 600}
+    setting = {"side": "left", "setpoint": 1200, "speed": 600}
+    if form is not None:
+        setting["form"] = form
+    boards.pico.BOARD["follow"] = setting
     try:
         r = main.main(frames=300, clock=clock, boot="stand", calibrated=True)
     finally:
         boards.pico.BOARD["follow"] = None
     f = r.follower
-    return (f.mode_name, f.side, f.setpoint, f.speed, f.updates > 10, f.distance, f.turned < 0, r.robot.mode)
+    return (f.mode_name, f.form, f.side, f.setpoint, f.speed, f.updates > 10, f.distance, f.turned, f.vy, r.robot.mode)
 
 
 def follow_refusals():
