@@ -257,6 +257,19 @@ def test_while_following_a_wall_jogs_and_walks_are_refused_until_wall_off(rt):
     assert r[6] == "ok wall off" and r[7].startswith("ok mode ")
 
 
+def test_wall_takes_a_form_crab_by_default(rt):
+    """`wall SIDE CM` follows in form crab (sideways to the set point); a third word picks the form
+    (yaw: the PID turns, no sideways speed); a bad form is refused with the allowed ones."""
+    lines = ["wall left 12", "wall left 12 yaw", "wall left 12 crab", "wall left 12 zigzag", "wall off"]
+    out = call(rt, "wall_forms", lines)
+    (r0, f0, c0), (r1, f1, c1), (r2, f2, c2), (r3, f3, c3), (r4, _, _) = out
+    assert (r0, f0) == ("ok wall left setpoint 12.00", "crab") and c0[1] != 0, out[0]
+    assert (r1, f1) == ("ok wall left setpoint 12.00 form yaw", "yaw") and c1[1] == 0 and c1[2] != 0, out[1]
+    assert (r2, f2) == ("ok wall left setpoint 12.00 form crab", "crab") and c2[1] != 0, out[2]
+    assert r3 == "err wall: form 'zigzag', allowed yaw, sweeps, crab" and f3 == "crab", out[3]
+    assert r4 == "ok wall off"
+
+
 def test_backspace_and_echo(rt):
     """A person in a terminal: backspace (0x08 or 0x7f) takes back the line's last character,
     `echo on` sends typed characters back; tools (echo off, the default) see only replies."""

@@ -50,6 +50,9 @@ BAD = [
     "wall left 3",
     "wall right 51",
     "wall left",
+    "wall left 12 zigzag",
+    "wall left 12 Yaw",
+    "wall left 12 yaw now",
     "pid 1 2",
     "pid 30 -1 0",  # a good kp before a bad ki: kp must not change either
     "pid 30 0 -1",
@@ -109,6 +112,8 @@ def test_a_refused_command_changes_nothing_in_any_state(rt, state):
     assert by["height 59.9"][0] == "err height: height 59.9 is outside 60.0..100.0 mm"
     assert by["height 1e2"][0] == "err height: height '1e2' is not a decimal number (mm)"
     assert by["stream off 3"][0] == "err stream: need on [HZ], off or nothing (ask), got 'off 3'"
+    assert by["wall left 12 zigzag"][0] == "err wall: form 'zigzag', allowed yaw, sweeps, crab"
+    assert by["wall left 12 yaw now"][0] == "err wall: need left|right CM [FORM], or off, got 4 arguments"
     # a short write that reports success: only the read-back notices; the file and source are kept
     # (the OSError's text differs: CPython "[Errno 28] ...", MicroPython "(28, '...')")
     short = by["<short>"][0]

@@ -28,16 +28,21 @@ def _wall(con, args):
     if len(args) == 1 and args[0] == "off":
         con.runner.follow_off()
         return "ok wall off"
-    con._args(args, 2, "left|right CM, or off")
+    if len(args) != 3:
+        con._args(args, 2, "left|right CM [FORM], or off")
     if args[0] not in limits.SIDES:
         raise ValueError("side %r, allowed left, right or off" % (args[0][:20],))
     cm = con._num("set point", args[1], 2, limits.SETPOINT_MIN, limits.SETPOINT_MAX, "cm")
+    form = args[2] if len(args) == 3 else "crab"
+    if form not in limits.FORMS:
+        raise ValueError("form %r, allowed %s" % (form[:20], ", ".join(limits.FORMS)))
     con._battery_ok()
     con._walking = False
-    code = con.runner.follow(args[0], cm)
+    code = con.runner.follow(args[0], cm, form=form)
     if code:
         return con._refused(code)
-    return "ok wall %s setpoint %s" % (args[0], format_fixed(cm, 2))
+    reply = "ok wall %s setpoint %s" % (args[0], format_fixed(cm, 2))
+    return reply + " form " + form if len(args) == 3 else reply
 
 
 def _pid(con, args):

@@ -19,6 +19,26 @@ def replies(lines, after_stand=0):
     return [out, b.channels(), b.unsafe()]
 
 
+def wall_forms(lines, frames=60):
+    """A fresh board, stood up (frames run after the stand), its left wall parallel at 125 mm: per
+    line, its reply, the follower's form and the walk command it gives (vx, vy, yaw) after frames
+    more frames."""
+    b = Board()
+    b.say("stand")
+    b.frames(frames)
+    for k in (1, 2):  # the left wall parallel, 5 mm beyond a 12 cm set point; nothing ahead
+        b.sonar[k].set_distance(1250)
+    b.sonar[0].set_distance(30000)
+    out = []
+    for line in lines:
+        reply = b.say(line)
+        b.frames(frames)
+        f = b.r.follower
+        rb = b.r.robot
+        out.append([reply, f.form, [rb.asked_vx, rb.asked_vy, rb.asked_yaw]])
+    return out
+
+
 def refusals(jog, bad):
     """After `jog` and 3 frames, each bad line: [replies, lines after which the state
     (scenarios.rig.servo_state) was not as before, unsafe servos]."""
