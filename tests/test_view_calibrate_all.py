@@ -12,6 +12,7 @@ import asyncio
 
 import pytest
 
+from hexapod_host.commands.view import FPS
 from hexapod_host.serial import guided
 from tests.test_guided import WANT_DIR, WANT_TRIM, Maker
 
@@ -106,7 +107,7 @@ def test_all_18_joints_calibrated_from_the_page_on_the_virtual_board(tmp_path):
             raise AssertionError("%s: the page's step did not finish within %g s" % (element_id, CLICK_S))
 
         async def calibrate():
-            async with user_simulation(root=lambda: views.append(page.View(Player(src), driver))) as user:
+            async with user_simulation(root=lambda: views.append(page.View(Player(src), driver, FPS))) as user:
                 await user.open("/")
                 assert driver.owner == user.client.id  # the first tab drives, and so jogs
                 await click(user, "jog-guided")

@@ -35,7 +35,14 @@ class SimSource(Source):
         seed = trial_seed(self.seed, self.world.name, self.setpoint_cm, self.index)
         # The frame sink, not the I2C model: the same frames (tests/test_wall_sim.py), a third of the work.
         self.trial = Trial(
-            self.world, self.setpoint_cm, seed, side=self.side, disturb=self.disturb, bus="sink", record=False
+            self.world,
+            self.setpoint_cm,
+            seed,
+            side=self.side,
+            disturb=self.disturb,
+            bus="sink",
+            record=False,
+            form="crab",  # the board's default (Runner.follow), as `hexapod sim wall` runs it
         )
         self._last = None
 
