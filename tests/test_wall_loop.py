@@ -6,30 +6,32 @@ The firmware side is tests/scenarios/wall_loop.py."""
 import pytest
 
 
-def test_follow_left_wall_through_the_loop(both_runtimes):
-    # The board's default form, crab (issue 22 point 5): the same readings, hand-worked as in form yaw
-    # below; nose in 1.72 deg (inside CRAB_BAND) and too close: no turn, a sideways step away (right).
-    cp, mp = both_runtimes.with_heapsize("4m").call("scenarios.wall_loop:follow_left")
+def follow_left(both_runtimes, *form):
+    """scenarios.wall_loop:follow_left on both runtimes (the same integers), with what every form
+    shares checked: parallel at the set point, straight on at the default speed, no turn; off
+    leaves the robot standing, nothing unsafe. Returns the sample after the robot came 7 mm closer
+    (name, used, d, angle, e, u, vx, vy, yaw, ...)."""
+    cp, mp = both_runtimes.with_heapsize("4m").call("scenarios.wall_loop:follow_left", *form)
     assert cp == mp
     code, parallel, toward, off, mode, robot_mode, walker_state, bad = cp
     assert code == 0
     assert parallel == ("following", "left_front+left_rear", 800, 0, 0, 0, 800, 0, 0, 4)
-    name, used, d, angle, e, u, vx, vy, yaw, _ = toward
+    assert off == 0 and mode == "off" and robot_mode == 3 and walker_state == 0 and bad == []
+    return toward
+
+
+def test_follow_left_wall_through_the_loop(both_runtimes):
+    # The board's default form, crab (issue 22 point 5): the same readings, hand-worked as in form yaw
+    # below; nose in 1.72 deg (inside CRAB_BAND) and too close: no turn, a sideways step away (right).
+    name, used, d, angle, e, u, vx, vy, yaw, _ = follow_left(both_runtimes)
     # 76.1 mm by the estimate (form yaw's figure below) plus the sideways travel away the walk predicts
     # (about 1 mm); the angle as form yaw's, less the turn crab does not make.
     assert name == "following" and 761 <= d <= 780 and -172 < angle < 0
     assert e > 0 and u > 0 and vy < 0 and yaw == 0  # too close: step right, away from the wall
-    assert off == 0 and mode == "off" and robot_mode == 3 and walker_state == 0 and bad == []
 
 
 def test_follow_left_wall_through_the_loop_in_form_yaw(both_runtimes):
-    cp, mp = both_runtimes.with_heapsize("4m").call("scenarios.wall_loop:follow_left", "yaw")
-    assert cp == mp
-    code, parallel, toward, off, mode, robot_mode, walker_state, bad = cp
-    assert code == 0
-    # Parallel at the set point: straight on at the default speed, no turn.
-    assert parallel == ("following", "left_front+left_rear", 800, 0, 0, 0, 800, 0, 0, 4)
-    name, used, d, angle, e, u, vx, vy, yaw, _ = toward
+    name, used, d, angle, e, u, vx, vy, yaw, _ = follow_left(both_runtimes, "yaw")
     # Hand-worked: the sonars say 73 mm and atan(-6 / 200) = -1.72 deg (the chain reads 0.1 mm long:
     # HC-SR04 model and driver round up). After 30 frames (6 pair samples) the estimate has come
     # 1 - (7/8)^6 = 55 % of the way from the parallel 80 mm: 80 - 0.55 * 7.05 = 76.1 mm, plus what the
@@ -37,7 +39,6 @@ def test_follow_left_wall_through_the_loop_in_form_yaw(both_runtimes):
     # -1.72 deg less that turn (a few tenths): too close, so turn right.
     assert name == "following" and 761 <= d <= 770 and -172 < angle < 100
     assert e > 0 and u > 0 and yaw < 0 and vy == 0  # too close: turn right, away from the wall
-    assert off == 0 and mode == "off" and robot_mode == 3 and walker_state == 0 and bad == []
 
 
 def test_a_steady_wall_follow_frame_allocates_nothing(mp):

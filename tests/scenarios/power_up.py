@@ -51,20 +51,26 @@ class Lines(_stub_serial.BufferReader):
             self.most = started
 
 
+def _board():
+    """The pico stub board with its PCA9685 and HC-SR04 models: (board, chips, servo table). The
+    VM's path starts with '' (the working folder: the repository), and main.py imports the robot
+    file at its top, so `robots` comes from '' as a relative path: every robot module the boot
+    needs is imported here, before a scenario's chdir would hide them."""
+    board = stub_board.reset("pico")
+    _, chips = stub_board.pca9685_models(board)
+    stub_board.sonar_models(board, [3000 + 1000 * k for k in range(5)])
+    table = stub_board.servo_table(board)
+    __import__("robots.default_guard")
+    return board, chips, table
+
+
 def boot(folder, cal, setting, frames, typed=(), every=50, calibrated=None):
     """main.main for `frames` frames in folder (its calibration file: "none", "valid" or
     "corrupt"), the board file's boot setting (None: not given), `typed` console lines one per
     `every` frames. Returns (the boot word of `status`, the robot's mode, the frame of the first
     pulse any PCA9685 channel put out (-1: none), the most servos that went from no pulse to a
     pulse in one frame)."""
-    board = stub_board.reset("pico")
-    _, chips = stub_board.pca9685_models(board)
-    stub_board.sonar_models(board, [3000 + 1000 * k for k in range(5)])
-    # The VM's path starts with '' (the working folder: the repository), and main.py imports the
-    # robot file at its top, so `robots` came from '' as a relative path: every robot module the
-    # boot needs is imported here, before the chdir below would hide them.
-    table = stub_board.servo_table(board)
-    __import__("robots.default_guard")
+    board, chips, table = _board()
     here = os.getcwd()
     os.chdir(folder)
     try:
@@ -129,11 +135,7 @@ def early(folder, typed, frames=200):
 
     from drivers import pca9685
 
-    board = stub_board.reset("pico")
-    stub_board.pca9685_models(board)
-    stub_board.sonar_models(board, [3000 + 1000 * k for k in range(5)])
-    table = stub_board.servo_table(board)
-    __import__("robots.default_guard")
+    table = _board()[2]
     said = []
     seen = []
     write = pca9685.ServoBank.write_frame
@@ -172,11 +174,7 @@ def early_do(folder, line):
     maps in force then, the file's maps, whether the load was still under way before do)."""
     import console
 
-    board = stub_board.reset("pico")
-    stub_board.pca9685_models(board)
-    stub_board.sonar_models(board, [3000 + 1000 * k for k in range(5)])
-    table = stub_board.servo_table(board)
-    __import__("robots.default_guard")
+    table = _board()[2]
     here = os.getcwd()
     os.chdir(folder)
     try:
@@ -197,11 +195,7 @@ def interrupted(folder):
     the file's maps)."""
     import console
 
-    board = stub_board.reset("pico")
-    stub_board.pca9685_models(board)
-    stub_board.sonar_models(board, [3000 + 1000 * k for k in range(5)])
-    table = stub_board.servo_table(board)
-    __import__("robots.default_guard")
+    table = _board()[2]
     opens = []
 
     def opener(name, mode="r"):
