@@ -15,7 +15,7 @@ import sys
 
 from micropython import const
 
-from hexapod import faultlog, gait, release, sensors, tick
+from hexapod import faultlog, follow, gait, release, sensors, tick
 from hexapod.body import FINE_SHIFT
 from hexapod.leg import describe as leg_describe
 from hexapod.units import format_fixed, parse_fixed
@@ -39,9 +39,10 @@ SLOW = ("gait", "height", "stand", "sit", "relax", "save", "load", "defaults")
 # follows a wall: the 5.3 KB of heap it takes on a Pico are the walking loop's again.
 CAL = "consolecal"
 CAL_KEEP_MS = const(30000)
-# The reporting commands' module (consoleparts/more.py: help, status, sonar, echo, faults) and the
-# setting commands' (consoleparts/setting.py: height, wall, pid, stream; `gait` stays here, asked
-# while walking): each imported at
+# The reporting commands' module (consoleparts/more.py: help, sonar, echo, faults; `status`, the one
+# tools poll, stays here: its import made the first one after 30 s take ~34 ms on an emulated Pico)
+# and the setting commands' (consoleparts/setting.py: height, wall, pid, stream; `gait` stays here,
+# asked while walking): each imported at
 # the first of its commands and kept while they keep coming (let go CAL_KEEP_MS after the last
 # one: the running loop does not carry them); CircuitPython (Console.compiles, set by code.py)
 # compiles one per command and lets it go after each.
@@ -172,7 +173,7 @@ class Console:
         self._more_until = -1  # consoleparts.more stays loaded until then (ticks_ms); -1: not loaded
         self._table = {
             "help": MORE,
-            "status": MORE,
+            "status": self._status,
             "stand": self._stand,
             "sit": self._sit,
             "relax": self._relax,
@@ -385,6 +386,50 @@ class Console:
         if reply[:4] == "err " and not reply.startswith("err " + word + ":"):
             reply = "err %s: %s" % (word, reply[4:])  # every err names its command
         return reply
+
+    def _status(self, args):
+        """`status`, here (not in consoleparts.more): the command tools poll answers without an import."""
+        from runner import BOOT_WORDS, counters  # (imported here: CircuitPython compiles console before runner)
+
+        self._args(args, 0, "no arguments")
+        r = self.runner
+        f = r.follower
+        left = 0
+        if self._walking:
+            left = r.clock.ticks_diff(self._deadline, r.clock.ticks_ms())
+            left = left if left > 0 else 0
+        on = f.mode != follow.OFF
+        b = r.battery
+        if b is None:
+            state = level = "n/a"
+        else:
+            from hexapod import battery
+
+            state = battery.STATE_NAMES[b.state]
+            level = b.level_mv
+        return (
+            "ok %s faults %d mode %s gait %s "
+            "walk_ms %d wall %s wall_mode %s wall_d %s wall_angle %s wall_error %s wall_out %s wall_faults %d "
+            "cal %s boot %s battery %s battery_mv %s"
+            % (
+                counters(r),
+                r.robot.faults,
+                tick.MODE_NAMES[r.robot.mode],
+                gait.NAMES[r.robot.gait],
+                left,
+                f.side if on else "off",
+                follow.MODE_NAMES[f.mode],
+                format_fixed(f.distance, 1) if on and f.distance >= 0 else "-",  # no distance (yet)
+                format_fixed(f.angle if on else 0, 2),
+                format_fixed(f.error if on else 0, 1),
+                format_fixed(f.output if on else 0, 2),
+                f.fault_total if on else 0,
+                self.cal_source,
+                BOOT_WORDS[r.boot],
+                state,
+                level,
+            )
+        )
 
     # -- parsing ----------------------------------------------------------------------------
 

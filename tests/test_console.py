@@ -362,3 +362,10 @@ def test_status_shows_no_wall_distance_as_a_dash(rt):
     assert WALL_D.search(r[0]).group(1) == "-" and " wall off " in r[0]
     assert WALL_D.search(r[3]).group(1) == "-" and " wall left " in r[3]
     assert abs(float(WALL_D.search(r[6]).group(1)) - 120.0) <= 0.2, r[6]
+
+
+def test_status_answers_without_importing_the_reporting_module(mp):
+    """`status`, the command tools poll, lives in console.py: its first use after 30 s without a
+    reporting command took ~34 ms on the emulated Pico, the module's import (docs/pico.md); `help`
+    still loads consoleparts.more (the VM: hexapod.release and the imports are MicroPython's)."""
+    assert call(mp, "status_imports") == [True, False, True]

@@ -1,4 +1,4 @@
-"""The console's reporting commands (`help`, `status`, `sonar`, `echo`, `faults`): console.py hands
+"""The console's reporting commands (`help`, `sonar`, `echo`, `faults`; `status` is console.py's): console.py hands
 them here (Console._part; the setting commands are consoleparts/setting.py's). The console
 imports this module at the first of them; MicroPython keeps it while they keep coming (let go
 CAL_KEEP_MS after the last one); CircuitPython, which compiles a module's source at each import,
@@ -8,9 +8,8 @@ an err reply; the replies are the console's as before.
 """
 
 import console
-from runner import BOOT_WORDS, counters
 
-from hexapod import follow, gait, sensors, tick
+from hexapod import sensors
 from hexapod.units import format_fixed
 
 
@@ -22,52 +21,6 @@ def command(con, word, args):
 def _help(con, args):
     con._args(args, 0, "no arguments")
     return "ok " + console.COMMANDS
-
-
-def _battery(b, level):
-    """The status line's battery word: its state (level 0) or level in mV (1); "n/a" without a
-    monitor (a board without one never loads hexapod.battery)."""
-    if b is None:
-        return "n/a"
-    if level:
-        return b.level_mv
-    from hexapod import battery
-
-    return battery.STATE_NAMES[b.state]
-
-
-def _status(con, args):
-    con._args(args, 0, "no arguments")
-    r = con.runner
-    f = r.follower
-    left = 0
-    if con._walking:
-        left = r.clock.ticks_diff(con._deadline, r.clock.ticks_ms())
-        left = left if left > 0 else 0
-    on = f.mode != follow.OFF
-    return (
-        "ok %s faults %d mode %s gait %s "
-        "walk_ms %d wall %s wall_mode %s wall_d %s wall_angle %s wall_error %s wall_out %s wall_faults %d "
-        "cal %s boot %s battery %s battery_mv %s"
-        % (
-            counters(r),
-            r.robot.faults,
-            tick.MODE_NAMES[r.robot.mode],
-            gait.NAMES[r.robot.gait],
-            left,
-            f.side if on else "off",
-            follow.MODE_NAMES[f.mode],
-            format_fixed(f.distance, 1) if on and f.distance >= 0 else "-",  # no distance (yet)
-            format_fixed(f.angle if on else 0, 2),
-            format_fixed(f.error if on else 0, 1),
-            format_fixed(f.output if on else 0, 2),
-            f.fault_total if on else 0,
-            con.cal_source,
-            BOOT_WORDS[r.boot],
-            _battery(r.battery, 0),
-            _battery(r.battery, 1),
-        )
-    )
 
 
 def _sonar(con, args):
@@ -105,7 +58,6 @@ def _faults(con, args):
 
 _COMMANDS = {
     "help": _help,
-    "status": _status,
     "sonar": _sonar,
     "echo": _echo,
     "faults": _faults,

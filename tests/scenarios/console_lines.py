@@ -179,3 +179,15 @@ def random_bytes(data):
     b.frames(2)
     odd = [x for x in map(_untagged, b.replies) if not (x == "ok" or x.startswith("ok ") or x.startswith("err "))]
     return [b.r.frames - n0 > 0, bad, odd, [x for x in b.replies if "internal" in x], len(b.replies)]
+
+
+def status_imports():
+    """[`status`'s reply starts "ok frames ", consoleparts.more loaded after it, after `help`]."""
+    import sys
+
+    b = Board()
+    out = [b.say("status").startswith("ok frames ")]
+    out.append("consoleparts.more" in sys.modules)
+    b.say("help")
+    out.append("consoleparts.more" in sys.modules)
+    return out
