@@ -38,8 +38,9 @@ FEATHER_FREE = 171 * 1024  # gc.mem_free() at the REPL, stock CircuitPython 10, 
 # times (per module 0.68-1.05 and 0.73-1.05; the five largest 0.75-0.80); bytes that stay 0.71 and 0.73
 # (0.54-1.31). The larger total is the one used.
 PICO_RATIO = 0.80
-# The serial line during the run: stand, follow the left wall at 12 cm, a status, the self-test.
-COMMANDS = ((100, "stand\n"), (4000, "wall left 12\n"), (14000, "status\n"), (15000, "selftest\n"))
+# The serial line during the run: stand, follow the left wall at 12 cm, a status, a sonar (the
+# reporting commands' module: status is resident since frames22b), the self-test.
+COMMANDS = ((100, "stand\n"), (4000, "wall left 12\n"), (14000, "status\n"), (14500, "sonar\n"), (15000, "selftest\n"))
 SONAR_MM10 = (8000, 1200, 1200, 8000, 8000)  # front, left pair at the wall's 12 cm, right side open
 
 
