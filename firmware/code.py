@@ -204,10 +204,10 @@ def _let_go_builders(up):
     boot, main()). up False, after build(): the constructors of the objects built once, the sonar
     slot planner, the servo bank's builders, the robot geometry's loaders and code.py's own
     settings() and build(); up True, after the power-up: the console's and runner's start-up
-    (console.start, which may compile hexapod.jog for a calibration file's rows, gets the room of
-    the first; hexapod.jog goes too). On CircuitPython each was compiled at import and its bytecode would stay with its
-    class or module for the whole run: about 9.5 KB of the running heap in the VM (bench.feather,
-    2026-11-28), the room a command's compile needs (docs/flashing.md). A class's __init__ becomes
+    (console.start gets the room of the first). On CircuitPython each was compiled at import and
+    its bytecode would stay with its class or module for the whole run: about 9.5 KB of the
+    running heap in the VM (bench.feather, 2026-11-28), the room a command's compile needs
+    (docs/flashing.md). A class's __init__ becomes
     None (a later construction fails: none is made after boot; Ctrl-D reloads everything), a
     module function is deleted. A new constructor run after boot must not be listed here."""
     import runner as loop  # `runner` here is main()'s Runner
@@ -219,7 +219,6 @@ def _let_go_builders(up):
         loop.Runner.bring_up = loop.Runner.power_up = loop.Runner.follow_when_standing = None
         gone = ((console, ("start", "PollReader")),)
         names = ("_let_go_builders",)
-        console.release("hexapod.jog")  # compiled by a calibration file's load: again at a jog command
     else:
         from drivers import cp_clock, cp_hcsr04_pulsein, cp_pca9685, pca9685, ranger
         from hexapod import faultlog, gait, geometry, leg, posture, tick, walk
