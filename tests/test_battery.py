@@ -65,8 +65,8 @@ print(out)
 
 def test_readings_convert_to_pack_millivolts(rt):
     # One 12-bit step is 3300 / 4096 / 0.333 = 2.42 mV of pack; the divider and rounding add < 3 mV more.
-    raws = [rt.with_heapsize("4m").call("scenarios.battery:raw_for", mv) for mv in (6000, 6600, 7000, 7200, 8400)]
-    got = rt.with_heapsize("4m").call("scenarios.battery:to_mv", raws)
+    raws = [rt.call("scenarios.battery:raw_for", mv) for mv in (6000, 6600, 7000, 7200, 8400)]
+    got = rt.call("scenarios.battery:to_mv", raws)
     assert [abs(g - mv) <= 5 for g, mv in zip(got, (6000, 6600, 7000, 7200, 8400), strict=True)] == [True] * 5, got
 
 
@@ -74,14 +74,14 @@ def test_readings_convert_to_pack_millivolts(rt):
 def test_a_dip_shorter_than_a_second_never_trips(rt, dip_ms):
     # A dip to 6000 mV (600 below the cutoff) at every phase against the readings: shorter than
     # 1000 ms it covers at most 5 of the 6 readings, so the window's maximum stays 7600: OK.
-    assert rt.with_heapsize("4m").call("scenarios.battery:dip_states", dip_ms) == [OK]
+    assert rt.call("scenarios.battery:dip_states", dip_ms) == [OK]
 
 
 @pytest.mark.parametrize("dip_ms", [1200, 1400, 2000])
 def test_a_dip_of_1_2_s_or_longer_always_trips(rt, dip_ms):
     # 1200 ms or longer covers 6 readings at every phase: CUTOFF (and it stays: 7600 < resume 7200? no,
     # 7600 >= 7200, so it comes back to OK once 6 readings are above resume again).
-    states = rt.with_heapsize("4m").call("scenarios.battery:dip_states", dip_ms)
+    states = rt.call("scenarios.battery:dip_states", dip_ms)
     assert states == [OK, CUTOFF]
 
 
@@ -90,26 +90,26 @@ def test_the_1_4_s_dip_frame_by_frame(rt):
     # (t = 1000 .. 2200) are low. Reading 10 (t = 2000) is the 6th low one: CUTOFF there. Readings
     # 12.. are 7600 again (>= resume 7200): the 6th of them, reading 17 (t = 3400), brings OK.
     samples = [6000 if 1000 <= t < 2400 else 7600 for t in range(0, 4000, 200)]
-    states = rt.with_heapsize("4m").call("scenarios.battery:trace", samples)
+    states = rt.call("scenarios.battery:trace", samples)
     assert states == [OK] * 10 + [CUTOFF] * 7 + [OK] * 3
     # The 600 ms one: readings 5, 6, 7 low; never anything but OK.
     samples = [6000 if 1000 <= t < 1600 else 7600 for t in range(0, 4000, 200)]
-    assert rt.with_heapsize("4m").call("scenarios.battery:trace", samples) == [OK] * 20
+    assert rt.call("scenarios.battery:trace", samples) == [OK] * 20
 
 
 def test_low_then_cutoff_then_resume_with_hysteresis(rt):
     # 2S: warn 7000, cutoff 6600, resume 7200. 6 readings at 6900 -> LOW at the 6th; 6 at 6500 ->
     # CUTOFF at the 6th; 7100 (above warn, below resume) keeps CUTOFF; 7300 x 6 -> OK at the 6th.
     samples = [7500] * 3 + [6900] * 8 + [6500] * 8 + [7100] * 8 + [7300] * 8
-    states = rt.with_heapsize("4m").call("scenarios.battery:trace", samples)
+    states = rt.call("scenarios.battery:trace", samples)
     low, cut = [LOW] * 3 + [LOW] * 5, [CUTOFF] * 3 + [CUTOFF] * 8 + [CUTOFF] * 5
     assert states == [OK] * 3 + [OK] * 5 + low + cut + [OK] * 3
     # Back above warn but below resume: LOW stays LOW (the notice is not repeated).
     samples = [6900] * 6 + [7100] * 10
-    assert rt.with_heapsize("4m").call("scenarios.battery:trace", samples) == [LOW] * 16
+    assert rt.call("scenarios.battery:trace", samples) == [LOW] * 16
     # The first reading fills the window: a flat pack is CUTOFF at once, a low one LOW.
-    assert rt.with_heapsize("4m").call("scenarios.battery:trace", [6400]) == [CUTOFF]
-    assert rt.with_heapsize("4m").call("scenarios.battery:trace", [6900]) == [LOW]
+    assert rt.call("scenarios.battery:trace", [6400]) == [CUTOFF]
+    assert rt.call("scenarios.battery:trace", [6900]) == [LOW]
 
 
 # -- the board file ----------------------------------------------------------------------------
@@ -187,7 +187,7 @@ BAD = [
 
 @pytest.mark.parametrize("setting, message", BAD)
 def test_bad_battery_settings_are_refused(rt, setting, message):
-    assert rt.with_heapsize("4m").call("scenarios.battery:bad_setting", setting) == message
+    assert rt.call("scenarios.battery:bad_setting", setting) == message
 
 
 def test_good_battery_settings_are_accepted(rt):
@@ -199,7 +199,7 @@ def test_good_battery_settings_are_accepted(rt):
         {"pin": 28, "divider_permille": 700, "cells": 1, "cell_warn_mv": 3550, "cell_cutoff_mv": 3400},
         {"pin": 28, "divider_permille": 333, "cell_warn_mv": 3400, "cell_cutoff_mv": 3000, "cell_resume_mv": 3700},
     ):
-        assert rt.with_heapsize("4m").call("scenarios.battery:bad_setting", setting) is None, setting
+        assert rt.call("scenarios.battery:bad_setting", setting) is None, setting
 
 
 def test_circuitpython_boards_refuse_a_battery_setting():
@@ -273,7 +273,7 @@ def _mv(status):
 
 
 def test_the_battery_scenario(rt):
-    assert_the_battery_scenario(*rt.with_heapsize("4m").call("scenarios.battery:scenario", 1050))
+    assert_the_battery_scenario(*rt.call("scenarios.battery:scenario", 1050))
 
 
 def assert_the_battery_scenario(log, said):
@@ -335,7 +335,7 @@ def assert_the_battery_scenario(log, said):
 
 
 def test_power_up_below_the_cutoff_stays_relaxed(rt):
-    log, said = rt.with_heapsize("4m").call("scenarios.battery:boot_at_cutoff", 100)
+    log, said = rt.call("scenarios.battery:boot_at_cutoff", 100)
     assert [v for f, what, v in log if what == "mode"] == [RELAXED]
     lines = [line for f, line in said if not line.startswith("cal:")]
     assert lines[0].startswith("battery: cutoff, 6.39 V")
@@ -347,18 +347,18 @@ def test_power_up_below_the_cutoff_stays_relaxed(rt):
 
 
 def test_boards_without_the_setting_show_n_a(rt):
-    monitor, status = rt.with_heapsize("4m").call("scenarios.battery:no_setting_status")
+    monitor, status = rt.call("scenarios.battery:no_setting_status")
     assert monitor is None and status.endswith(" boot none battery n/a battery_mv n/a")
 
 
 def test_a_battery_frame_allocates_nothing(mp):
-    heap, frames, held, state, mode = mp.with_heapsize("4m").call("scenarios.battery:steady_frame_heap")
+    heap, frames, held, state, mode = mp.call("scenarios.battery:steady_frame_heap")
     assert (frames, held, state, mode) == (700, 0, OK, WALKING)
     assert heap == 0
 
 
 def test_a_capped_frame_allocates_nothing(mp):
-    heap, state, req_vx, mode = mp.with_heapsize("4m").call("scenarios.battery:low_heap")
+    heap, state, req_vx, mode = mp.call("scenarios.battery:low_heap")
     # 1200, 300 under a 600 cap: isqrt(1200^2 + 300^2) = 1236 -> 485 permille -> 582, 145; the yaw
     # 1500 * 485 // 1000 = 727 is under its cap.
     assert (state, req_vx, mode) == (LOW, 582, WALKING)
@@ -375,7 +375,7 @@ def test_a_capped_frame_allocates_nothing(mp):
 )
 def test_selftest_reports_the_pack(rt, pack_mv, state, ok):
     # 2S thresholds by hand: warn 2 x 3.5 = 7.0 V, cutoff 2 x 3.3 = 6.6 V.
-    [line] = rt.with_heapsize("4m").call("scenarios.battery:selftest_supply", pack_mv)
+    [line] = rt.call("scenarios.battery:selftest_supply", pack_mv)
     word, check, volts, unit, rest = line.split(" ", 4)
     assert (word, check, unit, rest) == ("ok" if ok else "err", "supply", "V,", "2 cells, " + state)
     # Shown to 10 mV (cut, not rounded) of a reading one 12-bit ADC count wide: 3.3 V / 4096 at the

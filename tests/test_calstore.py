@@ -19,7 +19,7 @@ def test_crc16_is_ccitt_false():
 
 
 def test_format_round_trips_and_refuses_damage(rt):
-    out = rt.with_heapsize("4m").call("scenarios.calstore:format_checks")
+    out = rt.call("scenarios.calstore:format_checks")
     assert out[0] is True
     assert out[1] == ["truncated (no checksum line)"] * 4
     assert out[2] == "checksum mismatch (corrupt)"
@@ -33,7 +33,7 @@ def test_the_boots_parse_reads_what_decode_reads_or_leaves_it_to_decode(both_run
     # heap the loop leaves free); any other text goes to consolecal.decode, which says why it is
     # refused or reads it (a form split() takes: a tab, a '+'). On every variant parse took, its
     # rows and version are decode's, in both runtimes.
-    cp, mp = both_runtimes.with_heapsize("4m").call("scenarios.calstore:parse_agrees")
+    cp, mp = both_runtimes.call("scenarios.calstore:parse_agrees")
     assert cp == mp
     n, took, fallback, differ = cp
     assert differ == [] and n > 7000
@@ -41,7 +41,7 @@ def test_the_boots_parse_reads_what_decode_reads_or_leaves_it_to_decode(both_run
 
 
 def test_a_save_cut_at_every_step_keeps_old_or_new(rt):
-    out = rt.with_heapsize("4m").call("scenarios.calstore:all_cuts")
+    out = rt.call("scenarios.calstore:all_cuts")
     for k, (seen, n) in enumerate(out):
         names = {name for (_, _, name), _ in seen}
         if k % 2 == 0:  # an old file: every cut boots old (before the rename) or new (after)
@@ -65,7 +65,7 @@ def test_two_cut_saves_in_a_row_never_lose_the_last_good_file():
 
 
 def test_read_only_filesystem_refuses_save_and_keeps_the_file(rt):
-    out = rt.with_heapsize("4m").call(CONSOLE + "read_only")
+    out = rt.call(CONSOLE + "read_only")
     assert out[0].endswith("trim 40 dir 1 min_us 600 max_us 2400")
     assert out[1].startswith("err save: the filesystem is read-only (") and out[1].endswith("the previous file is kept")
     assert out[2] is True
@@ -76,7 +76,7 @@ def test_read_only_filesystem_refuses_save_and_keeps_the_file(rt):
 
 
 def test_boot_with_missing_or_broken_file_says_so_once_and_uses_the_robot_file(rt):
-    out = rt.with_heapsize("4m").call(CONSOLE + "boots")
+    out = rt.call(CONSOLE + "boots")
     assert out[0] == (["cal: no hexapod_cal.txt; the robot file's calibration is in use"], "defaults", 0, 1500)
     assert out[1] == (
         ["cal: hexapod_cal.txt truncated (no checksum line); the robot file's calibration is in use"],
@@ -92,7 +92,7 @@ def test_boot_with_missing_or_broken_file_says_so_once_and_uses_the_robot_file(r
 def test_versions_read_and_refused(rt):
     """save writes version 2; a version 1 file (written before the tibia's reference moved to -90
     degrees) still decodes; any other version line, with a right checksum, is refused naming both."""
-    out = rt.with_heapsize("4m").call("scenarios.calstore:versions")
+    out = rt.call("scenarios.calstore:versions")
     assert out[0] == [2, 1, 0, 0]
     assert out[1][:2] == [True, True]
     assert out[1][2] == "version line 'hexapod-cal 3', this firmware reads 'hexapod-cal 1' or 'hexapod-cal 2'"
@@ -104,7 +104,7 @@ def test_a_version_1_file_loads_with_its_pulses_unless_it_flips_a_tibia(both_run
     tibia: 2420 us at 0 degrees, 1520 at -90, 10 us per degree). A version 1 file that flips a
     tibia's direction mirrored it about 0 degrees, which version 2 cannot say: refused, naming the
     servo, and the robot file's calibration stays in force."""
-    cp, mp = both_runtimes.with_heapsize("4m").call(CONSOLE + "version_1_files")
+    cp, mp = both_runtimes.call(CONSOLE + "version_1_files")
     assert cp == mp
     out = cp
     assert out[0] == (
@@ -131,7 +131,7 @@ def test_a_short_write_that_reports_success_is_caught_by_the_read_back(rt):
     # Every write() answers "all written" but half reaches the file: the temp file reads back
     # different, save raises OSError 28 (ENOSPC, "filesystem full?") before the rename, and the
     # old file stays the one the next boot loads.
-    assert rt.with_heapsize("4m").call("scenarios.calstore:short_write") == (28, True, True)
+    assert rt.call("scenarios.calstore:short_write") == (28, True, True)
 
 
 def test_the_jog_and_calibration_commands_module_stays_for_a_jog_session(rt):
@@ -142,7 +142,7 @@ def test_the_jog_and_calibration_commands_module_stays_for_a_jog_session(rt):
     # process). CircuitPython's code.py compiles it at boot and keeps it until the robot walks
     # (cal_until_walk: no timeout), and lets it go at `wall` before the compile of the command's
     # module (`wall off` too).
-    name, seen = rt.with_heapsize("4m").call(CONSOLE + "cal_module_session")
+    name, seen = rt.call(CONSOLE + "cal_module_session")
     kept = name == "cpython"
     assert seen == (
         ["file", kept, "ok ", True, "err", True, "err", True, "ok ", True, True, kept]

@@ -21,7 +21,7 @@ LEG_LINE = re.compile(
 
 def call(runtime, name, *args):
     """The scenario tests/scenarios/console_lines.py:name on runtime, in a 4 MB VM heap."""
-    return runtime.with_heapsize("4m").call(SCENARIO + name, *args)
+    return runtime.call(SCENARIO + name, *args)
 
 
 def test_jogging_matches_the_float_ik_and_the_servo_map(rt):
@@ -67,7 +67,7 @@ def test_commands_reply_one_line_each_on_both_runtimes(both_runtimes):
         "save",
         "load",
     ]
-    cp, mp = both_runtimes.with_heapsize("4m").call(SCENARIO + "replies", lines, 120)
+    cp, mp = both_runtimes.call(SCENARIO + "replies", lines, 120)
     assert cp == mp
     replies, _, unsafe = cp
     assert unsafe == []
@@ -332,7 +332,7 @@ def test_tibia_trim_has_room_both_ways_at_its_reference(both_runtimes):
         "get 5",
         "joint 5 tibia -80",
     ]
-    cp, mp = both_runtimes.with_heapsize("4m").call(SCENARIO + "replies", lines)
+    cp, mp = both_runtimes.call(SCENARIO + "replies", lines)
     assert cp == mp
     r, _, unsafe = cp
     pulses = [LEG_LINE.match(x).group(7) if LEG_LINE.match(x) else x for x in r]

@@ -13,7 +13,7 @@ SCENARIO = "scenarios.console_gait:"
 
 
 def test_a_status_during_a_gait_change_is_answered_in_the_next_frame(both_runtimes):
-    cp, mp = both_runtimes.with_heapsize("4m").call(SCENARIO + "status_during_gait_change")
+    cp, mp = both_runtimes.call(SCENARIO + "status_during_gait_change")
     assert cp == mp
     rows = cp
     assert rows[0] == "ok mode moving" and rows[1].startswith("ok ")
@@ -30,6 +30,6 @@ def test_a_status_during_a_gait_change_is_answered_in_the_next_frame(both_runtim
 
 def test_a_tagged_gait_change_says_working_then_its_late_reply_carries_the_tag(both_runtimes):
     # The link (docs/console.md, "Request tags") pairs the reply checked over frames with its request.
-    cp, mp = both_runtimes.with_heapsize("4m").call(SCENARIO + "tagged_gait_change")
+    cp, mp = both_runtimes.call(SCENARIO + "tagged_gait_change")
     assert cp == mp
     assert cp == ["#5 working", "#5 ok gait ripple"]

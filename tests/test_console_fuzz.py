@@ -217,7 +217,7 @@ def _vm_batch(seed, n):
 
 def test_random_bytes_through_the_reader_in_the_vm(mp):
     data = _vm_batch(8, 600)
-    ran, bad, not_replies, internal, n = mp.with_heapsize("4m").call("scenarios.console_lines:random_bytes", data)
+    ran, bad, not_replies, internal, n = mp.call("scenarios.console_lines:random_bytes", data)
     assert ran and bad == [] and not_replies == [] and internal == []
     assert n >= 300  # blank lines get no reply; a random \n or \r inside a line ends it
 

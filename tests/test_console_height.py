@@ -9,7 +9,7 @@ S = "scenarios.console_height:"
 
 
 def test_standing_the_feet_go_to_the_new_height(both_runtimes):
-    cp, mp = both_runtimes.with_heapsize("4m").call(S + "standing")
+    cp, mp = both_runtimes.call(S + "standing")
     assert cp == mp
     assert cp[0] == ["ok height 70.0"]
     assert cp[1] == ["-70.0"] * 6
@@ -20,7 +20,7 @@ def test_standing_the_feet_go_to_the_new_height(both_runtimes):
 
 
 def test_sitting_the_next_stand_goes_there(both_runtimes):
-    cp, mp = both_runtimes.with_heapsize("4m").call(S + "sitting")
+    cp, mp = both_runtimes.call(S + "sitting")
     assert cp == mp
     replies, sat, stood = cp
     assert replies == ["ok height 90.0"]

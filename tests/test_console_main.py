@@ -14,7 +14,7 @@ SCENARIO = "scenarios.console_main:"
 @pytest.mark.parametrize("on_exit", ["relax", "hold"])
 def test_ctrl_c_relaxes_or_holds_and_leaves_the_runner(rt, on_exit):
     src = "from scenarios.console_main import ctrl_c\nctrl_c(%r)\n" % (on_exit,)
-    out = rt.run(src, heapsize="4m").splitlines()
+    out = rt.run(src).splitlines()
     assert out[0] == "cal: no hexapod_cal.txt; the robot file's calibration is in use"
     # boot="stand", calibrated=True: the host run vouches for the calibration the file would give
     assert out[1] == "boot: standing up (the board file's boot setting is stand, the servos are calibrated)"
@@ -29,7 +29,7 @@ def test_ctrl_c_relaxes_or_holds_and_leaves_the_runner(rt, on_exit):
 
 
 def test_watchdog_starves_when_the_loop_stops(rt):
-    assert rt.with_heapsize("4m").call(SCENARIO + "watchdog") == [False, True]
+    assert rt.call(SCENARIO + "watchdog") == [False, True]
 
 
 @pytest.mark.parametrize(

@@ -94,7 +94,7 @@ STATES = ("relaxed", "jogged", "standing", "walking", "following")
 
 @pytest.mark.parametrize("state", STATES)
 def test_a_refused_command_changes_nothing_in_any_state(rt, state):
-    mode, follow_mode, out = rt.with_heapsize("4m").call("scenarios.console_refusals:refused", state, BAD + STATEFUL)
+    mode, follow_mode, out = rt.call("scenarios.console_refusals:refused", state, BAD + STATEFUL)
     assert mode == {"relaxed": 0, "jogged": 5, "standing": 3, "walking": 4, "following": 4}[state]
     assert (follow_mode != 0) == (state == "following")
     by = {}

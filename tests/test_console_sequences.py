@@ -17,9 +17,7 @@ LONG_SEQUENCES = 20000
 def test_sit_after_a_stretched_tibia_sits(rt):
     # stand, `joint 2 tibia 0` (docs/jog.md's calibration step), `sit`: it used to answer ok and
     # hold every frame after (faults 50 a second, mode sitting, leg 2 frozen at 1500 1454 2348).
-    replies, to_stand, took, mode, held, faults, leg2, notices = rt.with_heapsize("4m").call(
-        "scenarios.console_seq:sit_after_tibia_zero"
-    )
+    replies, to_stand, took, mode, held, faults, leg2, notices = rt.call("scenarios.console_seq:sit_after_tibia_zero")
     assert replies[0] == "ok mode moving" and replies[2] == "ok mode moving", replies
     assert " angles 0.00 8.11 0.00 pulses 1500 1581 2400 " in replies[1]
     assert 0 < to_stand < 100
@@ -29,7 +27,7 @@ def test_sit_after_a_stretched_tibia_sits(rt):
 
 
 def test_a_held_frame_is_announced_once(rt):
-    first, held, again = rt.with_heapsize("4m").call("scenarios.console_seq:held_notice")
+    first, held, again = rt.call("scenarios.console_seq:held_notice")
     assert held == 100  # the frame cannot be sent: every frame is held ...
     assert first == [
         "held: leg 2: femur pulse 50 us below its calibrated 1631..2400 us; the servos keep the last frame"
@@ -57,10 +55,10 @@ def _check(result, n):
 
 
 def test_random_command_sequences_never_freeze(rt):
-    frames = _check(rt.with_heapsize("4m").call("scenarios.console_seq:sequences", 20, SEQUENCES), SEQUENCES)
+    frames = _check(rt.call("scenarios.console_seq:sequences", 20, SEQUENCES), SEQUENCES)
     assert frames > 15 * SEQUENCES  # 37,374 frames (12.5 virtual minutes) at seed 20
 
 
 @pytest.mark.skipif(not os.environ.get("HEXAPOD_LONG"), reason="the long run: HEXAPOD_LONG=1")
 def test_random_command_sequences_long(rt):
-    _check(rt.with_heapsize("4m").call("scenarios.console_seq:sequences", 21, LONG_SEQUENCES), LONG_SEQUENCES)
+    _check(rt.call("scenarios.console_seq:sequences", 21, LONG_SEQUENCES), LONG_SEQUENCES)

@@ -25,7 +25,7 @@ WALLS = [3000 + 1000 * k for k in range(5)]  # the rig's sonar walls, 0.1 mm, he
 
 
 def call(rt, name, *args):
-    return rt.with_heapsize("4m").call(SCENARIO + name, *args)
+    return rt.call(SCENARIO + name, *args)
 
 
 def fields(line):
@@ -158,7 +158,7 @@ def test_no_raw_output_refuses_stream_and_makes_nothing(rt):
 def test_a_streaming_frame_allocates_nothing(mp):
     # Through a writer that keeps nothing, then through the board's own writer: select.poll (POLLOUT) on the VM's
     # stdout and its stream.write(buf, n). The scenario prints: the lines are the VM's stdout.
-    out = mp.run("from scenarios.console_stream import frame_heap\nframe_heap()\n", heapsize="4m").splitlines()
+    out = mp.run("from scenarios.console_stream import frame_heap\nframe_heap()\n").splitlines()
     a, b, n, writer, viper = ast.literal_eval(out[-1])
     assert (a, b) == (0, 0)
     assert n == 50 and writer == "PollWriter" and viper
@@ -180,7 +180,7 @@ def test_the_viper_writer_equals_the_plain_one(mp):
             for _ in range(44)
         ]
         rows.append(row)
-    same, first = mp.with_heapsize("4m").call("scenarios.stream_digits:digits_same", rows)
+    same, first = mp.call("scenarios.stream_digits:digits_same", rows)
     assert same == 100
     # the last row's first three fields, written by hand from the row
     last = ["-" if x == -0x3FFFFFFF else str(x) for x in rows[-1][:3]]

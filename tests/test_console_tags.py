@@ -13,7 +13,7 @@ def run(rt, steps):
     """tests/scenarios/console_rig.py steps() on a fresh board: ("lines", bytes, frames=3),
     ("do", line) or ("mode",) each."""
     steps = [s + (3,) if s[0] == "lines" and len(s) == 2 else s for s in steps]
-    return rt.with_heapsize("4m").call("scenarios.console_rig:steps", steps)
+    return rt.call("scenarios.console_rig:steps", steps)
 
 
 def test_tagged_replies_and_a_clean_line(rt):
@@ -87,7 +87,7 @@ def test_the_tag_echo_copies_no_reply(mp):
     goes out as print's two arguments, never as a new string. A copied status reply would cost
     about 300 bytes more (its ~270 characters)."""
     lines = (b"status\n", b"#7 status\n", b"#123456789 status\n", b"get 2\n", b"#7 get 2\n")
-    heap = mp.with_heapsize("4m").call("scenarios.console_rig:frame_heap", lines)
+    heap = mp.call("scenarios.console_rig:frame_heap", lines)
     status, tagged, long_tag, get2, tagged_get2 = heap
     assert 0 <= tagged - status <= 128 and 0 <= long_tag - status <= 128, (status, tagged, long_tag)
     assert 0 <= tagged_get2 - get2 <= 128, (get2, tagged_get2)

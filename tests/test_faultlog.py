@@ -87,7 +87,7 @@ def test_recording_allocates_nothing_in_the_vm(mp, keeper):
 
 
 def faults_reply(rt, plan):
-    lines, words = rt.with_heapsize("4m").call("scenarios.faultlog:on_the_board", plan)
+    lines, words = rt.call("scenarios.faultlog:on_the_board", plan)
     assert len(lines) == 1
     return lines[0], words
 
@@ -133,7 +133,7 @@ def test_a_watchdog_reset_is_logged_once_and_clear_empties_the_log(rt):
 
 def test_bad_faults_lines_are_refused_and_change_nothing(rt):
     bad = ["faults x", "faults clear now", "faults CLEAR", "faults 1", "faults clear clear", "faults -"]
-    out, same, nonempty = rt.with_heapsize("4m").call("scenarios.faultlog:refused", bad)
+    out, same, nonempty = rt.call("scenarios.faultlog:refused", bad)
     assert nonempty and same
     for line, got in zip(bad, out, strict=True):
         arg = line[len("faults ") :]

@@ -66,6 +66,6 @@ def test_to_cdeg_rounds_half_up():
 
 
 def test_fixmath_bit_identical_in_both_runtimes(both_runtimes):
-    cp, mp = both_runtimes.with_heapsize("1m").call("scenarios.fixmath:vectors", 3000)
+    cp, mp = both_runtimes.call("scenarios.fixmath:vectors", 3000)
     assert len(cp) == 3000
     assert cp == mp

@@ -37,7 +37,7 @@ def float_margin(feet):
 @pytest.mark.parametrize("a,b", PAIRS, ids=["%s-%s" % (NAMES[a], NAMES[b]) for a, b in PAIRS])
 def test_a_gait_change_while_walking_never_stops(both_runtimes, a, b):
     # 15 mm/s forward: within every gait's top speed at its own cycle (the wave's is 16.7 mm/s).
-    cp, mp = both_runtimes.with_heapsize("4m").call(TARGET + "switch", a, b, 150, 0, 0)
+    cp, mp = both_runtimes.call(TARGET + "switch", a, b, 150, 0, 0)
     assert cp == mp
     faults, faulted, info, rows = cp
     assert faults == 0 and faulted == []  # every frame's IK and pulses passed
@@ -89,7 +89,7 @@ def test_a_refused_gait_change_changes_nothing(both_runtimes):
 def test_a_change_on_the_move_allocates_nothing_a_tick(mp):
     # The fitting, the tick the new gait is taken (phase_in) and the slowed ticks after it.
     pairs = [[3, 0], [0, 3], [2, 1], [1, 2]]
-    got = mp.with_heapsize("1m").call(TARGET + "heap_per_tick", pairs)
+    got = mp.call(TARGET + "heap_per_tick", pairs)
     assert got == [[a, b, b, 0, 299] for a, b in pairs]
 
 

@@ -90,7 +90,7 @@ def test_timeouts_to_the_microsecond_and_faults(rt):
 def test_runner_wait_holds_the_20_ms_grid_to_the_us(rt):
     # Steps that take 3.456, 19.999, 23 (an overrun), 5, 45 (far behind) and 1 ms; hand-worked starts.
     busy = [3456, 19999, 23000, 5000, 45000, 1000]
-    assert rt.with_heapsize("1m").call("scenarios.hcsr04_irq:wait_grid", 777, busy) == [
+    assert rt.call("scenarios.hcsr04_irq:wait_grid", 777, busy) == [
         0,
         20000,
         40000,
@@ -108,7 +108,7 @@ def test_a_port_without_pin_irq_falls_back_to_time_pulse_us(rt):
 
 
 def test_main_build_times_the_echo_by_irq(rt):
-    split, blocked, dist = rt.with_heapsize("4m").call("scenarios.runner:irq_sonar", 12)
+    split, blocked, dist = rt.call("scenarios.runner:irq_sonar", 12)
     assert split is True
     assert blocked <= 2 + 10 + 600  # the trigger and the driver's start-up sleeps, never an echo
     assert [abs(d - (3000 + 1000 * k)) <= 2 for k, d in enumerate(dist)] == [True] * 5

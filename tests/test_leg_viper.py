@@ -54,6 +54,6 @@ print((count, solved, differ))
 
 
 def test_viper_solver_equals_plain_solver(mp):
-    count, solved, differ = mp.value(EQUAL, heapsize="1m")
+    count, solved, differ = mp.value(EQUAL)
     assert count > 150000 and solved > 30000, (count, solved)
     assert differ == 0

@@ -7,7 +7,7 @@ SETTINGS = [(25000000, 50, 0), (25750000, 50, 500), (24250000, 60, 333), (290000
 
 
 def test_viper_stage_bytes_equal_the_plain_path_and_the_data_sheet(both_runtimes):
-    cp, mp = both_runtimes.with_heapsize("4m").call("scenarios.pca9685_viper:stage_counts", SETTINGS)
+    cp, mp = both_runtimes.call("scenarios.pca9685_viper:stage_counts", SETTINGS)
     assert cp[0] is False and mp[0] is True  # CPython stages in Python, the VM in viper
     assert cp[1:] == mp[1:]  # byte for byte, 4 oscillator and frequency settings x 2001 pulse widths
     for osc, _freq, prescale, counts in cp[1:]:
@@ -39,7 +39,7 @@ def bank_cases():
 def test_bank_staging_in_one_viper_call_equals_the_plain_path(both_runtimes):
     cases = bank_cases()
     bad = [True, False, 1500.0, "1500", None, 2**40]
-    cp, mp = both_runtimes.with_heapsize("4m").call("scenarios.pca9685_viper:bank_frames", LIMITS, CHANNELS, cases, bad)
+    cp, mp = both_runtimes.call("scenarios.pca9685_viper:bank_frames", LIMITS, CHANNELS, cases, bad)
     assert cp[0] is False and mp[0] is True  # CPython stages in Python, the VM in one viper call
     assert cp[1:] == mp[1:]  # every frame byte for byte, the clamp counts, the refusals
     # The clamp count by hand: pulses outside each ServoMap's limits (0 is no pulse, not clamped).

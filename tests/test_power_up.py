@@ -20,7 +20,7 @@ RELAXED, STANDING = 0, 3  # hexapod.tick modes
 )
 def test_boot_sends_no_pulse_until_stand(rt, tmp_path, cal, setting, word):
     # 300 frames (6 s): every PCA9685 channel stays off, the robot relaxed, status says why.
-    assert rt.with_heapsize("4m").call("scenarios.power_up:boot", str(tmp_path), cal, setting, 300) == (
+    assert rt.call("scenarios.power_up:boot", str(tmp_path), cal, setting, 300) == (
         word,
         RELAXED,
         -1,
@@ -29,9 +29,7 @@ def test_boot_sends_no_pulse_until_stand(rt, tmp_path, cal, setting, word):
 
 
 def test_calibrated_board_with_boot_stand_stands(rt, tmp_path):
-    word, mode, first, most = rt.with_heapsize("4m").call(
-        "scenarios.power_up:boot", str(tmp_path), "valid", "stand", 300
-    )
+    word, mode, first, most = rt.call("scenarios.power_up:boot", str(tmp_path), "valid", "stand", 300)
     assert (word, mode, first) == ("stood", STANDING, 0)  # the very first frame (index 0) drives the servos
     # Soft start, seen on the PCA9685 models: at most one leg group (2 legs, 6 servos) switches on
     # in a frame, where all 18 did before.
@@ -41,9 +39,7 @@ def test_calibrated_board_with_boot_stand_stands(rt, tmp_path):
 def test_an_uncalibrated_board_stands_when_told(rt, tmp_path):
     # `stand` typed at frame 49 (0-based; one line every 50 frames): nothing before it, standing
     # well within the 250 frames after; typed in frame 49's poll, sent in frame 50.
-    word, mode, first, most = rt.with_heapsize("4m").call(
-        "scenarios.power_up:boot", str(tmp_path), "none", None, 300, ["stand"], 50
-    )
+    word, mode, first, most = rt.call("scenarios.power_up:boot", str(tmp_path), "none", None, 300, ["stand"], 50)
     assert most == 6  # the soft start
     assert word == "relaxed_uncalibrated" and mode == STANDING and first == 50
 
@@ -74,7 +70,7 @@ def test_main_releases_the_boot_only_modules(rt, tmp_path):
     # MicroPython: forgotten once the runner is built (their heap back to the loop); CPython, where
     # the tests share one process, keeps them (hexapod.release is a no-op there).
     kept = rt.name == "cpython"
-    assert rt.with_heapsize("4m").call("scenarios.power_up:released", str(tmp_path)) == [kept] * 6
+    assert rt.call("scenarios.power_up:released", str(tmp_path)) == [kept] * 6
 
 
 def test_no_command_runs_before_the_calibration_file_is_in_force(rt, tmp_path):
@@ -84,7 +80,7 @@ def test_no_command_runs_before_the_calibration_file_is_in_force(rt, tmp_path):
     # file's is refused, and every frame that drives a servo (the `stand`) does so on the file's
     # calibration, never on the robot file's.
     typed = ["status", "pulse 1 coxa LO", "stand"]
-    said, seen, want, mode = rt.with_heapsize("4m").call("scenarios.power_up:early", str(tmp_path), typed)
+    said, seen, want, mode = rt.call("scenarios.power_up:early", str(tmp_path), typed)
     assert len(said) == 3 and said[0].startswith("ok frames ") and " cal file boot relaxed " in said[0], said
     assert said[1].startswith("err "), said
     assert said[2].startswith("ok "), said
@@ -94,7 +90,7 @@ def test_no_command_runs_before_the_calibration_file_is_in_force(rt, tmp_path):
 def test_a_call_while_the_boot_loads_the_file_finishes_the_load_first(rt, tmp_path):
     # console.do (the REPL's way in, after a Ctrl-C in the first frames) runs on the file's
     # calibration too: the load under way is finished first.
-    reply, maps, want, pending = rt.with_heapsize("4m").call("scenarios.power_up:early_do", str(tmp_path), "status")
+    reply, maps, want, pending = rt.call("scenarios.power_up:early_do", str(tmp_path), "status")
     assert pending and maps == want
     assert reply.startswith("ok frames ") and " cal file boot relaxed " in reply, reply
 
@@ -103,6 +99,6 @@ def test_a_load_interrupted_in_a_step_starts_over(rt, tmp_path):
     # A Ctrl-C (here: the file's open raising KeyboardInterrupt) inside one of the load's steps
     # leaves a new load in its place, not a dead one: the next call finishes it, on the file's
     # calibration.
-    raised, pending, reply, maps, want = rt.with_heapsize("4m").call("scenarios.power_up:interrupted", str(tmp_path))
+    raised, pending, reply, maps, want = rt.call("scenarios.power_up:interrupted", str(tmp_path))
     assert raised == "KeyboardInterrupt" and pending
     assert maps == want and reply.startswith("ok frames ") and " cal file boot relaxed " in reply, reply

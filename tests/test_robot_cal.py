@@ -53,7 +53,7 @@ MUTATIONS = [
 
 
 def run_mutations(rt, mutations):
-    return rt.with_heapsize("2m").call(SCENARIO + "mutations", [m[:2] for m in mutations])
+    return rt.call(SCENARIO + "mutations", [m[:2] for m in mutations])
 
 
 def test_the_shipped_calibration_passes_and_a_copy_too(rt):
@@ -69,7 +69,7 @@ def test_many_bad_calibrations_each_fail_with_a_clear_value_error(rt):
 
 
 def test_messages_are_identical_on_both_runtimes(both_runtimes):
-    cpython, micropython = both_runtimes.with_heapsize("2m").call(SCENARIO + "mutations", [m[:2] for m in MUTATIONS])
+    cpython, micropython = both_runtimes.call(SCENARIO + "mutations", [m[:2] for m in MUTATIONS])
     assert cpython == micropython
 
 
@@ -93,7 +93,7 @@ def test_servo_maps_give_seed_001_pulses_and_the_mounts_come_in_sonar_order(rt):
     # The rows the board files carried before the move (centre_us at angle 0, direction): every
     # angle inside the joint limits maps to the same pulse, 10 us per degree (seed 001).
     old = [(1500, 1), (1500, 1), (2400, 1)] * 3 + [(1500, 1), (1500, -1), (600, -1)] * 3
-    pulses, refs, mounts, fresh = rt.with_heapsize("2m").call(SCENARIO + "maps_and_mounts")
+    pulses, refs, mounts, fresh = rt.call(SCENARIO + "maps_and_mounts")
     limits = (-9000, 9000, -9000, 9000, -18000, 0)  # robots/default.py LIMITS
     for k, (centre, direction) in enumerate(old):
         lo, hi = limits[2 * (k % 3)], limits[2 * (k % 3) + 1]

@@ -4,7 +4,7 @@ them, and no channel ever outputs a pulse outside its servo's calibrated range."
 
 
 def run_both(both_runtimes, scenario, *args):
-    cp, mp = both_runtimes.with_heapsize("4m").call(scenario, *args)
+    cp, mp = both_runtimes.call(scenario, *args)
     assert cp == mp
     return cp
 
@@ -35,14 +35,14 @@ def test_faults_while_running(both_runtimes):
 
 def test_a_steady_frame_allocates_nothing(mp):
     """Ping + tick + two bursts, through the stub machine and the chip models, in the VM."""
-    heap, n, held, failed, mode = mp.with_heapsize("4m").call("scenarios.runner:steady_frame_heap")
+    heap, n, held, failed, mode = mp.call("scenarios.runner:steady_frame_heap")
     assert (held, failed, mode) == (0, 0, 4) and n == 800
     assert heap == 0
 
 
 def test_esp32_board_builds_and_runs(rt):
     # standing after the stand-up move
-    assert rt.with_heapsize("4m").call("scenarios.runner:board_runs", "esp32_devkit", 120) == (120, 0, 0, 0, [], 3)
+    assert rt.call("scenarios.runner:board_runs", "esp32_devkit", 120) == (120, 0, 0, 0, [], 3)
 
 
 def test_run_counts_its_frames_from_its_own_start(both_runtimes):

@@ -38,7 +38,7 @@ def cal_crc():
 
 
 def test_selftest_passes_on_the_stub_board_and_writes_no_register(rt):
-    lines, frames, before, after, loaded, same = rt.with_heapsize("4m").call("scenarios.selftest:checks")
+    lines, frames, before, after, loaded, same = rt.call("scenarios.selftest:checks")
     heap = lines[8]
     assert lines[:8] == [
         "ok board pico robot default",
@@ -73,7 +73,7 @@ def test_selftest_passes_on_the_stub_board_and_writes_no_register(rt):
 
 
 def test_selftest_standing_moves_no_servo(rt):
-    lines, frames, before, after, loaded, same = rt.with_heapsize("4m").call("scenarios.selftest:checks", standing=True)
+    lines, frames, before, after, loaded, same = rt.call("scenarios.selftest:checks", standing=True)
     assert lines[-1] == "ok selftest 15 checks, 0 failed"
     assert before == after and same  # a standing robot's pulses, register by register
 
@@ -138,7 +138,7 @@ def test_selftest_standing_moves_no_servo(rt):
     ],
 )
 def test_selftest_names_each_fault_and_its_likely_cause(rt, fault, errs):
-    lines, frames, before, after, loaded, same = rt.with_heapsize("4m").call("scenarios.selftest:checks", fault)
+    lines, frames, before, after, loaded, same = rt.call("scenarios.selftest:checks", fault)
     assert [x for x in lines if x.startswith("err")] == errs
     assert len(lines) == 16 and frames == 6 and same and not loaded
     assert before[0] == after[0]  # chip 0x40 untouched whatever happened to 0x41
@@ -148,7 +148,7 @@ def test_selftest_names_each_fault_and_its_likely_cause(rt, fault, errs):
 
 @pytest.mark.parametrize("mode", ["relaxed", "standing", "sitting"])
 def test_bad_selftest_lines_are_refused_and_change_nothing(rt, mode):
-    out, same, loaded = rt.with_heapsize("4m").call("scenarios.selftest:bad_lines", mode)
+    out, same, loaded = rt.call("scenarios.selftest:bad_lines", mode)
     by = {line: got for line, got in out}
     assert all(len(got) == 1 and got[0].startswith("err selftest: ") for got in by.values()), by
     assert same and not loaded
@@ -168,7 +168,7 @@ def test_bad_selftest_lines_are_refused_and_change_nothing(rt, mode):
 
 
 def test_servo_sweep_moves_only_that_leg_slowly_and_comes_back(rt):
-    lines, frames, seen, others, mode, before, after = rt.with_heapsize("4m").call("scenarios.selftest:sweep", 2)
+    lines, frames, seen, others, mode, before, after = rt.call("scenarios.selftest:sweep", 2)
     # pico.py leg 2: 10 us a degree, direction 1: +-10 degrees is +-100 us around each pulse held
     c, f, t = before
     assert lines[0] == "ok servo 2 coxa swept -10.00..10.00 deg at 20 deg/s, pulses %d..%d us" % (c - 100, c + 100)
@@ -190,7 +190,7 @@ def test_servo_sweep_moves_only_that_leg_slowly_and_comes_back(rt):
 
 
 def test_servo_sweep_refused_by_a_calibrated_range_goes_back(rt):
-    p, r1, lines, pulses, mode = rt.with_heapsize("4m").call("scenarios.selftest:sweep_refused")
+    p, r1, lines, pulses, mode = rt.call("scenarios.selftest:sweep_refused")
     assert r1 == ["ok leg 2 joint femur centre_us 1500 ref_deg 0.00 trim 0 dir 1 min_us 600 max_us %d" % (p + 50)]
     assert lines[0].startswith("ok servo 2 coxa swept ")
     # 50 us of room is 5 degrees; the first step past it (5.2 degrees, 13 steps of 0.4) is refused
@@ -202,7 +202,7 @@ def test_servo_sweep_refused_by_a_calibrated_range_goes_back(rt):
 
 
 def test_a_new_line_cuts_a_sweep_short_with_its_end_line_first(rt):
-    replies, mode = rt.with_heapsize("4m").call("scenarios.selftest:sweep_cut_short")
+    replies, mode = rt.call("scenarios.selftest:sweep_cut_short")
     assert replies[0] == (
         "err selftest servos 3: cut short by a new line during the coxa; the leg stays where it is "
         "('sit' brings it home)"

@@ -109,7 +109,7 @@ def test_the_sonar_ring_is_a_frame_sensor(rt):
 
 
 def test_a_new_kind_of_sensor_plugs_in_beside_the_sonars(both_runtimes):
-    cp, mp = both_runtimes.with_heapsize("4m").call(SCENARIO + "extra_sensor", 200)
+    cp, mp = both_runtimes.call(SCENARIO + "extra_sensor", 200)
     assert cp == mp
     n, frames_run, first, sonar_calls, faults, runner_faults, same, standing, order = cp
     assert n == frames_run == sonar_calls == 200 and standing and same and order
@@ -119,13 +119,13 @@ def test_a_new_kind_of_sensor_plugs_in_beside_the_sonars(both_runtimes):
 
 
 def test_a_frame_with_an_extra_sensor_allocates_nothing(mp):
-    heap, n = mp.with_heapsize("4m").call(SCENARIO + "extra_sensor_heap", 150, 50)
+    heap, n = mp.call(SCENARIO + "extra_sensor_heap", 150, 50)
     assert heap == 0 and n == 250
 
 
 @pytest.mark.parametrize("name", ["front", "left_rear"])
 def test_the_console_names_the_sonars_by_the_contract(rt, name):
-    reply = rt.with_heapsize("4m").call(SCENARIO + "console_sonar", 30)
+    reply = rt.call(SCENARIO + "console_sonar", 30)
     words = reply.split()
     assert words[0] == "ok" and words[1::3] == ORDER.split(", ")
     k = ORDER.split(", ").index(name)

@@ -3,9 +3,7 @@ FrameBuffer, both runtimes: what moves, what is refused and why, leaving the jog
 
 
 def test_jog_api_moves_one_leg_refuses_with_reasons_and_leaves_smoothly(rt):
-    # 512k: the VM compiles the whole core from source here; at 256k the board file's check ran
-    # out of heap on some runs (this test measures behaviour, not memory).
-    out = rt.with_heapsize("512k").call("scenarios.tick_jog:jog_session")
+    out = rt.call("scenarios.tick_jog:jog_session")
     assert out[0] == 0
     mode, pulses = out[1]
     # leg 2 only; seed 004 IK of (130, 0, -80) mm: 0, 8.11, -90.83 deg; pico.py leg 2 rows
@@ -37,7 +35,7 @@ def test_a_calibration_reaches_the_servo_at_once_even_while_frames_are_held(rt):
     # `range 3 femur 590 1858`: the robot's pulse had moved, the chip's would only at the next
     # frame sent. Hand-worked: the jog's angle is (2118 - 1500) / 10 us per degree = 61.8 deg;
     # centre 1200 maps it to 1200 + 618 = 1818 us, inside 590..1858 (2118 is not).
-    out = rt.with_heapsize("512k").call("scenarios.tick_jog:calibrate_reaches_the_chip_at_once")
+    out = rt.call("scenarios.tick_jog:calibrate_reaches_the_chip_at_once")
     assert out[0] == 0 and out[1] == 2118
     assert out[2] == (0, 1818)  # the sink has the new pulse before any tick
     assert out[3] == (0, 1818)  # so the narrowed range never sees 2118 us

@@ -501,7 +501,7 @@ def source(path, cases, side):
 @pytest.mark.parametrize("path", sorted(PATHS))
 def test_viper_path_equals_plain_code_on_the_vm(mp, path):
     _, checks, cases, _ = PATHS[path]
-    checks(mp.value(source(path, cases, "both"), heapsize="1m")[:-1], cases)
+    checks(mp.value(source(path, cases, "both"))[:-1], cases)
 
 
 def test_robot_on_the_vm_uses_the_viper_frame_swing_and_stance(mp):
@@ -524,6 +524,6 @@ def test_viper_paths_equal_plain_code_on_the_emulated_pico(mp, path):
         status, out, err, _ = pico.run_source(source(path, cases, "viper"), fs=fs, timeout=600)
     assert status == 0, (path, out + err)
     board = ast.literal_eval(out.strip().splitlines()[-1])
-    plain = mp.value(source(path, cases, "plain"), heapsize="1m")
+    plain = mp.value(source(path, cases, "plain"))
     checks(plain[:-1], cases)
     assert board[0] == cases and board[-1] == plain[-1], (path, board, plain)

@@ -11,7 +11,7 @@ def follow_left(both_runtimes, *form):
     shares checked: parallel at the set point, straight on at the default speed, no turn; off
     leaves the robot standing, nothing unsafe. Returns the sample after the robot came 7 mm closer
     (name, used, d, angle, e, u, vx, vy, yaw, ...)."""
-    cp, mp = both_runtimes.with_heapsize("4m").call("scenarios.wall_loop:follow_left", *form)
+    cp, mp = both_runtimes.call("scenarios.wall_loop:follow_left", *form)
     assert cp == mp
     code, parallel, toward, off, mode, robot_mode, walker_state, bad = cp
     assert code == 0
@@ -43,7 +43,7 @@ def test_follow_left_wall_through_the_loop_in_form_yaw(both_runtimes):
 
 def test_a_steady_wall_follow_frame_allocates_nothing(mp):
     """Ping + follower (PID, walk command) + tick + two bursts, in the VM: 0 heap bytes."""
-    heap, updates, mode, robot_mode, held, turned = mp.with_heapsize("4m").call("scenarios.wall_loop:follow_heap")
+    heap, updates, mode, robot_mode, held, turned = mp.call("scenarios.wall_loop:follow_heap")
     assert (mode, robot_mode, held) == ("following", 4, 0)
     assert updates >= 55 and turned  # two runs of 300 frames: every 100 ms a PID update, new commands
     assert heap == 0
@@ -51,9 +51,7 @@ def test_a_steady_wall_follow_frame_allocates_nothing(mp):
 
 def test_a_steady_crab_frame_allocates_nothing(mp):
     """The same in form crab (issue 22 point 5: the PID walks sideways): 0 heap bytes."""
-    heap, updates, mode, robot_mode, held, changed = mp.with_heapsize("4m").call(
-        "scenarios.wall_loop:follow_heap", "crab"
-    )
+    heap, updates, mode, robot_mode, held, changed = mp.call("scenarios.wall_loop:follow_heap", "crab")
     assert (mode, robot_mode, held) == ("following", 4, 0)
     assert updates >= 55 and changed
     assert heap == 0
@@ -63,7 +61,7 @@ def test_a_steady_crab_frame_allocates_nothing(mp):
 def test_main_starts_following_from_the_board_setting(both_runtimes, form):
     # A source, not a call: the test reads the status line main.main prints before the value.
     src = "from scenarios.wall_loop import main_from_board_setting\nprint(main_from_board_setting(%r))\n" % form
-    cp, mp = both_runtimes(src, heapsize="4m")
+    cp, mp = both_runtimes(src)
     assert cp == mp
     notice, *lines = cp.strip().splitlines()
     assert notice == "boot: standing up (the board file's boot setting is stand, the servos are calibrated)"
@@ -81,5 +79,5 @@ def test_main_starts_following_from_the_board_setting(both_runtimes, form):
 
 
 def test_follow_refuses_until_standing_and_bad_values_change_nothing(rt):
-    out = rt.with_heapsize("4m").call("scenarios.wall_loop:follow_refusals")
+    out = rt.call("scenarios.wall_loop:follow_refusals")
     assert out == [22, 21, "side", "setpoint", "speed", "form", ("off", 3, 0), 0, ("following", 4)]

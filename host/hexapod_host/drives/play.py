@@ -38,7 +38,7 @@ def source(commands, gait, ticks):
 def run_source(text, runtime):
     """The player's printed lines, run in the VM ('micropython') or here ('cpython')."""
     if runtime == "micropython":
-        return mpvm.run(text, heapsize="1m", timeout=600)
+        return mpvm.run(text, timeout=600)
     out = io.StringIO()
     with contextlib.redirect_stdout(out):
         exec(compile(text, SCRIPT, "exec"), {"__name__": "__main__"})

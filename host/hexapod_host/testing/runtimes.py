@@ -90,9 +90,9 @@ class CPythonRuntime:
 
 class MicroPythonRuntime(CPythonRuntime):
     name = "micropython"
-    heapsize = "256k"
+    heapsize = mpvm.HEAP
 
-    def run(self, source, *, stdin="", heapsize="256k"):
+    def run(self, source, *, stdin="", heapsize=mpvm.HEAP):
         return mpvm.run(source, stdin=stdin, heapsize=heapsize, path=(TESTS,))
 
     def call(self, target, *args, **kwargs):
