@@ -22,7 +22,7 @@ def page():
     driver = vb.open_browser()
     try:
         driver.get(server.url)
-        assert vb.wait_for(lambda: frame(driver) > 0, timeout=60), "the page never showed a frame"
+        assert vb.wait_for(lambda: frame(driver) > 0), "the page never showed a frame"
         assert driver.find_element(By.CSS_SELECTOR, ".nicegui-scene canvas")
         yield driver, server
     finally:
@@ -86,7 +86,7 @@ def test_the_robot_is_drawn_where_it_stands(page, tmp_path):
     driver, _ = page
     # The scene's objects reach the canvas after the first frame's text does (a busy machine shows
     # the gap): wait until anything robot-coloured is drawn, then look where it is.
-    drawn = vb.wait_for(lambda: orange_pixels(canvas(driver), (0, 0, 820, 540)), timeout=60)
+    drawn = vb.wait_for(lambda: orange_pixels(canvas(driver), (0, 0, 820, 540)))
     assert drawn, "no robot-coloured pixel in the canvas after 60 s"
     img = canvas(driver)
     w, h = img.size
@@ -105,9 +105,9 @@ def test_the_pose_changes_while_the_sim_runs(page):
     driver, _ = page
     for _ in range(3):  # a trial that ends between the two pictures freezes the robot: the next one
         click(driver, "start")
-        assert vb.wait_for(lambda: "running" in status(driver), timeout=20), status(driver)
+        assert vb.wait_for(lambda: "running" in status(driver)), status(driver)
         f0, a = frame(driver), canvas(driver)
-        assert vb.wait_for(lambda f0=f0: frame(driver) >= f0 + 25, timeout=30), "the simulator did not step"
+        assert vb.wait_for(lambda f0=f0: frame(driver) >= f0 + 25), "the simulator did not step"
         b = canvas(driver)
         if "running" in status(driver):
             break
@@ -121,18 +121,18 @@ def test_pause_holds_the_frame_and_step_advances_it_by_one(page):
     driver, _ = page
     for _ in range(3):  # a finished trial cannot be paused or stepped: the next one
         click(driver, "start")
-        assert vb.wait_for(lambda: "running" in status(driver), timeout=20), status(driver)
+        assert vb.wait_for(lambda: "running" in status(driver)), status(driver)
         click(driver, "pause")
-        assert vb.wait_for(lambda: re.search("paused|done", status(driver)), timeout=20), status(driver)
+        assert vb.wait_for(lambda: re.search("paused|done", status(driver))), status(driver)
         if "paused" in status(driver):
             break
     held = frame(driver)
     time.sleep(0.5)
     assert frame(driver) == held
     click(driver, "step")
-    assert vb.wait_for(lambda: frame(driver) == held + 1, timeout=10), status(driver)
+    assert vb.wait_for(lambda: frame(driver) == held + 1), status(driver)
     click(driver, "start")
-    assert vb.wait_for(lambda: frame(driver) > held + 5, timeout=10), status(driver)
+    assert vb.wait_for(lambda: frame(driver) > held + 5), status(driver)
     assert vb.page_errors(driver) == []
 
 
@@ -191,7 +191,7 @@ def replay_page(tmp_path_factory):
     driver = vb.open_browser()
     try:
         driver.get(server.url)
-        assert vb.wait_for(lambda: frame(driver) >= 0 and shown_angles(driver), timeout=60), "no frame shown"
+        assert vb.wait_for(lambda: frame(driver) >= 0 and shown_angles(driver)), "no frame shown"
         yield driver, recorded(path)
     finally:
         driver.quit()
@@ -219,7 +219,7 @@ def test_scrubbing_the_timeline_shows_the_recorded_angles(replay_page):
         x = int(slider.size["width"] * (fraction - 0.5))
         ActionChains(driver).move_to_element_with_offset(slider, x, 0).click().perform()
         expect = int(400 * fraction)
-        assert vb.wait_for(lambda e=expect: abs(frame(driver) - e) <= 40, timeout=20), (frame(driver), expect)
+        assert vb.wait_for(lambda e=expect: abs(frame(driver) - e) <= 40), (frame(driver), expect)
         f, shown = settled(driver)
         assert f in angles and shown == angles[f], (f, shown)
     assert "paused" in status(driver)
@@ -228,7 +228,7 @@ def test_scrubbing_the_timeline_shows_the_recorded_angles(replay_page):
 def test_a_replay_played_to_its_end_shows_its_last_frame(replay_page):
     driver, angles = replay_page
     click(driver, "start")
-    assert vb.wait_for(lambda: "done" in status(driver), timeout=60), status(driver)
+    assert vb.wait_for(lambda: "done" in status(driver)), status(driver)
     f, shown = settled(driver)
     assert f == 400 and shown == angles[400]
     assert vb.page_errors(driver) == []

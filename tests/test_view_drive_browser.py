@@ -35,7 +35,7 @@ def drive(tmp_path_factory):
 
         # The front sonar hears nothing from the start (the virtual board's own fault command,
         # sent before the page takes the line): its beam must be drawn red.
-        with Link.open(board.path, timeout=30) as link:
+        with Link.open(board.path) as link:
             assert link.request("fault no_echo 0") == "ok fault no_echo 0"
         with vb.driving(("--virtual", "--virtual-port", board.path)) as (driver, server):
             yield driver, board, server.url
@@ -68,7 +68,7 @@ def last_frame(board):
     return ev[-1][1] if ev else -1
 
 
-def frames_pass(board, n, timeout=60):
+def frames_pass(board, n, timeout=vb.HANG_S):
     """Wait until the board has run n more frames (its trace's heartbeat), not a wall-clock time."""
     start = last_frame(board)
     assert vb.wait_for(lambda: last_frame(board) >= start + n, timeout=timeout), "the board stopped running"
@@ -86,13 +86,13 @@ def pulse_frames(events, after=-1):
 def stand(driver, board):
     n = len(vb.commands(board.trace(), "stand"))  # an earlier test's stand is not this one's
     # A socket that reconnected under load gives the drive back within a refresh: wait for it.
-    assert vb.wait_for(lambda: "you drive" in text(driver, "drive-who"), timeout=30), text(driver, "drive-who")
+    assert vb.wait_for(lambda: "you drive" in text(driver, "drive-who")), text(driver, "drive-who")
     click(driver, "drive-stand")
-    assert vb.wait_for(lambda: len(vb.commands(board.trace(), "stand")) > n, timeout=30), (
-        "no stand reached the board: %r" % text(driver, "drive-who")
+    assert vb.wait_for(lambda: len(vb.commands(board.trace(), "stand")) > n), "no stand reached the board: %r" % text(
+        driver, "drive-who"
     )
     f0 = vb.commands(board.trace(), "stand")[n][0]
-    assert vb.wait_for(lambda: any(m[1] == STANDING for m in modes(board.trace(), f0)), timeout=60), (
+    assert vb.wait_for(lambda: any(m[1] == STANDING for m in modes(board.trace(), f0))), (
         "the board did not reach standing"
     )
     return f0
@@ -106,8 +106,8 @@ def test_the_page_loads_without_console_errors(drive):
     # a live board runs on its own clock: no start, pause, step or speed (the simulator's, test_view_browser)
     assert driver.execute_script("return ['start', 'pause', 'step'].filter(i => document.getElementById(i))") == []
     # The board streams: the page shows `stream on 25`'s reply and counts telemetry lines.
-    assert vb.wait_for(lambda: "(ok stream 25)" in text(driver, "drive-board"), timeout=30), text(driver, "drive-board")
-    assert vb.wait_for(lambda: "telemetry lines 0 " not in text(driver, "drive-board"), timeout=30)
+    assert vb.wait_for(lambda: "(ok stream 25)" in text(driver, "drive-board")), text(driver, "drive-board")
+    assert vb.wait_for(lambda: "telemetry lines 0 " not in text(driver, "drive-board"))
 
 
 def red_pixels(driver):
@@ -134,9 +134,7 @@ def red_pixels(driver):
 
 def test_a_sonar_fault_turns_its_beam_red(drive):
     driver, _, _ = drive
-    assert vb.wait_for(lambda: re.search(r"front\s+-\s+no_echo", text(driver, "readings")), timeout=30), text(
-        driver, "readings"
-    )
+    assert vb.wait_for(lambda: re.search(r"front\s+-\s+no_echo", text(driver, "readings"))), text(driver, "readings")
     assert red_pixels(driver) > 20  # the 150 mm beam, 8 mm thick: about 40-60 pixels here
     assert re.search(r"left front\s+400\.\d\s+ok", text(driver, "readings"))  # the others read their walls
 
@@ -149,7 +147,7 @@ def test_the_stand_button_stands_it(drive):
     assert standing - f0 <= STAND_FRAMES
     assert pulse_frames(ev, f0)[0] <= f0 + PULSE_FRAMES  # the servos moved from the next frame on
     # and the page, drawn from the board's telemetry, says so
-    assert vb.wait_for(lambda: "robot standing" in text(driver, "status"), timeout=30), text(driver, "status")
+    assert vb.wait_for(lambda: "robot standing" in text(driver, "status")), text(driver, "status")
     assert vb.page_errors(driver) == []
 
 
@@ -158,16 +156,16 @@ def test_w_walks_while_held_and_letting_go_stops_it(drive):
     stand(driver, board)
     n0 = len(vb.commands(board.trace(), "walk"))
     keys(driver, down="w")
-    assert vb.wait_for(lambda: len(vb.commands(board.trace(), "walk")) > n0, timeout=30), "W sent no walk"
+    assert vb.wait_for(lambda: len(vb.commands(board.trace(), "walk")) > n0), "W sent no walk"
     first = vb.commands(board.trace(), "walk")[n0]
     assert first[2] == ["walk", "80", "0", "0"]
     fw = first[0]
     # The page, from the telemetry: walking, the walk in force.
-    assert vb.wait_for(lambda: "robot walking" in text(driver, "status"), timeout=30), text(driver, "status")
-    assert vb.wait_for(lambda: "walk 80 0 0," in text(driver, "drive-board"), timeout=30), text(driver, "drive-board")
+    assert vb.wait_for(lambda: "robot walking" in text(driver, "status")), text(driver, "status")
+    assert vb.wait_for(lambda: "walk 80 0 0," in text(driver, "drive-board")), text(driver, "drive-board")
     frames_pass(board, 120)  # held for 2.4 s of the board's time: more than twice the walk's 1000 ms timeout
     keys(driver, up="w")
-    assert vb.wait_for(lambda: [c for c in vb.commands(board.trace(), "stop") if c[0] > fw], timeout=30), (
+    assert vb.wait_for(lambda: [c for c in vb.commands(board.trace(), "stop") if c[0] > fw]), (
         "letting go of W sent no stop"
     )
     fs = [c for c in vb.commands(board.trace(), "stop") if c[0] > fw][0][0]
@@ -201,9 +199,9 @@ def test_the_window_losing_focus_stops_a_held_walk(drive):
     stand(driver, board)
     n0, s0 = len(vb.commands(board.trace(), "walk")), len(vb.commands(board.trace(), "stop"))
     keys(driver, down="w")
-    assert vb.wait_for(lambda: len(vb.commands(board.trace(), "walk")) > n0, timeout=30), "W sent no walk"
+    assert vb.wait_for(lambda: len(vb.commands(board.trace(), "walk")) > n0), "W sent no walk"
     driver.execute_script("window.dispatchEvent(new Event('blur'))")  # as when another window takes the focus
-    assert vb.wait_for(lambda: len(vb.commands(board.trace(), "stop")) > s0, timeout=30), "losing focus sent no stop"
+    assert vb.wait_for(lambda: len(vb.commands(board.trace(), "stop")) > s0), "losing focus sent no stop"
     fs = vb.commands(board.trace(), "stop")[s0][0]
     frames_pass(board, 60)
     keys(driver, up="w")  # its keyup, late: nothing more to stop
@@ -227,7 +225,7 @@ def test_the_stick_pushed_up_walks_and_let_go_stops(drive):
     words = [c for c in vb.commands(board.trace(), "walk")[n0:] if float(c[2][1]) > 60][0][2]
     assert abs(float(words[3])) < 5, words  # forward, hardly turning
     ActionChains(driver).release().perform()
-    assert vb.wait_for(lambda: len(vb.commands(board.trace(), "stop")) > s0, timeout=30), "letting go sent no stop"
+    assert vb.wait_for(lambda: len(vb.commands(board.trace(), "stop")) > s0), "letting go sent no stop"
     assert vb.page_errors(driver) == []
 
 
@@ -236,13 +234,13 @@ def test_a_second_tab_is_view_only(drive):
 
     driver, board, url = drive
     with vb.second_tab(driver, url):
-        assert vb.wait_for(lambda: "view-only" in text(driver, "drive-who"), timeout=60), text(driver, "drive-who")
+        assert vb.wait_for(lambda: "view-only" in text(driver, "drive-who")), text(driver, "drive-who")
         assert not driver.find_element(By.ID, "drive-stand").is_enabled()
         n0 = len(vb.commands(board.trace(), "walk"))
         keys(driver, down="w")
         # The key reached the server and was refused there (the page's own widgets are disabled,
         # but the keyboard is the whole page's).
-        assert vb.wait_for(lambda: "another tab drives" in text(driver, "drive-log"), timeout=30)
+        assert vb.wait_for(lambda: "another tab drives" in text(driver, "drive-log"))
         frames_pass(board, 50)
         keys(driver, up="w")
         frames_pass(board, 50)
@@ -268,7 +266,7 @@ def test_a_gamepad_walks_while_off_centre_and_stops_centred_or_gone(drive):
         driver.execute_script(FAKE_PAD)
         n0 = len(vb.commands(board.trace(), "walk"))
         driver.execute_script("window.hexapodPad.axes = [0, -1, 0, 0]")  # left stick up, to the rim
-        assert vb.wait_for(lambda: len(vb.commands(board.trace(), "walk")) > n0, timeout=30), "the pad sent no walk"
+        assert vb.wait_for(lambda: len(vb.commands(board.trace(), "walk")) > n0), "the pad sent no walk"
         fw, _, words = vb.commands(board.trace(), "walk")[n0]
         assert words == ["walk", "80", "0", "0"]
         # Held 10 s of the board's time, well past the server's PAD_STALE (12 renewals: 3 s, 5-6 s
@@ -279,7 +277,7 @@ def test_a_gamepad_walks_while_off_centre_and_stops_centred_or_gone(drive):
         early = [c for c in vb.commands(board.trace(), "stop") if c[0] > fw]
         assert not early, "stopped at frame %d while the pad was held (walk at %d)" % (early[0][0], fw)
         driver.execute_script("window.hexapodPad.axes = [0, 0.05, 0, 0]")  # let go: back within the dead zone
-        assert vb.wait_for(lambda: len(vb.commands(board.trace(), "stop")) > s0, timeout=30), "centred sent no stop"
+        assert vb.wait_for(lambda: len(vb.commands(board.trace(), "stop")) > s0), "centred sent no stop"
         fs = vb.commands(board.trace(), "stop")[s0][0]
         frames_pass(board, SETTLE_FRAMES + 10)
         ev = board.trace()
@@ -293,10 +291,10 @@ def test_a_gamepad_walks_while_off_centre_and_stops_centred_or_gone(drive):
         # The right stick turns; then the pad disconnects while held: stop.
         n1, s1 = len(vb.commands(ev, "walk")), len(vb.commands(ev, "stop"))
         driver.execute_script("window.hexapodPad.axes = [0, 0, 1, 0]")
-        assert vb.wait_for(lambda: len(vb.commands(board.trace(), "walk")) > n1, timeout=30), "the turn sent no walk"
+        assert vb.wait_for(lambda: len(vb.commands(board.trace(), "walk")) > n1), "the turn sent no walk"
         assert vb.commands(board.trace(), "walk")[n1][2] == ["walk", "0", "0", "-20"]  # right turns right
         driver.execute_script(NO_PAD)
-        assert vb.wait_for(lambda: len(vb.commands(board.trace(), "stop")) > s1, timeout=30), "gone sent no stop"
+        assert vb.wait_for(lambda: len(vb.commands(board.trace(), "stop")) > s1), "gone sent no stop"
         fg = vb.commands(board.trace(), "stop")[s1][0]
         frames_pass(board, 50)
         assert not [c for c in vb.commands(board.trace(), "walk") if c[0] > fg], "a walk after the pad was gone"
@@ -326,9 +324,7 @@ def test_the_height_control_refuses_outside_the_range_and_sends_a_height_inside(
     field.send_keys(Keys.CONTROL, "a")
     field.send_keys("80")
     click(driver, "drive-height-set")
-    assert vb.wait_for(lambda: len(vb.commands(board.trace(), "height")) > n0, timeout=30), (
-        "no height reached the board"
-    )
+    assert vb.wait_for(lambda: len(vb.commands(board.trace(), "height")) > n0), "no height reached the board"
     assert [w for _, _, w in vb.commands(board.trace(), "height")[n0:]] == [["height", "80.0"]]
-    assert vb.wait_for(lambda: "ok height 80.0" in text(driver, "drive-log"), timeout=60), text(driver, "drive-log")
+    assert vb.wait_for(lambda: "ok height 80.0" in text(driver, "drive-log")), text(driver, "drive-log")
     assert vb.page_errors(driver) == []

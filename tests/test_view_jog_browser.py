@@ -72,7 +72,7 @@ def arrived(board, words):
     return [f for f, _, w in vb.commands(board.trace(), words.split()[0]) if w == words.split()]
 
 
-def wait_line(board, words, before, timeout=30):
+def wait_line(board, words, before, timeout=vb.HANG_S):
     """The frame at which `words` arrived for the (before + 1)th time: before is the count taken
     before the click (an earlier test's same line is not this one's)."""
     assert vb.wait_for(lambda: len(arrived(board, words)) > before, timeout=timeout), (
@@ -103,9 +103,9 @@ def relaxed(driver, board):
     earlier test may have left it standing."""
     if [m[1] for m in modes(board.trace())][-1:] in ([], [RELAXED]):
         return
-    assert vb.wait_for(lambda: "you drive" in text(driver, "drive-who"), timeout=30), text(driver, "drive-who")
+    assert vb.wait_for(lambda: "you drive" in text(driver, "drive-who")), text(driver, "drive-who")
     click(driver, "drive-relax")
-    assert vb.wait_for(lambda: [m[1] for m in modes(board.trace())][-1:] == [RELAXED], timeout=30)
+    assert vb.wait_for(lambda: [m[1] for m in modes(board.trace())][-1:] == [RELAXED])
 
 
 def test_trim_leg_2_tibia_moves_its_pulse_and_save_keeps_it(page):
@@ -118,15 +118,15 @@ def test_trim_leg_2_tibia_moves_its_pulse_and_save_keeps_it(page):
     wait_line(board, "cal 2 tibia", n_cal)
     click(driver, "jog-ref")
     f_ref = wait_line(board, "joint 2 tibia -90.00", n_ref)
-    assert vb.wait_for(lambda: trim_shown(driver) == 0, timeout=30), text(driver, "jog-text")
+    assert vb.wait_for(lambda: trim_shown(driver) == 0), text(driver, "jog-text")
     frames_pass(board, 5)
     assert widths(board.trace(), TIBIA_2, f_ref)[-1][1] == AT_REFERENCE_US
     n_cal, n_trim = len(arrived(board, "cal 2 tibia")), len(arrived(board, "trim 2 tibia 10"))
     click(driver, "jog-trim-plus")  # the us step is 10 to start
     f_trim = wait_line(board, "trim 2 tibia 10", n_trim)
     # the panel shows the board's own cal line, asked after the trim
-    assert vb.wait_for(lambda: len(arrived(board, "cal 2 tibia")) > n_cal, timeout=30), "no cal after the trim"
-    assert vb.wait_for(lambda: trim_shown(driver) == 10, timeout=30), text(driver, "jog-text")
+    assert vb.wait_for(lambda: len(arrived(board, "cal 2 tibia")) > n_cal), "no cal after the trim"
+    assert vb.wait_for(lambda: trim_shown(driver) == 10), text(driver, "jog-text")
     frames_pass(board, 5)
     moved = widths(board.trace(), TIBIA_2, f_trim)
     assert moved and moved[0][1] == TRIMMED_US, moved
@@ -139,7 +139,7 @@ def test_trim_leg_2_tibia_moves_its_pulse_and_save_keeps_it(page):
     n_save = len(arrived(board, "save"))
     click(driver, "jog-save")
     wait_line(board, "save", n_save)
-    assert vb.wait_for(lambda: "save: ok saved" in text(driver, "jog-text"), timeout=30), text(driver, "jog-text")
+    assert vb.wait_for(lambda: "save: ok saved" in text(driver, "jog-text")), text(driver, "jog-text")
     saved = (cal_dir / "hexapod_cal.txt").read_text()
     assert "2 tibia 10 1 600 2400" in saved
     assert vb.page_errors(driver) == []
@@ -153,20 +153,20 @@ def test_a_trim_the_board_refuses_shows_its_err_and_changes_nothing(page):
     pick(driver, "jog-joint", "tibia")
     click(driver, "jog-read")
     # +10 when the trim test ran first (the order is random)
-    assert vb.wait_for(lambda: trim_shown(driver) is not None, timeout=30), text(driver, "jog-text")
+    assert vb.wait_for(lambda: trim_shown(driver) is not None), text(driver, "jog-text")
     trim = trim_shown(driver)
     stand(driver, board)
     n_walk = len(vb.commands(board.trace(), "walk"))
     keys(driver, down="w")
     try:
-        assert vb.wait_for(lambda: len(vb.commands(board.trace(), "walk")) > n_walk, timeout=30), "W sent no walk"
+        assert vb.wait_for(lambda: len(vb.commands(board.trace(), "walk")) > n_walk), "W sent no walk"
         f_walk = vb.commands(board.trace(), "walk")[n_walk][0]
-        assert vb.wait_for(lambda: any(m[1] == WALKING for m in modes(board.trace(), f_walk)), timeout=30)
+        assert vb.wait_for(lambda: any(m[1] == WALKING for m in modes(board.trace(), f_walk)))
         n_cal, n_trim = len(arrived(board, "cal 2 tibia")), len(arrived(board, "trim 2 tibia %d" % (trim + 10)))
         click(driver, "jog-trim-plus")
         f_trim = wait_line(board, "trim 2 tibia %d" % (trim + 10), n_trim)
-        assert vb.wait_for(lambda: "ERROR trim 2 tibia %d: " % (trim + 10) in text(driver, "jog-text"), timeout=30), (
-            text(driver, "jog-text")
+        assert vb.wait_for(lambda: "ERROR trim 2 tibia %d: " % (trim + 10) in text(driver, "jog-text")), text(
+            driver, "jog-text"
         )
         frames_pass(board, 10)
         assert len(arrived(board, "cal 2 tibia")) == n_cal  # nothing asked after the err
@@ -176,10 +176,10 @@ def test_a_trim_the_board_refuses_shows_its_err_and_changes_nothing(page):
     f_stop = wait_line(board, "stop", n_stop)
     assert f_stop > f_trim
     # The feet finish their cycle after a stop: the next test starts from a robot standing still.
-    assert vb.wait_for(lambda: any(m[1] == STANDING for m in modes(board.trace(), f_stop)), timeout=30)
+    assert vb.wait_for(lambda: any(m[1] == STANDING for m in modes(board.trace(), f_stop)))
     click(driver, "jog-read")
-    assert vb.wait_for(lambda: len(arrived(board, "cal 2 tibia")) > n_cal, timeout=30)
-    assert vb.wait_for(lambda: trim_shown(driver) == trim, timeout=30), text(driver, "jog-text")
+    assert vb.wait_for(lambda: len(arrived(board, "cal 2 tibia")) > n_cal)
+    assert vb.wait_for(lambda: trim_shown(driver) == trim), text(driver, "jog-text")
     assert vb.page_errors(driver) == []
 
 
@@ -187,19 +187,17 @@ def test_the_guided_calibration_starts_and_quits_from_the_page(page):
     driver, board, _, cal_dir = page
     saved = files(cal_dir)
     # Not walking (the board refuses `relax` then, and the guide would end at once: test_guided)
-    assert vb.wait_for(lambda: [m[1] for m in modes(board.trace())][-1:] != [WALKING], timeout=30)
+    assert vb.wait_for(lambda: [m[1] for m in modes(board.trace())][-1:] != [WALKING])
     n_relax = len(vb.commands(board.trace(), "relax"))
     n_fit = len(arrived(board, "pulse 1 coxa 1500"))
     click(driver, "jog-guided")
-    assert vb.wait_for(lambda: "leg 1 coxa  step: fit" in text(driver, "jog-text"), timeout=60), text(
-        driver, "jog-text"
-    )
+    assert vb.wait_for(lambda: "leg 1 coxa  step: fit" in text(driver, "jog-text")), text(driver, "jog-text")
     assert len(vb.commands(board.trace(), "relax")) > n_relax  # it starts by relaxing every servo
     f_fit = wait_line(board, "pulse 1 coxa 1500", n_fit)  # the fit step: the reference pulse
     frames_pass(board, 5)
     assert widths(board.trace(), 0, f_fit)[-1][1] == AT_REFERENCE_US  # leg 1 coxa: 0x40 channel 0
     click(driver, "guide-quit")
-    assert vb.wait_for(lambda: "quit, nothing saved" in text(driver, "jog-text"), timeout=30), text(driver, "jog-text")
+    assert vb.wait_for(lambda: "quit, nothing saved" in text(driver, "jog-text")), text(driver, "jog-text")
     assert files(cal_dir) == saved
     assert vb.page_errors(driver) == []
 
@@ -209,9 +207,7 @@ def test_a_second_tab_cannot_jog(page):
 
     driver, board, url, _ = page
     with vb.second_tab(driver, url):
-        assert vb.wait_for(lambda: "view-only: another tab jogs" in text(driver, "jog-text"), timeout=60), text(
-            driver, "jog-text"
-        )
+        assert vb.wait_for(lambda: "view-only: another tab jogs" in text(driver, "jog-text")), text(driver, "jog-text")
         for element_id in ("jog-trim-plus", "jog-deg-plus", "jog-save", "jog-guided"):
             assert not driver.find_element(By.ID, element_id).is_enabled(), element_id
         n = len(vb.commands(board.trace(), "trim"))

@@ -28,12 +28,12 @@ def test_port_on_a_virtual_boards_pty_loads_and_the_stand_button_stands_it(tmp_p
     try:
         with vb.driving(("--port", board.path)) as (driver, server):
             frames_pass(board, 50)
-            assert vb.wait_for(lambda: "(ok stream 25)" in text(driver, "drive-board"), timeout=30)
+            assert vb.wait_for(lambda: "(ok stream 25)" in text(driver, "drive-board"))
             assert "hexapod view: port" in driver.page_source
             f0 = stand(driver, board)
             standing = next(m[0] for m in modes(board.trace(), f0) if m[1] == 3)
             assert standing - f0 <= STAND_FRAMES
-            assert vb.wait_for(lambda: "robot standing" in text(driver, "status"), timeout=30), text(driver, "status")
+            assert vb.wait_for(lambda: "robot standing" in text(driver, "status")), text(driver, "status")
             assert vb.page_errors(driver) == []
     finally:
         board.stop()
@@ -48,7 +48,7 @@ def page_frame(driver):
 def test_pico_telemetry_reaches_the_page():
     vb.require()
     with vb.driving(("--pico",), timeout=PICO_SERVE_S) as (driver, server):
-        assert vb.wait_for(lambda: "(ok stream 25)" in text(driver, "drive-board"), timeout=60)
+        assert vb.wait_for(lambda: "(ok stream 25)" in text(driver, "drive-board"))
         assert "hexapod view: pico" in driver.page_source
         first = vb.wait_for(lambda: page_frame(driver), timeout=PICO_LINES_S)
         assert first, text(driver, "status")

@@ -21,6 +21,10 @@ WINDOW = (1500, 1100)
 # each on a loaded 2-core machine (0.1 s at 5). A test of the page, not of its frame rate; the
 # view bench keeps the product's default (fps=None).
 TEST_FPS = 5
+# A hang guard, not a time limit: a wait that is met returns at once, and this bound only ends a
+# test that would otherwise hang. 30 s expired once in a fresh-clone CI run on a loaded 2-core
+# machine (the suite took 16.6 min there instead of ~7), waiting for a reply that came.
+HANG_S = 600
 
 
 def chromium():
@@ -85,9 +89,10 @@ def diagnose(lines=30):
 class Server:
     """`hexapod view ARGS --no-browser` in a subprocess on 127.0.0.1:port (pythonpath: the
     host package to import instead of this one; fps: its --fps, None for the view's own
-    default); stop() ends it."""
+    default; timeout: seconds to start listening, HANG_S unless given); stop() ends it."""
 
-    def __init__(self, args=("--sim",), port=None, timeout=60, pythonpath=None, fps=TEST_FPS):
+    def __init__(self, args=("--sim",), port=None, timeout=None, pythonpath=None, fps=TEST_FPS):
+        timeout = HANG_S if timeout is None else timeout
         self.port = port or free_port()
         self.url = "http://127.0.0.1:%d/" % self.port
         self.output = None  # what the server printed, once stopped
@@ -185,15 +190,16 @@ def text(driver, element_id):
 
 
 @contextlib.contextmanager
-def driving(args, timeout=90, fps=TEST_FPS):
-    """(driver, server): `hexapod view ARGS` served (up within timeout s) and open in headless
-    Chromium, this tab the one that drives; the browser quits and the server stops after."""
+def driving(args, timeout=None, fps=TEST_FPS):
+    """(driver, server): `hexapod view ARGS` served (up within timeout s, HANG_S unless given) and
+    open in headless Chromium, this tab the one that drives; the browser quits and the server
+    stops after."""
     server = Server(args, timeout=timeout, fps=fps)
     driver = None
     try:
         driver = open_browser()
         driver.get(server.url)
-        if not wait_for(lambda: "you drive" in text(driver, "drive-who"), timeout=60):
+        if not wait_for(lambda: "you drive" in text(driver, "drive-who")):
             raise AssertionError("the page never gave this tab the drive: %r" % text(driver, "drive-who"))
         yield driver, server
     finally:
@@ -216,9 +222,9 @@ def second_tab(driver, url):
         driver.switch_to.window(first)
 
 
-def wait_for(predicate, timeout=30, every=0.1):
-    """predicate()'s first true value within timeout seconds, else None."""
-    end = time.monotonic() + timeout
+def wait_for(predicate, timeout=None, every=0.1):
+    """predicate()'s first true value within timeout seconds (HANG_S unless given), else None."""
+    end = time.monotonic() + (HANG_S if timeout is None else timeout)
     while True:
         v = predicate()
         if v or time.monotonic() > end:
