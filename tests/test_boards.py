@@ -1,15 +1,15 @@
-"""Board files and their validation: the three boards pass; many mutations of them fail with a clear
+"""Board files and their validation: the four boards pass; many mutations of them fail with a clear
 ValueError naming the board, the place and the rule, identically on CPython and MicroPython. A
 board file holds the board's data only: the robot's calibration and sonar mounts are refused
 there with a message saying where they went (tests/test_robot_cal.py checks those files)."""
 
 import pytest
 
-BOARDS = ("pico", "esp32_devkit", "feather_rp2040")
+BOARDS = ("pico", "esp32_devkit", "feather_rp2040", "feather_rp2040_micropython")
 DELETE = "<delete>"
 APPEND = "<append>"
 
-P, E, F = BOARDS
+P, E, F, _ = BOARDS
 # (board, path, new value, fragment the message must contain)
 MUTATIONS = [
     (P, (), [], "board '?': board: expected a dict, got list"),
@@ -97,9 +97,9 @@ MUTATIONS = [
 HEAP = "256k"
 
 
-def test_the_three_boards_pass_and_unchanged_copies_pass_too(rt):
+def test_the_four_boards_pass_and_unchanged_copies_pass_too(rt):
     assert (
-        rt.call("scenarios.boards:good_boards", BOARDS) == [(True, "accepted", "accepted", 18)] * 3 + ["accepted"] * 4
+        rt.call("scenarios.boards:good_boards", BOARDS) == [(True, "accepted", "accepted", 18)] * 4 + ["accepted"] * 4
     )
 
 
@@ -169,3 +169,20 @@ def test_board_validation_imports_nothing_above_the_data_it_checks(mp):
     for out in (cpython.stdout, mp.run(IMPORTS)):
         loaded = set(__import__("ast").literal_eval(out.strip().splitlines()[-1]))
         assert loaded == BOARD_IMPORTS, loaded
+
+
+# The Feather RP2040's silkscreen names as RP2040 GPIOs (Adafruit's pinout of the board).
+FEATHER_GPIO = {"SDA": 2, "SCL": 3, "D4": 6, "D5": 7, "D6": 8, "D9": 9, "D10": 10, "D11": 11, "D12": 12, "D13": 13}
+FEATHER_GPIO.update(A0=26, A1=27, A2=28, A3=29)
+
+
+def test_the_two_feather_files_wire_the_same_pins():
+    # A maker who moves a Feather from CircuitPython to MicroPython keeps every wire where it is.
+    import boards.feather_rp2040 as cp
+    import boards.feather_rp2040_micropython as mp
+
+    assert mp.BOARD["i2c"] == dict(cp.BOARD["i2c"], id=1, sda=FEATHER_GPIO["SDA"], scl=FEATHER_GPIO["SCL"])
+    assert mp.BOARD["sonars"] == tuple((n, FEATHER_GPIO[t], FEATHER_GPIO[e]) for n, t, e in cp.BOARD["sonars"])
+    own = ("name", "runtime", "arch", "i2c", "sonars", "battery")  # battery: None, or absent on CircuitPython's
+    assert {k: v for k, v in mp.BOARD.items() if k not in own} == {k: v for k, v in cp.BOARD.items() if k not in own}
+    assert mp.BOARD["battery"] is cp.BOARD.get("battery") is None

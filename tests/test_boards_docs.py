@@ -12,6 +12,7 @@ TITLES = {
     "pico": ("Raspberry Pi Pico (MicroPython)", "GP%d"),
     "esp32_devkit": ("ESP32 DevKit (MicroPython)", "GPIO%d"),
     "feather_rp2040": ("Adafruit Feather RP2040 (CircuitPython)", "%s"),
+    "feather_rp2040_micropython": ("Adafruit Feather RP2040 (MicroPython)", "GPIO%d"),
 }
 LEG_NAMES = {1: "1 RF", 2: "2 RM", 3: "3 RR", 4: "4 LR", 5: "5 LM", 6: "6 LF"}
 

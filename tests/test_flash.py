@@ -516,8 +516,9 @@ def test_a_circuitpython_drive_gets_no_micropython_emitter_decorators(tmp_path):
 def test_the_board_file_names_its_arch_and_what_it_refuses_is_never_staged(tmp_path, monkeypatch):
     # The code emitters by chip: the RP2040's Cortex-M0+ is armv6m, the ESP32's LX6 xtensawin; a
     # CircuitPython board gets sources. The robots are the build files, not their calibrations.
-    assert [flash.board_arch(b) for b in flash.boards()] == ["xtensawin", None, "armv6m"]
-    assert flash.boards() == ["esp32_devkit", "feather_rp2040", "pico"] and flash.robots() == ["default"]
+    assert [flash.board_arch(b) for b in flash.boards()] == ["xtensawin", None, "armv6m", "armv6m"]
+    assert flash.boards() == ["esp32_devkit", "feather_rp2040", "feather_rp2040_micropython", "pico"]
+    assert flash.robots() == ["default"]
     out = tmp_path / "stage"
     with pytest.raises(flash.FlashError, match="robot 'spider': no robots/spider_cal.py .*; nothing was staged"):
         flash.stage("pico", "spider", str(out))

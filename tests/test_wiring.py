@@ -11,13 +11,13 @@ BOARDS = flash.boards()
 
 
 def test_the_shipped_boards_are_the_ones_compared():
-    assert BOARDS == ["esp32_devkit", "feather_rp2040", "pico"]
+    assert BOARDS == ["esp32_devkit", "feather_rp2040", "feather_rp2040_micropython", "pico"]
 
 
 @pytest.mark.parametrize("board", BOARDS)
 def test_unchecked_builds_what_the_checks_build(rt, board, tmp_path):
     checked, unchecked = rt.call("scenarios.wiring:both", str(tmp_path / "marker"), board)
-    assert unchecked is not None, "the marker lists the three files: wiring.load must trust them"
+    assert unchecked is not None, "the marker lists the board's and robot's three files: wiring.load must trust them"
     assert unchecked == checked
     board_items, robot, cal, table, pins, mounts, battery = checked
     assert dict(board_items)["name"] == board and battery is None  # no shipped board has a battery

@@ -1,9 +1,10 @@
-"""Board files and hexapod.board's validation: copies of the three boards with one thing changed."""
+"""Board files and hexapod.board's validation: copies of the shipped boards with one thing changed."""
 
 from scenarios.refusal import message
 
 import boards.esp32_devkit
 import boards.feather_rp2040
+import boards.feather_rp2040_micropython
 import boards.pico
 from hexapod import board as hb
 
@@ -11,6 +12,7 @@ GOOD = {
     "pico": boards.pico.BOARD,
     "esp32_devkit": boards.esp32_devkit.BOARD,
     "feather_rp2040": boards.feather_rp2040.BOARD,
+    "feather_rp2040_micropython": boards.feather_rp2040_micropython.BOARD,
 }
 MAPS = ["map %d" % k for k in range(18)]  # stand-ins for the robot's 18 ServoMaps
 DELETE = "<delete>"

@@ -77,15 +77,16 @@ def host(frames, scenario="default"):
     return lines[:-1], bursts
 
 
-def board(frames, fs, scenario="default"):
-    """(status, output lines, bursts, stats) of the loop on the emulated Pico."""
+def board(frames, fs, scenario="default", board_name="pico"):
+    """(status, output lines, bursts, stats) of the loop on the emulated Pico (fs staged for
+    board_name, whose pins the emulated chips are wired to)."""
     with tempfile.TemporaryDirectory() as tmp:
         script = os.path.join(tmp, "loop_frames.py")
         with open(script, "w") as f:
             f.write("import sys\nsys.argv[:] = ['pico', '%d', '%s']\n" % (frames, scenario) + _script())
         trace = os.path.join(tmp, "trace.jsonl")
         status, out, err, stats = pico.run(
-            [script], fs=fs, devices=pico.devices(distances=list(DISTANCES)), trace=trace
+            [script], fs=fs, devices=pico.devices(board_name, distances=list(DISTANCES)), trace=trace
         )
         with open(trace) as f:
             records = [json.loads(line) for line in f]
