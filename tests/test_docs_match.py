@@ -35,7 +35,9 @@ VARYING = re.compile(r"\b(frames|walk_ms) \d+")
 
 def test_readme_console_session_replays_on_a_fresh_virtual_board(virtual_board, tmp_path):
     # main: the session's `walk 60 0 0` right after `stand` answers "err walk: refused: a posture or
-    # pose move is still running", where the README shows it walking.
+    # pose move is still running", where the README shows it walking. That walk goes in the stand's
+    # own `send`, a frame or two after it (the stand takes ~55): in a `send` of its own it raced the
+    # stand with the new process's start-up, and on a loaded machine the stand won.
     lines = block_after(read("README.md"), "A session with the virtual board (captured):")
     assert lines[0] == "$ hexapod virtual-board &"
     shown_port = lines[1]
