@@ -50,6 +50,11 @@ MORE = "consoleparts.more"
 _CUTOFF = const(2)  # hexapod.battery.CUTOFF
 SETTING = "consoleparts.setting"  # height, wall, pid, stream: loaded and let go as MORE
 SELFTEST = "selftest"  # `selftest`: loaded for the command, let go when its job ends
+# A line whose command needs a module not loaded yet waits (Console._wait): poll imports the first
+# one missing a frame (each import fits a frame's slack on an emulated Pico; one module's import in
+# the command's frame made it late), then runs the line in the next frame, its reply the same. Each
+# module loaded so names the one to load before it (the package first: its own import is a frame).
+BEFORE = {MORE: "consoleparts", SETTING: "consoleparts"}
 
 
 def load(name, compiles=False):
@@ -132,6 +137,7 @@ class Console:
     compiles = False
     fs = None  # (os, open): the filesystem console.start was given (cal_store)
     _boot = None  # the boot's calibration file load under way (console.start, _booting)
+    _wait = None  # (words, tag): a line waiting for its command's modules (_missing, _waiting)
 
     def __init__(self, runner, reader=None, out=print, store=None, walk_timeout_ms=WALK_TIMEOUT_MS, write=None):
         """runner: runner.Runner; reader: has read_byte(); store: calstore.Store or None (no
@@ -239,6 +245,8 @@ class Console:
             self._job_step()
         if self._late is not None and not self.robot.configuring():
             self._late_done()
+        if self._wait is not None and self._waiting():
+            return  # no byte read while a line waits: the lines after it keep their order
         reader = self.reader
         if reader is None:
             return
@@ -252,6 +260,8 @@ class Console:
                     continue
                 self._cr = b == 13
                 self._end_line()
+                if self._wait is not None:
+                    return  # the rest stays in the port until the waiting line has run
                 continue
             self._cr = False
             if b == 8 or b == 127:  # backspace (terminals send either): the line's last character goes
@@ -314,6 +324,9 @@ class Console:
             words = str(self._view[:n], "ascii").replace("\t", " ").split()
             if self._buf[0] == 35 and tag_length(self._buf, n) > 0:
                 tag = words[0]  # a word the split made anyway: echoing it copies no reply
+            if not self.compiles and self._missing(words, tag) is not None:
+                self._wait = (words, tag)  # its modules first, one a frame (_waiting)
+                return
             reply = self._dispatch(words, tag)
             if reply is None:
                 return
@@ -321,6 +334,37 @@ class Console:
         self._bad = -1
         self.lines += 1
         self._say(tag, reply)
+
+    def _missing(self, words, tag):
+        """The first module not loaded yet (BEFORE's order) that the line's command needs; None when
+        all are loaded, or the command is not one loaded on demand."""
+        k = 0 if tag is None else 1
+        name = self._table.get(words[k]) if len(words) > k else None
+        missing = None
+        while type(name) is str:
+            if name not in sys.modules:
+                missing = name
+            name = BEFORE.get(name)
+        return missing
+
+    def _waiting(self):
+        """poll while a line waits for its command's modules: True when one was imported, else the
+        line run (False: poll reads on). An import that fails runs the line at once: the command's
+        own import says why in its reply."""
+        words, tag = self._wait
+        name = self._missing(words, tag)
+        if name is not None:
+            try:
+                load(name)
+                return True
+            except Exception:
+                pass
+        self._wait = None
+        reply = self._dispatch(words, tag)
+        if reply is not None:
+            self.lines += 1
+            self._say(tag, reply)
+        return False
 
     def _say(self, tag, line):
         """One line out, after its request's tag when it had one (out(tag, line): print puts a

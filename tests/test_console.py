@@ -275,7 +275,7 @@ def test_backspace_and_echo(rt):
     `echo on` sends typed characters back; tools (echo off, the default) see only replies."""
     chunks = [
         (b"get 2x\x7f\r", 3),
-        (b"echo\necho on\n", 3),
+        (b"echo\necho on\n", 5),  # the first reporting command waits for its modules (a frame each)
         (b"gex\x08t\t1\r\n", 3),
         (b"\x7f\x7f\n", 3),
         (b"get 3\x01\x7f\n", 3),

@@ -4,9 +4,6 @@ this module the same way (two smaller compiles on CircuitPython than one; docs/f
 console names the command in an err reply; the replies are the console's as before.
 """
 
-from hexapod import limits
-from hexapod.units import format_fixed
-
 
 def command(con, word, args):
     """The reply to one of these commands' word and arguments on console con (None: it comes later)."""
@@ -25,6 +22,9 @@ def _height(con, args):
 
 
 def _wall(con, args):
+    from hexapod import limits  # (in the functions: each module-level import cost the module's import ~0.5 ms)
+    from hexapod.units import format_fixed
+
     if len(args) == 1 and args[0] == "off":
         con.runner.follow_off()
         return "ok wall off"
@@ -46,6 +46,8 @@ def _wall(con, args):
 
 
 def _pid(con, args):
+    from hexapod.units import format_fixed
+
     p = con.runner.follower.pid
     if args:
         con._args(args, 3, "KP KI KD (each 0..100, 3 decimals)")

@@ -147,6 +147,9 @@ def wall_status(echo_mm10):
     """status, stand (120 frames), the two left sonars at echo_mm10 (None: no echo), `wall left
     12`, frames, status: [first status, stand, wall's reply, last status]."""
     b = Board()
+    # consoleparts.setting loaded (`do` runs no frame): `wall` runs in the frame it is read, not after
+    # its module's imports (a frame each, Console._waiting), so the sonars' phase is as it was.
+    b.con.do("pid")
     out = [b.say("status"), b.say("stand")] if echo_mm10 is None else [b.say("stand")]
     b.frames(120)
     for k in (1, 2):
