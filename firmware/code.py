@@ -122,8 +122,10 @@ if sys.implementation.name != "cpython":
     # heap, kept for the first jog session and let go once the robot walks (cal_until_walk: the
     # loop's commands then have its 8 KB); MicroPython loads their .mpy per command instead.
     import consolecal  # noqa: F401
+    import consoleparts.caledit  # noqa: F401
+    import consoleparts.jog  # noqa: F401
 
-    del consolecal  # sys.modules holds it: the console lets it go (hexapod.release)
+    del consolecal, consoleparts  # sys.modules holds them: the console lets them go (hexapod.release)
     console.Console.cal_until_walk = True
     # consoleparts.more and selftest compiled per command on a collected heap, the former let go after
     # each (console.Console.compiles).

@@ -33,11 +33,15 @@ TAG_DIGITS = const(9)  # a request tag: '#' and 1..9 digits (docs/console.md, "R
 # posture move's trial of all its frames; a flash write): a tagged request of one of them gets
 # '#TAG working' before the command runs, so a client waits for its reply without a fixed timeout.
 SLOW = ("gait", "height", "stand", "sit", "relax", "save", "load", "defaults")
-# The jog and calibration commands' module (consolecal.py): imported at a jog session's first
-# command and kept while the session goes on (each import took 24-45 ms on a Pico: the frame
-# overran), let go (hexapod.release) CAL_KEEP_MS after its last command or once the robot walks or
-# follows a wall: the 5.3 KB of heap it takes on a Pico are the walking loop's again.
-CAL = "consolecal"
+# The jog and calibration commands' modules (CALS): imported at a jog session's first command and
+# kept while the session goes on (each import took 24-45 ms on a Pico: the frame overran), let go
+# (hexapod.release) CAL_KEEP_MS after its last command or once the robot walks or follows a wall:
+# the 5.3 KB of heap they take on a Pico are the walking loop's again. Three modules, not one
+# (consolecal's import took 36 ms, the first `foot` after boot 78 ms): each imports in a frame.
+CAL = "consolecal"  # save, load, defaults (and the boot's load of a file it must check)
+JOG = "consoleparts.jog"  # foot, nudge, joint, pulse
+EDIT = "consoleparts.caledit"  # cal, trim, dir, range: with JOG and CAL, a jog session's modules
+CALS = (JOG, EDIT, CAL)
 CAL_KEEP_MS = const(30000)
 # The reporting commands' module (consoleparts/more.py: help, sonar, echo, faults; `status`, the one
 # tools poll, stays here: its import made the first one after 30 s take ~34 ms on an emulated Pico)
@@ -54,7 +58,15 @@ SELFTEST = "selftest"  # `selftest`: loaded for the command, let go when its job
 # one missing a frame (each import fits a frame's slack on an emulated Pico; one module's import in
 # the command's frame made it late), then runs the line in the next frame, its reply the same. Each
 # module loaded so names the one to load before it (the package first: its own import is a frame).
-BEFORE = {MORE: "consoleparts", SETTING: "consoleparts"}
+BEFORE = {
+    MORE: "consoleparts",
+    SETTING: "consoleparts",
+    JOG: "hexapod.jog",  # (tick's jog commands import it)
+    "hexapod.jog": EDIT,
+    EDIT: "calstore",
+    CAL: "calstore",
+    "calstore": "consoleparts",
+}
 
 
 def load(name, compiles=False):
@@ -183,10 +195,10 @@ class Console:
             "stand": self._stand,
             "sit": self._sit,
             "relax": self._relax,
-            "foot": CAL,
-            "nudge": CAL,
-            "joint": CAL,
-            "pulse": CAL,
+            "foot": JOG,
+            "nudge": JOG,
+            "joint": JOG,
+            "pulse": JOG,
             "get": self._get,
             "walk": self._walk,
             "stop": self._stop,
@@ -195,10 +207,10 @@ class Console:
             "sonar": MORE,
             "wall": SETTING,
             "pid": SETTING,
-            "cal": CAL,
-            "trim": CAL,
-            "dir": CAL,
-            "range": CAL,
+            "cal": EDIT,
+            "trim": EDIT,
+            "dir": EDIT,
+            "range": EDIT,
             "save": CAL,
             "load": CAL,
             "defaults": CAL,
@@ -235,7 +247,7 @@ class Console:
                     self.robot.stop()
         if self._cal_until >= 0 and self._cal_over():
             self._cal_until = -1
-            release(CAL, CAL if self.compiles else "calstore")  # CircuitPython keeps calstore (a compile)
+            release(*CALS, CAL if self.compiles else "calstore")  # CircuitPython keeps calstore (a compile)
         if self._more_until >= 0:
             clock = self.runner.clock
             if clock.ticks_diff(clock.ticks_ms(), self._more_until) >= 0:
@@ -411,7 +423,7 @@ class Console:
         if tag is not None and word in SLOW:
             self.out(tag, "working")  # sent before the command runs: the client waits on
         try:
-            if fn is CAL:
+            if fn in CALS:
                 reply = self._calibration(word, args)
             elif fn is MORE or fn is SETTING:
                 reply = self._part(fn, word, args)
@@ -708,7 +720,7 @@ class Console:
         (compiles). Where consolecal waits for the robot to walk (cal_until_walk), `wall` lets it
         go before its module's compile (a jog command after it compiles consolecal again)."""
         if self.cal_until_walk and word == "wall":
-            release(CAL)
+            release(*CALS)
         part = load(name, self.compiles)
         try:
             return part.command(self, word, args)
@@ -789,9 +801,10 @@ class Console:
         return store
 
     def _calibration(self, word, args):
-        """A jog or calibration command (consolecal): its module stays on the heap for the session
-        (poll lets it go, _cal_over); the boot's file load ("boot") lets it go at once."""
-        cal = load(CAL, self.compiles)
+        """A jog or calibration command (consoleparts.jog, .caledit, consolecal: CALS): the session's
+        modules stay on the heap (poll lets them go, _cal_over); the boot's file load ("boot") lets
+        consolecal go at once."""
+        cal = load(self._table.get(word, CAL), self.compiles)
         try:
             return cal.command(self, word, args)
         finally:

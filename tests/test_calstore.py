@@ -135,8 +135,9 @@ def test_a_short_write_that_reports_success_is_caught_by_the_read_back(rt):
 
 
 def test_the_jog_and_calibration_commands_module_stays_for_a_jog_session(rt):
-    # consolecal is the console's jog and calibration commands: imported at a session's first
-    # command and kept while it goes on (an import per command overran the Pico's frame), let go
+    # consoleparts.jog, .caledit and consolecal (console.CALS) are the console's jog and calibration
+    # commands: imported at a session's first command (each as its commands need it) and kept
+    # while it goes on (an import per command overran the Pico's frame), let go
     # (hexapod.release) 30 s (CAL_KEEP_MS) after the last one or once the robot walks; the boot's
     # file load lets it go at once. On CPython release does nothing (the host's tests share one
     # process). CircuitPython's code.py compiles it at boot and keeps it until the robot walks

@@ -150,6 +150,9 @@ def test_every_module_imports_as_mpy_with_the_heap_left(fs):
     # command, or with the sweep (Robot.jog_joint): the last row has it too.
     on_demand.append("hexapod.jog")
     resident_names = [n for n in names if n not in on_demand and n != "drivers._stream_viper"]  # stream's twin: with it
+    # A jog session's commands (consoleparts.jog, .caledit): loaded for the session, let go after it,
+    # never at boot (consolecal, the file's, is: below).
+    resident_names = [n for n in resident_names if n not in ("consoleparts.jog", "consoleparts.caledit")]
     # The calibration commands' module comes and goes: console.start reads the calibration file
     # with it at boot and lets it go (its names stay: qstrs), each calibration command likewise;
     # calstore (the file's read and check) as well: the boot's load, a calibration session (with
