@@ -151,3 +151,16 @@ def test_the_jog_and_calibration_commands_module_stays_for_a_jog_session(rt):
         + ["ok ", True, "ok ", kept, 4]
         + ["ok ", kept, 3, "ok ", "ok ", kept, "ok ", "ok ", kept, "ok "]
     )
+
+
+def test_caledit_writes_out_the_values_it_would_import():
+    # consoleparts.caledit imports nothing at its top (each import cost its own ~0.4 ms on the
+    # emulated Pico, where its import must fit a frame's slack): its copies must be the originals.
+    import calstore
+    import console
+    from consoleparts import caledit
+
+    from hexapod import tick
+
+    assert caledit.JOINTS == calstore.JOINTS == console.JOINTS
+    assert caledit.TRIM_MAX == calstore.TRIM_MAX and caledit.JOG_SERVO == tick.JOG_SERVO
