@@ -123,7 +123,9 @@ if sys.implementation.name != "cpython":
     # loop's commands then have its 8 KB); MicroPython loads their .mpy per command instead.
     import consolecal  # noqa: F401
     import consoleparts.caledit  # noqa: F401
+    import consoleparts.calset  # noqa: F401
     import consoleparts.jog  # noqa: F401
+    import consoleparts.joint  # noqa: F401
 
     del consolecal, consoleparts  # sys.modules holds them: the console lets them go (hexapod.release)
     console.Console.cal_until_walk = True

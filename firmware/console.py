@@ -36,12 +36,14 @@ SLOW = ("gait", "height", "stand", "sit", "relax", "save", "load", "defaults")
 # The jog and calibration commands' modules (CALS): imported at a jog session's first command and
 # kept while the session goes on (each import took 24-45 ms on a Pico: the frame overran), let go
 # (hexapod.release) CAL_KEEP_MS after its last command or once the robot walks or follows a wall:
-# the 5.3 KB of heap they take on a Pico are the walking loop's again. Three modules, not one
+# the 5.3 KB of heap they take on a Pico are the walking loop's again. Five modules, not one
 # (consolecal's import took 36 ms, the first `foot` after boot 78 ms): each imports in a frame.
 CAL = "consolecal"  # save, load, defaults (and the boot's load of a file it must check)
-JOG = "consoleparts.jog"  # foot, nudge, joint, pulse
-EDIT = "consoleparts.caledit"  # cal, trim, dir, range: with JOG and CAL, a jog session's modules
-CALS = (JOG, EDIT, CAL)
+JOG = "consoleparts.jog"  # foot, nudge
+JOINT = "consoleparts.joint"  # joint, pulse
+EDIT = "consoleparts.caledit"  # cal
+CALSET = "consoleparts.calset"  # trim, dir, range: with the four above, a jog session's modules
+CALS = (JOG, JOINT, EDIT, CALSET, CAL)
 CAL_KEEP_MS = const(30000)
 # The reporting commands' module (consoleparts/more.py: help, sonar, echo, faults; `status`, the one
 # tools poll, stays here: its import made the first one after 30 s take ~34 ms on an emulated Pico)
@@ -52,20 +54,25 @@ CAL_KEEP_MS = const(30000)
 # compiles one per command and lets it go after each.
 MORE = "consoleparts.more"
 _CUTOFF = const(2)  # hexapod.battery.CUTOFF
-SETTING = "consoleparts.setting"  # height, wall, pid, stream: loaded and let go as MORE
+SETTING = "consoleparts.setting"  # height, pid, stream: loaded and let go as MORE
+WALL = "consoleparts.wall"  # wall: likewise
 SELFTEST = "selftest"  # `selftest`: loaded for the command, let go when its job ends
 # A line whose command needs a module not loaded yet waits (Console._wait): poll imports the first
 # one missing a frame (each import fits a frame's slack on an emulated Pico; one module's import in
-# the command's frame made it late), then runs the line in the next frame, its reply the same. Each
-# module loaded so names the one to load before it (the package first: its own import is a frame).
-BEFORE = {
-    MORE: "consoleparts",
-    SETTING: "consoleparts",
-    JOG: "hexapod.jog",  # (tick's jog commands import it)
-    "hexapod.jog": EDIT,
-    EDIT: "calstore",
-    CAL: "calstore",
-    "calstore": "consoleparts",
+# the command's frame made it late), then runs the line in the next frame, its reply the same.
+# NEEDS: what each module loaded so needs loaded before it, in that order (the package first: its
+# own import is a frame); a command's word where it needs more than its module (stream).
+_PART = ("consoleparts",)
+NEEDS = {
+    MORE: _PART,
+    SETTING: _PART,
+    WALL: _PART,
+    JOG: ("consoleparts", "hexapod.jog"),  # (tick's jog commands import it)
+    JOINT: ("consoleparts", "hexapod.jog", JOG),
+    EDIT: ("consoleparts", JOINT),
+    CALSET: ("consoleparts", JOINT, EDIT),
+    CAL: ("consoleparts", "calstore"),
+    "stream": ("consoleparts", SETTING, "drivers._stream_viper", "drivers.stream"),  # (no viper: _waiting)
 }
 
 
@@ -197,20 +204,20 @@ class Console:
             "relax": self._relax,
             "foot": JOG,
             "nudge": JOG,
-            "joint": JOG,
-            "pulse": JOG,
+            "joint": JOINT,
+            "pulse": JOINT,
             "get": self._get,
             "walk": self._walk,
             "stop": self._stop,
             "gait": self._gait,
             "height": SETTING,
             "sonar": MORE,
-            "wall": SETTING,
+            "wall": WALL,
             "pid": SETTING,
             "cal": EDIT,
-            "trim": EDIT,
-            "dir": EDIT,
-            "range": EDIT,
+            "trim": CALSET,
+            "dir": CALSET,
+            "range": CALSET,
             "save": CAL,
             "load": CAL,
             "defaults": CAL,
@@ -252,7 +259,7 @@ class Console:
             clock = self.runner.clock
             if clock.ticks_diff(clock.ticks_ms(), self._more_until) >= 0:
                 self._more_until = -1
-                release(MORE, SETTING)
+                release(MORE, SETTING, WALL)
         if self._job is not None:
             self._job_step()
         if self._late is not None and not self.robot.configuring():
@@ -348,16 +355,16 @@ class Console:
         self._say(tag, reply)
 
     def _missing(self, words, tag):
-        """The first module not loaded yet (BEFORE's order) that the line's command needs; None when
-        all are loaded, or the command is not one loaded on demand."""
+        """The first module not loaded yet (NEEDS' order, then the command's own) that the line's
+        command needs; None when all are loaded, or the command is not one loaded on demand."""
         k = 0 if tag is None else 1
         name = self._table.get(words[k]) if len(words) > k else None
-        missing = None
-        while type(name) is str:
-            if name not in sys.modules:
-                missing = name
-            name = BEFORE.get(name)
-        return missing
+        if type(name) is not str:
+            return None
+        for first in NEEDS.get(words[k]) or NEEDS[name]:
+            if first not in sys.modules:
+                return first
+        return None if name in sys.modules else name
 
     def _waiting(self):
         """poll while a line waits for its command's modules: True when one was imported, else the
@@ -425,7 +432,7 @@ class Console:
         try:
             if fn in CALS:
                 reply = self._calibration(word, args)
-            elif fn is MORE or fn is SETTING:
+            elif fn is MORE or fn is SETTING or fn is WALL:
                 reply = self._part(fn, word, args)
             else:
                 reply = fn(args)

@@ -153,14 +153,15 @@ def test_the_jog_and_calibration_commands_module_stays_for_a_jog_session(rt):
     )
 
 
-def test_caledit_writes_out_the_values_it_would_import():
-    # consoleparts.caledit imports nothing at its top (each import cost its own ~0.4 ms on the
-    # emulated Pico, where its import must fit a frame's slack): its copies must be the originals.
+def test_the_jog_sessions_parts_write_out_the_values_they_would_import():
+    # consoleparts.joint and .calset import little at their top (each import cost the module's own
+    # ~0.4 ms on the emulated Pico, where its import must fit a frame's slack): their copies must be
+    # the originals.
     import calstore
     import console
-    from consoleparts import caledit
+    from consoleparts import calset, joint
 
     from hexapod import tick
 
-    assert caledit.JOINTS == calstore.JOINTS == console.JOINTS
-    assert caledit.TRIM_MAX == calstore.TRIM_MAX and caledit.JOG_SERVO == tick.JOG_SERVO
+    assert joint.JOINTS == calstore.JOINTS == console.JOINTS
+    assert calset.TRIM_MAX == calstore.TRIM_MAX and calset.JOG_SERVO == tick.JOG_SERVO

@@ -1,9 +1,10 @@
-"""The console's jog commands (`foot`, `nudge`, `joint`, `pulse`): console.py hands them here
-(Console._calibration), loaded on demand as the calibration commands (consoleparts/caledit.py,
-whose joint and number checks these share) and the calibration file's (consolecal.py), and let go
-with them when the session ends. consolecal held all three until 2026-11-28: its import (36 ms on
-the emulated Pico) made its command's frame late; each of the three now imports in a frame's slack
-(Console._waiting). None runs while walking. The console names the command in an err reply.
+"""The console's foot jog commands (`foot`, `nudge`: one leg's foot to a point in its frame):
+console.py hands them here (Console._calibration), loaded on demand as the servo jog commands
+(consoleparts/joint.py), the calibration commands (consoleparts/caledit.py) and the calibration
+file's (consolecal.py), and let go with them when the session ends. consolecal held all five
+until 2026-11-28: its import (36 ms on the emulated Pico) made its command's frame late; each of
+the five now imports in a frame's slack (Console._waiting). None runs while walking. The console
+names the command in an err reply.
 """
 
 
@@ -20,10 +21,10 @@ def _foot(con, args):
     z = con._num("z", args[3], 1, -5000, 5000, "mm")
     con._no_follow()
     con._battery_ok()
-    return _jogged(con, leg, con.robot.jog_foot(leg, x, y, z))
+    return jogged(con, leg, con.robot.jog_foot(leg, x, y, z))
 
 
-def _jogged(con, leg, code):
+def jogged(con, leg, code):
     if code:
         return con._refused(code)
     con._walking = False
@@ -42,37 +43,10 @@ def _nudge(con, args):
         raise ValueError("leg %d has a limp servo: place it with 'foot' first" % (leg + 1))
     foot = [0, 0, 0]
     r.geometry.legs[leg].fk(r.angles[k], r.angles[k + 1], r.angles[k + 2], foot, 0)
-    return _jogged(con, leg, r.jog_foot(leg, foot[0] + d[0], foot[1] + d[1], foot[2] + d[2]))
-
-
-def _joint(con, args):
-    con._args(args, 3, "L J DEG (leg 1..6, coxa|femur|tibia, degrees)")
-    leg = con._leg(args[0])
-    from consoleparts.caledit import joint_of  # (here: a module-level import cost this one's ~0.4 ms)
-
-    j = joint_of(args[1])
-    a = con._num("angle", args[2], 2, -18000, 18000, "degrees")
-    con._no_follow()
-    con._battery_ok()
-    return _jogged(con, leg, con.robot.jog_joint(leg, j, a))
-
-
-def _pulse(con, args):
-    con._args(args, 3, "L J US (leg 1..6, coxa|femur|tibia, microseconds)")
-    leg = con._leg(args[0])
-    from consoleparts.caledit import joint_of, whole
-
-    j = joint_of(args[1])
-    s = con.robot.servos[3 * leg + j]
-    us = whole("pulse", args[2], s.min_us, s.max_us, "us (this servo's calibrated range)")
-    con._no_follow()
-    con._battery_ok()
-    return _jogged(con, leg, con.robot.jog_pulse(leg, j, us))
+    return jogged(con, leg, r.jog_foot(leg, foot[0] + d[0], foot[1] + d[1], foot[2] + d[2]))
 
 
 _COMMANDS = {
     "foot": _foot,
     "nudge": _nudge,
-    "joint": _joint,
-    "pulse": _pulse,
 }

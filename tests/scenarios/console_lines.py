@@ -147,9 +147,11 @@ def wall_status(echo_mm10):
     """status, stand (120 frames), the two left sonars at echo_mm10 (None: no echo), `wall left
     12`, frames, status: [first status, stand, wall's reply, last status]."""
     b = Board()
-    # consoleparts.setting loaded (`do` runs no frame): `wall` runs in the frame it is read, not after
-    # its module's imports (a frame each, Console._waiting), so the sonars' phase is as it was.
-    b.con.do("pid")
+    # `wall`'s modules loaded (no frame run): it runs in the frame it is read, not after its
+    # modules' imports (a frame each, Console._waiting), so the sonars' phase is as it was.
+    import console
+
+    console.load(console.WALL)
     out = [b.say("status"), b.say("stand")] if echo_mm10 is None else [b.say("stand")]
     b.frames(120)
     for k in (1, 2):
@@ -196,15 +198,20 @@ def status_imports():
     return out
 
 
-# The modules the console loads on demand (console.BEFORE's chains), in no particular order.
+# The modules the console loads on demand (console.NEEDS), in no particular order.
 ON_DEMAND = (
     "consoleparts",
     "consoleparts.more",
     "consoleparts.setting",
+    "consoleparts.wall",
+    "drivers._stream_viper",
+    "drivers.stream",
     "calstore",
     "consoleparts.caledit",
+    "consoleparts.calset",
     "hexapod.jog",
     "consoleparts.jog",
+    "consoleparts.joint",
     "consolecal",
 )
 
