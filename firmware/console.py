@@ -59,21 +59,10 @@ WALL = "consoleparts.wall"  # wall: likewise
 SELFTEST = "selftest"  # `selftest`: loaded for the command, let go when its job ends
 # A line whose command needs a module not loaded yet waits (Console._wait): poll imports the first
 # one missing a frame (each import fits a frame's slack on an emulated Pico; one module's import in
-# the command's frame made it late), then runs the line in the next frame, its reply the same.
-# NEEDS: what each module loaded so needs loaded before it, in that order (the package first: its
-# own import is a frame); a command's word where it needs more than its module (stream).
-_PART = ("consoleparts",)
-NEEDS = {
-    MORE: _PART,
-    SETTING: _PART,
-    WALL: _PART,
-    JOG: ("consoleparts", "hexapod.jog"),  # (tick's jog commands import it)
-    JOINT: ("consoleparts", "hexapod.jog", JOG),
-    EDIT: ("consoleparts", JOINT),
-    CALSET: ("consoleparts", JOINT, EDIT),
-    CAL: ("consoleparts", "calstore"),
-    "stream": ("consoleparts", SETTING, "drivers._stream_viper", "drivers.stream"),  # (no viper: _waiting)
-}
+# the command's frame made it late), then runs the line in the next frame, its reply the same: the
+# consoleparts package first (its own import is a frame), then BEFORE's chain, deepest first (a
+# module there needs the one it names loaded before it), then the command's module.
+BEFORE = {JOG: "hexapod.jog", "hexapod.jog": EDIT, JOINT: JOG, CALSET: EDIT, CAL: "calstore"}
 
 
 def load(name, compiles=False):
@@ -355,16 +344,20 @@ class Console:
         self._say(tag, reply)
 
     def _missing(self, words, tag):
-        """The first module not loaded yet (NEEDS' order, then the command's own) that the line's
-        command needs; None when all are loaded, or the command is not one loaded on demand."""
+        """The first module not loaded yet (BEFORE's order) that the line's command needs; None when
+        all are loaded, or the command is not one loaded on demand."""
         k = 0 if tag is None else 1
         name = self._table.get(words[k]) if len(words) > k else None
         if type(name) is not str:
             return None
-        for first in NEEDS.get(words[k]) or NEEDS[name]:
-            if first not in sys.modules:
-                return first
-        return None if name in sys.modules else name
+        if "consoleparts" not in sys.modules:
+            return "consoleparts"
+        missing = None
+        while name is not None:
+            if name not in sys.modules:
+                missing = name
+            name = BEFORE.get(name)
+        return missing
 
     def _waiting(self):
         """poll while a line waits for its command's modules: True when one was imported, else the

@@ -154,14 +154,14 @@ def test_the_jog_and_calibration_commands_module_stays_for_a_jog_session(rt):
 
 
 def test_the_jog_sessions_parts_write_out_the_values_they_would_import():
-    # consoleparts.joint and .calset import little at their top (each import cost the module's own
+    # consoleparts.caledit and .calset import little at their top (each import cost the module's own
     # ~0.4 ms on the emulated Pico, where its import must fit a frame's slack): their copies must be
     # the originals.
     import calstore
     import console
-    from consoleparts import calset, joint
+    from consoleparts import caledit, calset
 
     from hexapod import tick
 
-    assert joint.JOINTS == calstore.JOINTS == console.JOINTS
+    assert caledit.JOINTS == calstore.JOINTS == console.JOINTS
     assert calset.TRIM_MAX == calstore.TRIM_MAX and calset.JOG_SERVO == tick.JOG_SERVO

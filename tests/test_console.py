@@ -373,8 +373,8 @@ def test_status_answers_without_importing_the_reporting_module(mp):
 
 def test_a_command_waits_for_its_modules_one_import_a_frame(mp):
     """A line whose command needs modules not loaded yet (a fresh board: the VM's hexapod.release
-    and imports are MicroPython's) waits: poll imports one module a frame, in console.NEEDS'
-    order (the package first; `foot`: hexapod.jog, then consoleparts.jog), and runs
+    and imports are MicroPython's) waits: poll imports one module a frame, in console.BEFORE's
+    order (the package first; `foot`: caledit, hexapod.jog, then consoleparts.jog), and runs
     the line in the frame after the last, so no frame pays two imports nor an import and the
     command (each import fits a frame's slack on the emulated Pico; one module's import in the
     command's frame made it late, docs/pico.md). The line after it keeps its place; the replies
@@ -388,7 +388,7 @@ def test_a_command_waits_for_its_modules_one_import_a_frame(mp):
     assert [g[0] is None for g in got] == [True, True, True, False, False]
     assert shown[0] == [[["consoleparts"], []], [["consoleparts.more"], []], [[], direct[0:2]]]
     assert shown[1] == [[["consoleparts.setting"], []], [[], [direct[2]]]] and direct[2].startswith("#5 ok pid ")
-    chain = ["hexapod.jog", "consoleparts.jog"]
+    chain = ["consoleparts.caledit", "hexapod.jog", "consoleparts.jog"]
     assert shown[2] == [[[m], []] for m in chain] + [[[], ["err foot: leg '9', allowed 1..6"]]]
     assert direct[3] == "err foot: leg '9', allowed 1..6"
     assert shown[3] == [[[], [direct[4]]]] and direct[4].startswith("ok leg 2 ")

@@ -1,15 +1,34 @@
-"""The console's `cal` (a servo's calibration in force) and the line and servo checks the
-calibration setting commands (consoleparts/calset.py: `trim`, `dir`, `range`) share, with the
-joint check of consoleparts/joint.py: loaded on demand and let go as the jog commands
-(Console._calibration). The console names the command in an err reply.
+"""The console's `cal` (a servo's calibration in force), and the checks and the line the servo jog
+commands (consoleparts/joint.py) and the calibration setting ones (consoleparts/calset.py) share:
+loaded on demand and let go as the jog commands (Console._calibration). The console names the
+command in an err reply.
 """
 
-from consoleparts.joint import JOINTS, joint_of  # (loaded before this module: console.NEEDS)
+JOINTS = ("coxa", "femur", "tibia")  # calstore's (not imported: each import cost ~0.4 ms; tests/test_calstore.py)
 
 
 def command(con, word, args):
     """The reply to a calibration command line's word and arguments on console con."""
     return _COMMANDS[word](con, args)
+
+
+def joint_of(text):
+    """0, 1, 2 for coxa, femur, tibia; ValueError for anything else."""
+    for j in range(3):
+        if JOINTS[j] == text:
+            return j
+    raise ValueError("joint %r, allowed coxa, femur, tibia" % (text[:20],))
+
+
+def whole(name, text, lo, hi, unit):
+    """text as a whole number within lo..hi; ValueError naming `name` and `unit` otherwise."""
+    body = text[1:] if text[:1] in ("-", "+") else text
+    if not body.isdigit() or len(body) > 9:
+        raise ValueError("%s %r is not a whole number (%s)" % (name, text[:20], unit))
+    v = int(text)
+    if v < lo or v > hi:
+        raise ValueError("%s %d is outside %d..%d %s" % (name, v, lo, hi, unit))
+    return v
 
 
 def _cal(con, args):

@@ -1,10 +1,9 @@
 """The console's calibration setting commands (`trim`, `dir`, `range`: a servo's calibration
-changed), with the checks of consoleparts/caledit.py and .joint: loaded on demand and let go as the
+changed), with the checks of consoleparts/caledit.py: loaded on demand and let go as the
 jog commands (Console._calibration). The console names the command in an err reply.
 """
 
-from consoleparts.caledit import cal_line, servo_index  # (loaded before this module: console.NEEDS)
-from consoleparts.joint import JOINTS, whole
+from consoleparts.caledit import JOINTS, cal_line, servo_index, whole  # (loaded before this one: console.BEFORE)
 
 # Written out, not imported (each import at the top cost this module's ~0.4 ms on the emulated
 # Pico): calstore's TRIM_MAX, hexapod.tick's JOG_SERVO (tests/test_calstore.py compares them).

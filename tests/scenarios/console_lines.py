@@ -198,7 +198,7 @@ def status_imports():
     return out
 
 
-# The modules the console loads on demand (console.NEEDS), in no particular order.
+# The modules the console loads on demand (console.BEFORE), in no particular order.
 ON_DEMAND = (
     "consoleparts",
     "consoleparts.more",
