@@ -56,6 +56,7 @@ MORE = "consoleparts.more"
 _CUTOFF = const(2)  # hexapod.battery.CUTOFF
 SETTING = "consoleparts.setting"  # height, pid, stream: loaded and let go as MORE
 WALL = "consoleparts.wall"  # wall: likewise
+SONAR = "consoleparts.sonar"  # sonar: likewise
 SELFTEST = "selftest"  # `selftest`: loaded for the command, let go when its job ends
 # A line whose command needs a module not loaded yet waits (Console._wait): poll imports the first
 # one missing a frame (each import fits a frame's slack on an emulated Pico; one module's import in
@@ -200,7 +201,7 @@ class Console:
             "stop": self._stop,
             "gait": self._gait,
             "height": SETTING,
-            "sonar": MORE,
+            "sonar": SONAR,
             "wall": WALL,
             "pid": SETTING,
             "cal": EDIT,
@@ -248,7 +249,7 @@ class Console:
             clock = self.runner.clock
             if clock.ticks_diff(clock.ticks_ms(), self._more_until) >= 0:
                 self._more_until = -1
-                release(MORE, SETTING, WALL)
+                release(MORE, SETTING, WALL, SONAR)
         if self._job is not None:
             self._job_step()
         if self._late is not None and not self.robot.configuring():
@@ -425,7 +426,7 @@ class Console:
         try:
             if fn in CALS:
                 reply = self._calibration(word, args)
-            elif fn is MORE or fn is SETTING or fn is WALL:
+            elif fn is MORE or fn is SETTING or fn is WALL or fn is SONAR:
                 reply = self._part(fn, word, args)
             else:
                 reply = fn(args)

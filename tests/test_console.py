@@ -384,13 +384,13 @@ def test_a_command_waits_for_its_modules_one_import_a_frame(mp):
     shown = [[f for f in frames if f is not None] for frames in got]
     # every frame imports at most one module; the line's own frame (the first) only reads it
     assert all(f is None or len(f[0]) <= 1 for frames in got for f in frames)
-    # a waiting line is never answered in its own frame; a loaded one is (foot again, sonar)
-    assert [g[0] is None for g in got] == [True, True, True, False, False]
+    # a waiting line is never answered in its own frame; a loaded one is (foot again)
+    assert [g[0] is None for g in got] == [True, True, True, False, True]
     assert shown[0] == [[["consoleparts"], []], [["consoleparts.more"], []], [[], direct[0:2]]]
     assert shown[1] == [[["consoleparts.setting"], []], [[], [direct[2]]]] and direct[2].startswith("#5 ok pid ")
     chain = ["consoleparts.caledit", "hexapod.jog", "consoleparts.jog"]
     assert shown[2] == [[[m], []] for m in chain] + [[[], ["err foot: leg '9', allowed 1..6"]]]
     assert direct[3] == "err foot: leg '9', allowed 1..6"
     assert shown[3] == [[[], [direct[4]]]] and direct[4].startswith("ok leg 2 ")
-    assert shown[4] == [[[], [direct[5]]]] and direct[5].startswith("ok front ")
+    assert shown[4] == [[["consoleparts.sonar"], []], [[], [direct[5]]]] and direct[5].startswith("ok front ")
     assert same_state

@@ -46,7 +46,7 @@ def expected(board, entry, drivers):
     files = core + drivers + ["runner.py", "console.py", "consolecal.py", "calstore.py", "selftest.py"]
     files += ["consoleparts/__init__.py", "consoleparts/more.py", "consoleparts/setting.py"]
     files += ["consoleparts/jog.py", "consoleparts/joint.py", "consoleparts/caledit.py"]
-    files += ["consoleparts/calset.py", "consoleparts/wall.py"]
+    files += ["consoleparts/calset.py", "consoleparts/wall.py", "consoleparts/sonar.py"]
     files += ["consoleparts/selftestbus.py", "consoleparts/selftestsonar.py"]
     files += ["consoleparts/selftestboard.py", "consoleparts/selftestsweep.py"]
     files.append("boards/__init__.py")

@@ -140,10 +140,11 @@ def test_every_module_imports_as_mpy_with_the_heap_left(fs):
     # selftest for `selftest` (dropped after the command): selftest last, on top of a streaming board;
     # consoleparts.selftestbus, selftestboard and selftestsonar come with the checks (one after the
     # other), consoleparts.selftestsweep with `selftest servos L` only: the last row has all four
-    # (more than either job loads). consoleparts.more, .setting and .wall (the reporting and the setting
+    # (more than either job loads). consoleparts.more, .sonar, .setting and .wall (the reporting and the setting
     # commands) come at the first of theirs and stay 30 s after the last: first of the on-demand
     # ones (a `status` just before `selftest` leaves one loaded).
-    on_demand = ["consoleparts.more", "consoleparts.setting", "consoleparts.wall", "drivers.stream", "selftest"]
+    on_demand = ["consoleparts.more", "consoleparts.sonar", "consoleparts.setting", "consoleparts.wall"]
+    on_demand += ["drivers.stream", "selftest"]
     on_demand += ["consoleparts.selftestbus", "consoleparts.selftestboard", "consoleparts.selftestsonar"]
     on_demand.append("consoleparts.selftestsweep")
     # hexapod.jog (the Robot's jog moves; Robot.calibrate is resident) comes with the first jog

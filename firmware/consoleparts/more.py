@@ -1,5 +1,6 @@
-"""The console's reporting commands (`help`, `sonar`, `echo`, `faults`; `status` is console.py's): console.py hands
-them here (Console._part; the setting commands are consoleparts/setting.py's). The console
+"""The console's reporting commands (`help`, `echo`, `faults`; `status` is console.py's, `sonar`
+consoleparts/sonar.py's): console.py hands them here (Console._part; the setting commands are
+consoleparts/setting.py's). The console
 imports this module at the first of them; MicroPython keeps it while they keep coming (let go
 CAL_KEEP_MS after the last one); CircuitPython, which compiles a module's source at each import,
 compiles it for the command and lets it go after (hexapod.release), so the console's own compile
@@ -18,22 +19,6 @@ def _help(con, args):
 
     con._args(args, 0, "no arguments")
     return "ok " + console.COMMANDS
-
-
-def _sonar(con, args):
-    from hexapod import sensors
-    from hexapod.units import format_fixed
-
-    con._args(args, 0, "no arguments")
-    r = con.runner
-    parts = ["ok"]
-    for k in range(len(r.distances)):
-        st = r.sonar_status[k]
-        d = r.distances[k]
-        parts.append(sensors.SENSOR_NAMES[k])
-        parts.append(format_fixed(d, 1) if st == sensors.OK and d >= 0 else "-")
-        parts.append(sensors.STATUS_NAMES[st] if 0 <= st < len(sensors.STATUS_NAMES) else "unknown")
-    return " ".join(parts)
 
 
 def _echo(con, args):
@@ -60,7 +45,6 @@ def _faults(con, args):
 
 _COMMANDS = {
     "help": _help,
-    "sonar": _sonar,
     "echo": _echo,
     "faults": _faults,
 }

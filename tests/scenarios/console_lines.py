@@ -204,6 +204,7 @@ ON_DEMAND = (
     "consoleparts.more",
     "consoleparts.setting",
     "consoleparts.wall",
+    "consoleparts.sonar",
     "drivers._stream_viper",
     "drivers.stream",
     "calstore",
