@@ -37,7 +37,9 @@ def _cal(con, args):
 
 def cal_line(con, k):
     """'ok leg L joint J centre_us C ref_deg R trim T dir D min_us A max_us B' for servo 0..17."""
-    from hexapod.units import format_fixed
+    import hexapod.units  # (`import a.b`, not `from a.b import c`: that allocates 32 B a call)
+
+    format_fixed = hexapod.units.format_fixed
 
     s = con.robot.servos[k]
     return "ok leg %d joint %s centre_us %d ref_deg %s trim %d dir %d min_us %d max_us %d" % (

@@ -20,7 +20,9 @@ def _set_cal(con, k, trim, direction, lo, hi):
     r = con.robot
     code = r.calibrate(k, con.base[k][0] + trim, direction, lo, hi)
     if code == JOG_SERVO:
-        from hexapod.units import format_fixed
+        import hexapod.units
+
+        format_fixed = hexapod.units.format_fixed
 
         return "err leg %d %s: at %s deg it would need %d us, outside %d..%d us" % (
             k // 3 + 1,

@@ -23,7 +23,9 @@ def _height(con, args):
 
 
 def _pid(con, args):
-    from hexapod.units import format_fixed
+    import hexapod.units  # (`import a.b`, not `from a.b import c`: that allocates 32 B a call)
+
+    format_fixed = hexapod.units.format_fixed
 
     p = con.runner.follower.pid
     if args:

@@ -11,8 +11,11 @@ def command(con, word, args):
 
 
 def _sonar(con, args):
-    from hexapod import sensors
-    from hexapod.units import format_fixed
+    import hexapod.sensors  # (`import a.b`, not `from a import b`: that allocates 32 B a call)
+    import hexapod.units
+
+    sensors = hexapod.sensors
+    format_fixed = hexapod.units.format_fixed
 
     con._args(args, 0, "no arguments")
     r = con.runner
