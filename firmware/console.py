@@ -45,10 +45,10 @@ EDIT = "consoleparts.caledit"  # cal
 CALSET = "consoleparts.calset"  # trim, dir, range: with the four above, a jog session's modules
 CALS = (JOG, JOINT, EDIT, CALSET, CAL)
 CAL_KEEP_MS = const(30000)
-# The reporting commands' module (consoleparts/more.py: help, sonar, echo, faults; `status`, the one
-# tools poll, stays here: its import made the first one after 30 s take ~34 ms on an emulated Pico)
-# and the setting commands' (consoleparts/setting.py: height, wall, pid, stream; `gait` stays here,
-# asked while walking): each imported at
+# The reporting commands' modules (consoleparts/more.py: help, echo, faults; sonar.py; `status`, the
+# one tools poll, stays here: its import made the first one after 30 s take ~34 ms on an emulated
+# Pico) and the setting commands' (consoleparts/setting.py: height, pid, stream; wall.py; `gait`
+# stays here, asked while walking): each imported at
 # the first of its commands and kept while they keep coming (let go CAL_KEEP_MS after the last
 # one: the running loop does not carry them); CircuitPython (Console.compiles, set by code.py)
 # compiles one per command and lets it go after each.
