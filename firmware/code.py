@@ -118,9 +118,12 @@ if sys.implementation.name != "cpython":  # CPython: the tests install fake modu
 import console  # noqa: E402
 
 if sys.implementation.name != "cpython":
-    # The jog and calibration commands: compiled here, where the next compile would find a fuller
+    # The calibration file's commands: compiled here, where the next compile would find a fuller
     # heap, kept for the first jog session and let go once the robot walks (cal_until_walk: the
-    # loop's commands then have its 8 KB); MicroPython loads their .mpy per command instead.
+    # loop's commands then have its 8 KB); MicroPython loads their .mpy per command instead. The jog
+    # and calibration commands (consoleparts.jog, .joint, .caledit, .calset: small compiles, on a
+    # collected heap) at the session's first command of theirs: all five here took 3 KB more of the
+    # Feather's heap (bench feather, 2026-11-28).
     import consolecal  # noqa: F401
 
     del consolecal  # sys.modules holds it: the console lets it go (hexapod.release)

@@ -33,23 +33,37 @@ TAG_DIGITS = const(9)  # a request tag: '#' and 1..9 digits (docs/console.md, "R
 # posture move's trial of all its frames; a flash write): a tagged request of one of them gets
 # '#TAG working' before the command runs, so a client waits for its reply without a fixed timeout.
 SLOW = ("gait", "height", "stand", "sit", "relax", "save", "load", "defaults")
-# The jog and calibration commands' module (consolecal.py): imported at a jog session's first
-# command and kept while the session goes on (each import took 24-45 ms on a Pico: the frame
-# overran), let go (hexapod.release) CAL_KEEP_MS after its last command or once the robot walks or
-# follows a wall: the 5.3 KB of heap it takes on a Pico are the walking loop's again.
-CAL = "consolecal"
+# The jog and calibration commands' modules (CALS): imported at a jog session's first command and
+# kept while the session goes on (each import took 24-45 ms on a Pico: the frame overran), let go
+# (hexapod.release) CAL_KEEP_MS after its last command or once the robot walks or follows a wall:
+# the 5.3 KB of heap they take on a Pico are the walking loop's again. Five modules, not one
+# (consolecal's import took 36 ms, the first `foot` after boot 78 ms): each imports in a frame.
+CAL = "consolecal"  # save, load, defaults (and the boot's load of a file it must check)
+JOG = "consoleparts.jog"  # foot, nudge
+JOINT = "consoleparts.joint"  # joint, pulse
+EDIT = "consoleparts.caledit"  # cal
+CALSET = "consoleparts.calset"  # trim, dir, range: with the four above, a jog session's modules
+CALS = (JOG, JOINT, EDIT, CALSET, CAL)
 CAL_KEEP_MS = const(30000)
-# The reporting commands' module (consoleparts/more.py: help, sonar, echo, faults; `status`, the one
-# tools poll, stays here: its import made the first one after 30 s take ~34 ms on an emulated Pico)
-# and the setting commands' (consoleparts/setting.py: height, wall, pid, stream; `gait` stays here,
-# asked while walking): each imported at
+# The reporting commands' modules (consoleparts/more.py: help, echo, faults; sonar.py; `status`, the
+# one tools poll, stays here: its import made the first one after 30 s take ~34 ms on an emulated
+# Pico) and the setting commands' (consoleparts/setting.py: height, pid, stream; wall.py; `gait`
+# stays here, asked while walking): each imported at
 # the first of its commands and kept while they keep coming (let go CAL_KEEP_MS after the last
 # one: the running loop does not carry them); CircuitPython (Console.compiles, set by code.py)
 # compiles one per command and lets it go after each.
 MORE = "consoleparts.more"
 _CUTOFF = const(2)  # hexapod.battery.CUTOFF
-SETTING = "consoleparts.setting"  # height, wall, pid, stream: loaded and let go as MORE
+SETTING = "consoleparts.setting"  # height, pid, stream: loaded and let go as MORE
+WALL = "consoleparts.wall"  # wall: likewise
+SONAR = "consoleparts.sonar"  # sonar: likewise
 SELFTEST = "selftest"  # `selftest`: loaded for the command, let go when its job ends
+# A line whose command needs a module not loaded yet waits (Console._wait): poll imports the first
+# one missing a frame (each import fits a frame's slack on an emulated Pico; one module's import in
+# the command's frame made it late), then runs the line in the next frame, its reply the same: the
+# consoleparts package first (its own import is a frame), then BEFORE's chain, deepest first (a
+# module there needs the one it names loaded before it), then the command's module.
+BEFORE = {JOG: "hexapod.jog", "hexapod.jog": EDIT, JOINT: JOG, CALSET: EDIT, CAL: "calstore"}
 
 
 def load(name, compiles=False):
@@ -132,6 +146,7 @@ class Console:
     compiles = False
     fs = None  # (os, open): the filesystem console.start was given (cal_store)
     _boot = None  # the boot's calibration file load under way (console.start, _booting)
+    _wait = None  # (words, tag): a line waiting for its command's modules (_missing, _waiting)
 
     def __init__(self, runner, reader=None, out=print, store=None, walk_timeout_ms=WALK_TIMEOUT_MS, write=None):
         """runner: runner.Runner; reader: has read_byte(); store: calstore.Store or None (no
@@ -177,22 +192,22 @@ class Console:
             "stand": self._stand,
             "sit": self._sit,
             "relax": self._relax,
-            "foot": CAL,
-            "nudge": CAL,
-            "joint": CAL,
-            "pulse": CAL,
+            "foot": JOG,
+            "nudge": JOG,
+            "joint": JOINT,
+            "pulse": JOINT,
             "get": self._get,
             "walk": self._walk,
             "stop": self._stop,
             "gait": self._gait,
             "height": SETTING,
-            "sonar": MORE,
-            "wall": SETTING,
+            "sonar": SONAR,
+            "wall": WALL,
             "pid": SETTING,
-            "cal": CAL,
-            "trim": CAL,
-            "dir": CAL,
-            "range": CAL,
+            "cal": EDIT,
+            "trim": CALSET,
+            "dir": CALSET,
+            "range": CALSET,
             "save": CAL,
             "load": CAL,
             "defaults": CAL,
@@ -229,16 +244,18 @@ class Console:
                     self.robot.stop()
         if self._cal_until >= 0 and self._cal_over():
             self._cal_until = -1
-            release(CAL, CAL if self.compiles else "calstore")  # CircuitPython keeps calstore (a compile)
+            release(*CALS, CAL if self.compiles else "calstore")  # CircuitPython keeps calstore (a compile)
         if self._more_until >= 0:
             clock = self.runner.clock
             if clock.ticks_diff(clock.ticks_ms(), self._more_until) >= 0:
                 self._more_until = -1
-                release(MORE, SETTING)
+                release(MORE, SETTING, WALL, SONAR)
         if self._job is not None:
             self._job_step()
         if self._late is not None and not self.robot.configuring():
             self._late_done()
+        if self._wait is not None and self._waiting():
+            return  # no byte read while a line waits: the lines after it keep their order
         reader = self.reader
         if reader is None:
             return
@@ -252,6 +269,8 @@ class Console:
                     continue
                 self._cr = b == 13
                 self._end_line()
+                if self._wait is not None:
+                    return  # the rest stays in the port until the waiting line has run
                 continue
             self._cr = False
             if b == 8 or b == 127:  # backspace (terminals send either): the line's last character goes
@@ -314,6 +333,9 @@ class Console:
             words = str(self._view[:n], "ascii").replace("\t", " ").split()
             if self._buf[0] == 35 and tag_length(self._buf, n) > 0:
                 tag = words[0]  # a word the split made anyway: echoing it copies no reply
+            if not self.compiles and self._missing(words, tag) is not None:
+                self._wait = (words, tag)  # its modules first, one a frame (_waiting)
+                return
             reply = self._dispatch(words, tag)
             if reply is None:
                 return
@@ -321,6 +343,41 @@ class Console:
         self._bad = -1
         self.lines += 1
         self._say(tag, reply)
+
+    def _missing(self, words, tag):
+        """The first module not loaded yet (BEFORE's order) that the line's command needs; None when
+        all are loaded, or the command is not one loaded on demand."""
+        k = 0 if tag is None else 1
+        name = self._table.get(words[k]) if len(words) > k else None
+        if type(name) is not str:
+            return None
+        if "consoleparts" not in sys.modules:
+            return "consoleparts"
+        missing = None
+        while name is not None:
+            if name not in sys.modules:
+                missing = name
+            name = BEFORE.get(name)
+        return missing
+
+    def _waiting(self):
+        """poll while a line waits for its command's modules: True when one was imported, else the
+        line run (False: poll reads on). An import that fails runs the line at once: the command's
+        own import says why in its reply."""
+        words, tag = self._wait
+        name = self._missing(words, tag)
+        if name is not None:
+            try:
+                load(name)
+                return True
+            except Exception:
+                pass
+        self._wait = None
+        reply = self._dispatch(words, tag)
+        if reply is not None:
+            self.lines += 1
+            self._say(tag, reply)
+        return False
 
     def _say(self, tag, line):
         """One line out, after its request's tag when it had one (out(tag, line): print puts a
@@ -367,9 +424,9 @@ class Console:
         if tag is not None and word in SLOW:
             self.out(tag, "working")  # sent before the command runs: the client waits on
         try:
-            if fn is CAL:
+            if fn in CALS:
                 reply = self._calibration(word, args)
-            elif fn is MORE or fn is SETTING:
+            elif fn is MORE or fn is SETTING or fn is WALL or fn is SONAR:
                 reply = self._part(fn, word, args)
             else:
                 reply = fn(args)
@@ -664,7 +721,7 @@ class Console:
         (compiles). Where consolecal waits for the robot to walk (cal_until_walk), `wall` lets it
         go before its module's compile (a jog command after it compiles consolecal again)."""
         if self.cal_until_walk and word == "wall":
-            release(CAL)
+            release(*CALS)
         part = load(name, self.compiles)
         try:
             return part.command(self, word, args)
@@ -745,9 +802,10 @@ class Console:
         return store
 
     def _calibration(self, word, args):
-        """A jog or calibration command (consolecal): its module stays on the heap for the session
-        (poll lets it go, _cal_over); the boot's file load ("boot") lets it go at once."""
-        cal = load(CAL, self.compiles)
+        """A jog or calibration command (consoleparts.jog, .caledit, consolecal: CALS): the session's
+        modules stay on the heap (poll lets them go, _cal_over); the boot's file load ("boot") lets
+        consolecal go at once."""
+        cal = load(self._table.get(word, CAL), self.compiles)
         try:
             return cal.command(self, word, args)
         finally:

@@ -1,14 +1,14 @@
-"""The console's jog (`foot`, `nudge`, `joint`, `pulse`) and calibration commands (`cal`, `trim`,
-`dir`, `range`, `save`, `load`, `defaults`), and the calibration file's load at boot: imported by
-console.py when one of them runs and let go after it (hexapod.release), so the walking loop has
-their code's heap (docs/console.md). None runs while walking. The console names the command in an
-err reply.
+"""The console's calibration file commands (`save`, `load`, `defaults`), the calibration file's
+load at boot, and the file's text (decode, encode, save): imported by console.py when one of them
+runs and let go after it (hexapod.release), so the walking loop has their code's heap
+(docs/console.md). The jog commands are consoleparts/jog.py's, `cal`, `trim`, `dir` and `range`
+consoleparts/caledit.py's (this module's import with them took 36 ms on the emulated Pico: a late
+frame). None runs while walking. The console names the command in an err reply.
 """
 
 import calstore
 from calstore import JOINTS, TRIM_MAX
 
-from hexapod import tick
 from hexapod.units import format_fixed
 
 
@@ -65,12 +65,9 @@ def version(text):
 
 
 def command(con, word, args):
-    """The reply to a jog or calibration command line's word and arguments on console con."""
+    """The reply to a calibration file command line's word and arguments on console con."""
     if word == "boot":  # console.start: the calibration file's (rows, where, version) it read
         return put_file(con, *args)
-    run = _WITH_ARGS.get(word)
-    if run is not None:
-        return run(con, args)
     con._args(args, 0, "no arguments")
     if word == "save":
         return _save(con)
@@ -80,148 +77,6 @@ def command(con, word, args):
             _defaults(con)
         return reply
     return _defaults(con)
-
-
-def _cal(con, args):
-    return cal_line(con, _servo(con, args, 2, "L J (leg 1..6, coxa|femur|tibia)"))
-
-
-def _foot(con, args):
-    con._args(args, 4, "L X Y Z (leg 1..6, mm in the leg frame)")
-    leg = con._leg(args[0])
-    x = con._num("x", args[1], 1, -5000, 5000, "mm")
-    y = con._num("y", args[2], 1, -5000, 5000, "mm")
-    z = con._num("z", args[3], 1, -5000, 5000, "mm")
-    con._no_follow()
-    con._battery_ok()
-    return _jogged(con, leg, con.robot.jog_foot(leg, x, y, z))
-
-
-def _jogged(con, leg, code):
-    if code:
-        return con._refused(code)
-    con._walking = False
-    return con.leg_line(leg)
-
-
-def _nudge(con, args):
-    con._args(args, 4, "L DX DY DZ (leg 1..6, mm in the leg frame)")
-    leg = con._leg(args[0])
-    d = [con._num(n, args[k + 1], 1, -1000, 1000, "mm") for k, n in enumerate(("dx", "dy", "dz"))]
-    con._no_follow()
-    con._battery_ok()
-    r = con.robot
-    k = 3 * leg
-    if not (r.pulses[k] and r.pulses[k + 1] and r.pulses[k + 2]):
-        raise ValueError("leg %d has a limp servo: place it with 'foot' first" % (leg + 1))
-    foot = [0, 0, 0]
-    r.geometry.legs[leg].fk(r.angles[k], r.angles[k + 1], r.angles[k + 2], foot, 0)
-    return _jogged(con, leg, r.jog_foot(leg, foot[0] + d[0], foot[1] + d[1], foot[2] + d[2]))
-
-
-def _joint(con, args):
-    con._args(args, 3, "L J DEG (leg 1..6, coxa|femur|tibia, degrees)")
-    leg = con._leg(args[0])
-    j = _joint_of(args[1])
-    a = con._num("angle", args[2], 2, -18000, 18000, "degrees")
-    con._no_follow()
-    con._battery_ok()
-    return _jogged(con, leg, con.robot.jog_joint(leg, j, a))
-
-
-def _pulse(con, args):
-    con._args(args, 3, "L J US (leg 1..6, coxa|femur|tibia, microseconds)")
-    leg = con._leg(args[0])
-    j = _joint_of(args[1])
-    s = con.robot.servos[3 * leg + j]
-    us = _whole("pulse", args[2], s.min_us, s.max_us, "us (this servo's calibrated range)")
-    con._no_follow()
-    con._battery_ok()
-    return _jogged(con, leg, con.robot.jog_pulse(leg, j, us))
-
-
-def _joint_of(text):
-    for j in range(3):
-        if JOINTS[j] == text:
-            return j
-    raise ValueError("joint %r, allowed coxa, femur, tibia" % (text[:20],))
-
-
-def _whole(name, text, lo, hi, unit):
-    body = text[1:] if text[:1] in ("-", "+") else text
-    if not body.isdigit() or len(body) > 9:
-        raise ValueError("%s %r is not a whole number (%s)" % (name, text[:20], unit))
-    v = int(text)
-    if v < lo or v > hi:
-        raise ValueError("%s %d is outside %d..%d %s" % (name, v, lo, hi, unit))
-    return v
-
-
-def cal_line(con, k):
-    """'ok leg L joint J centre_us C ref_deg R trim T dir D min_us A max_us B' for servo 0..17."""
-    s = con.robot.servos[k]
-    return "ok leg %d joint %s centre_us %d ref_deg %s trim %d dir %d min_us %d max_us %d" % (
-        k // 3 + 1,
-        JOINTS[k % 3],
-        con.base[k][0],
-        format_fixed(s.ref_cdeg, 2),
-        con.trims[k],
-        s.direction,
-        s.min_us,
-        s.max_us,
-    )
-
-
-def _servo(con, args, n, usage):
-    con._args(args, n, usage)
-    return 3 * con._leg(args[0]) + _joint_of(args[1])
-
-
-def _set_cal(con, k, trim, direction, lo, hi):
-    r = con.robot
-    code = r.calibrate(k, con.base[k][0] + trim, direction, lo, hi)
-    if code == tick.JOG_SERVO:
-        return "err leg %d %s: at %s deg it would need %d us, outside %d..%d us" % (
-            k // 3 + 1,
-            JOINTS[k % 3],
-            format_fixed(r.angles[k], 2),
-            lo - r.jog_excess if r.jog_code == 1 else hi + r.jog_excess,
-            lo,
-            hi,
-        )
-    if code:
-        return con._refused(code)
-    con.trims[k] = trim
-    con.cal_source = "changed"
-    return cal_line(con, k)
-
-
-def _trim(con, args):
-    k = _servo(con, args, 3, "L J US (leg 1..6, coxa|femur|tibia, us)")
-    c = con.base[k][0]
-    lo = -TRIM_MAX if c - TRIM_MAX >= 500 else 500 - c
-    hi = TRIM_MAX if c + TRIM_MAX <= 2500 else 2500 - c
-    t = _whole("trim", args[2], lo, hi, "us (centre_us %d + trim within 500..2500)" % c)
-    s = con.robot.servos[k]
-    return _set_cal(con, k, t, s.direction, s.min_us, s.max_us)
-
-
-def _dir(con, args):
-    k = _servo(con, args, 3, "L J D (leg 1..6, coxa|femur|tibia, 1 or -1)")
-    if args[2] not in ("1", "-1", "+1"):
-        raise ValueError("direction %r, allowed 1 or -1" % (args[2][:20],))
-    s = con.robot.servos[k]
-    return _set_cal(con, k, con.trims[k], int(args[2]), s.min_us, s.max_us)
-
-
-def _range(con, args):
-    k = _servo(con, args, 4, "L J MIN MAX (leg 1..6, coxa|femur|tibia, us)")
-    lo = _whole("min_us", args[2], 500, 2500, "us")
-    hi = _whole("max_us", args[3], 500, 2500, "us")
-    if lo >= hi:
-        raise ValueError("min_us %d must be below max_us %d" % (lo, hi))
-    s = con.robot.servos[k]
-    return _set_cal(con, k, con.trims[k], s.direction, lo, hi)
 
 
 def rows(con):
@@ -336,16 +191,3 @@ def save(store, rows):
         store.os.remove(store.path)  # FAT cannot rename over a file: TMP is complete by now
         store.os.rename(store.tmp, store.path)
     return calstore.crc16(text[: text.rfind("crc ")].encode())
-
-
-# The commands that read arguments (save, load and defaults take none).
-_WITH_ARGS = {
-    "foot": _foot,
-    "nudge": _nudge,
-    "joint": _joint,
-    "pulse": _pulse,
-    "cal": _cal,
-    "trim": _trim,
-    "dir": _dir,
-    "range": _range,
-}

@@ -135,8 +135,9 @@ def test_a_short_write_that_reports_success_is_caught_by_the_read_back(rt):
 
 
 def test_the_jog_and_calibration_commands_module_stays_for_a_jog_session(rt):
-    # consolecal is the console's jog and calibration commands: imported at a session's first
-    # command and kept while it goes on (an import per command overran the Pico's frame), let go
+    # consoleparts.jog, .caledit and consolecal (console.CALS) are the console's jog and calibration
+    # commands: imported at a session's first command (each as its commands need it) and kept
+    # while it goes on (an import per command overran the Pico's frame), let go
     # (hexapod.release) 30 s (CAL_KEEP_MS) after the last one or once the robot walks; the boot's
     # file load lets it go at once. On CPython release does nothing (the host's tests share one
     # process). CircuitPython's code.py compiles it at boot and keeps it until the robot walks
@@ -150,3 +151,17 @@ def test_the_jog_and_calibration_commands_module_stays_for_a_jog_session(rt):
         + ["ok ", True, "ok ", kept, 4]
         + ["ok ", kept, 3, "ok ", "ok ", kept, "ok ", "ok ", kept, "ok "]
     )
+
+
+def test_the_jog_sessions_parts_write_out_the_values_they_would_import():
+    # consoleparts.caledit and .calset import little at their top (each import cost the module's own
+    # ~0.4 ms on the emulated Pico, where its import must fit a frame's slack): their copies must be
+    # the originals.
+    import calstore
+    import console
+    from consoleparts import caledit, calset
+
+    from hexapod import tick
+
+    assert caledit.JOINTS == calstore.JOINTS == console.JOINTS
+    assert calset.TRIM_MAX == calstore.TRIM_MAX and calset.JOG_SERVO == tick.JOG_SERVO

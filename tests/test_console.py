@@ -275,7 +275,7 @@ def test_backspace_and_echo(rt):
     `echo on` sends typed characters back; tools (echo off, the default) see only replies."""
     chunks = [
         (b"get 2x\x7f\r", 3),
-        (b"echo\necho on\n", 3),
+        (b"echo\necho on\n", 5),  # the first reporting command waits for its modules (a frame each)
         (b"gex\x08t\t1\r\n", 3),
         (b"\x7f\x7f\n", 3),
         (b"get 3\x01\x7f\n", 3),
@@ -369,3 +369,28 @@ def test_status_answers_without_importing_the_reporting_module(mp):
     reporting command took ~34 ms on the emulated Pico, the module's import (docs/pico.md); `help`
     still loads consoleparts.more (the VM: hexapod.release and the imports are MicroPython's)."""
     assert call(mp, "status_imports") == [True, False, True]
+
+
+def test_a_command_waits_for_its_modules_one_import_a_frame(mp):
+    """A line whose command needs modules not loaded yet (a fresh board: the VM's hexapod.release
+    and imports are MicroPython's) waits: poll imports one module a frame, in console.BEFORE's
+    order (the package first; `foot`: caledit, hexapod.jog, then consoleparts.jog), and runs
+    the line in the frame after the last, so no frame pays two imports nor an import and the
+    command (each import fits a frame's slack on the emulated Pico; one module's import in the
+    command's frame made it late, docs/pico.md). The line after it keeps its place; the replies
+    and the refusal are do()'s with every module loaded, and the robot ends as there."""
+    lines = [b"help\nget 1\n", b"#5 pid\n", b"foot 9 0 0 0\n", b"foot 2 130 5 -80\n", b"sonar\n"]
+    got, direct, same_state = call(mp, "deferred_imports", lines)
+    shown = [[f for f in frames if f is not None] for frames in got]
+    # every frame imports at most one module; the line's own frame (the first) only reads it
+    assert all(f is None or len(f[0]) <= 1 for frames in got for f in frames)
+    # a waiting line is never answered in its own frame; a loaded one is (foot again)
+    assert [g[0] is None for g in got] == [True, True, True, False, True]
+    assert shown[0] == [[["consoleparts"], []], [["consoleparts.more"], []], [[], direct[0:2]]]
+    assert shown[1] == [[["consoleparts.setting"], []], [[], [direct[2]]]] and direct[2].startswith("#5 ok pid ")
+    chain = ["consoleparts.caledit", "hexapod.jog", "consoleparts.jog"]
+    assert shown[2] == [[[m], []] for m in chain] + [[[], ["err foot: leg '9', allowed 1..6"]]]
+    assert direct[3] == "err foot: leg '9', allowed 1..6"
+    assert shown[3] == [[[], [direct[4]]]] and direct[4].startswith("ok leg 2 ")
+    assert shown[4] == [[["consoleparts.sonar"], []], [[], [direct[5]]]] and direct[5].startswith("ok front ")
+    assert same_state

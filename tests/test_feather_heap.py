@@ -159,10 +159,12 @@ def test_every_module_the_run_loads_is_shipped_and_boot_only_ones_are_let_go(run
     assert {m for m in loaded if m.startswith("adafruit_")} == {"adafruit_bus_device", "adafruit_bus_device.i2c_device"}
     # code.py releases the board file's validator and the robot file after boot (hexapod.release),
     # the console drops selftest and its parts when the command is done, and on CircuitPython
-    # consoleparts.setting and .more after each of their commands (`wall`, `status`), consolecal
-    # (compiled at boot) once the robot walks
+    # consoleparts.wall and .sonar after each of their commands (`wall`, `sonar`), the jog session's
+    # modules (compiled at boot) once the robot walks
     gone_too = ("consoleparts.more", "consoleparts.setting", "consoleparts.selftestbus", "consoleparts.selftestboard")
     gone_too += ("consoleparts.selftestsonar", "consolecal")  # consolecal: once the robot walks (`wall`)
+    gone_too += ("consoleparts.wall", "consoleparts.sonar", "consoleparts.jog", "consoleparts.joint")
+    gone_too += ("consoleparts.caledit", "consoleparts.calset")
     for gone in ("hexapod.board", "hexapod.robotfile", "robots.default", "selftest") + gone_too:
         assert gone in shipped and gone not in loaded, gone
     # shipped but never loaded by this run: the battery monitor's module (CircuitPython has no ADC

@@ -38,13 +38,15 @@ def expected(board, entry, drivers):
     # main.py and code.py import console (the serial console), which imports calstore, selftest
     # inside its `selftest` command (and consoleparts' selftestbus, selftestboard and selftestsonar
     # for its checks, selftestsweep for `selftest servos L`), consoleparts.more and .setting inside
-    # its reporting and setting commands (stream inside `stream`) and consolecal inside the jog and
-    # calibration commands (loaded only when asked for, but on the board all the same; most by
-    # name through console.load: test_a_module_loaded_by_name_counts_as_imported).
+    # its reporting and setting commands (stream inside `stream`) and consoleparts.jog, .joint,
+    # .caledit, .calset and consolecal inside the jog and calibration commands (loaded only when asked for, but on the
+    # board all the same; most by name through console.load: test_a_module_loaded_by_name_counts_as_imported).
     # CircuitPython has no viper emitter: the viper modules stay off its drive.
     core = [p for p in CORE if entry == "main.py" or p not in flash.VIPER]
     files = core + drivers + ["runner.py", "console.py", "consolecal.py", "calstore.py", "selftest.py"]
     files += ["consoleparts/__init__.py", "consoleparts/more.py", "consoleparts/setting.py"]
+    files += ["consoleparts/jog.py", "consoleparts/joint.py", "consoleparts/caledit.py"]
+    files += ["consoleparts/calset.py", "consoleparts/wall.py", "consoleparts/sonar.py"]
     files += ["consoleparts/selftestbus.py", "consoleparts/selftestsonar.py"]
     files += ["consoleparts/selftestboard.py", "consoleparts/selftestsweep.py"]
     files.append("boards/__init__.py")
@@ -141,7 +143,7 @@ def test_a_module_loaded_by_name_counts_as_imported(tmp_path):
     # console.load imports by name: a module-level constant naming a firmware module is an import;
     # another string, or one inside a function, is not
     console = flash._imports(os.path.join(FIRMWARE, "console.py"))
-    assert {"consoleparts.more", "consoleparts.setting", "consolecal", "selftest"} <= set(console)
+    assert {"consoleparts.more", "consoleparts.setting", "consolecal", "selftest", "consoleparts.jog"} <= set(console)
     selftest = flash._imports(os.path.join(FIRMWARE, "selftest.py"))
     assert {"consoleparts.selftestbus", "consoleparts.selftestboard", "consoleparts.selftestsonar"} <= set(selftest)
     src = tmp_path / "m.py"

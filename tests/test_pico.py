@@ -140,16 +140,21 @@ def test_every_module_imports_as_mpy_with_the_heap_left(fs):
     # selftest for `selftest` (dropped after the command): selftest last, on top of a streaming board;
     # consoleparts.selftestbus, selftestboard and selftestsonar come with the checks (one after the
     # other), consoleparts.selftestsweep with `selftest servos L` only: the last row has all four
-    # (more than either job loads). consoleparts.more and .setting (the reporting and the setting
+    # (more than either job loads). consoleparts.more, .sonar, .setting and .wall (the reporting and the setting
     # commands) come at the first of theirs and stay 30 s after the last: first of the on-demand
     # ones (a `status` just before `selftest` leaves one loaded).
-    on_demand = ["consoleparts.more", "consoleparts.setting", "drivers.stream", "selftest"]
+    on_demand = ["consoleparts.more", "consoleparts.sonar", "consoleparts.setting", "consoleparts.wall"]
+    on_demand += ["drivers.stream", "selftest"]
     on_demand += ["consoleparts.selftestbus", "consoleparts.selftestboard", "consoleparts.selftestsonar"]
     on_demand.append("consoleparts.selftestsweep")
     # hexapod.jog (the Robot's jog moves; Robot.calibrate is resident) comes with the first jog
     # command, or with the sweep (Robot.jog_joint): the last row has it too.
     on_demand.append("hexapod.jog")
     resident_names = [n for n in names if n not in on_demand and n != "drivers._stream_viper"]  # stream's twin: with it
+    # A jog session's commands (consoleparts.jog, .joint, .caledit, .calset): loaded for the session,
+    # let go after it, never at boot (consolecal, the file's, is: below).
+    session = ("consoleparts.jog", "consoleparts.joint", "consoleparts.caledit", "consoleparts.calset")
+    resident_names = [n for n in resident_names if n not in session]
     # The calibration commands' module comes and goes: console.start reads the calibration file
     # with it at boot and lets it go (its names stay: qstrs), each calibration command likewise;
     # calstore (the file's read and check) as well: the boot's load, a calibration session (with

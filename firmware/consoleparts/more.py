@@ -1,16 +1,12 @@
-"""The console's reporting commands (`help`, `sonar`, `echo`, `faults`; `status` is console.py's): console.py hands
-them here (Console._part; the setting commands are consoleparts/setting.py's). The console
+"""The console's reporting commands (`help`, `echo`, `faults`; `status` is console.py's, `sonar`
+consoleparts/sonar.py's): console.py hands them here (Console._part; the setting commands are
+consoleparts/setting.py's). The console
 imports this module at the first of them; MicroPython keeps it while they keep coming (let go
 CAL_KEEP_MS after the last one); CircuitPython, which compiles a module's source at each import,
 compiles it for the command and lets it go after (hexapod.release), so the console's own compile
 and the running loop's heap are smaller (docs/flashing.md). The console names the command in
 an err reply; the replies are the console's as before.
 """
-
-import console
-
-from hexapod import sensors
-from hexapod.units import format_fixed
 
 
 def command(con, word, args):
@@ -19,21 +15,10 @@ def command(con, word, args):
 
 
 def _help(con, args):
+    import console  # (in the functions: each module-level import cost the module's import ~0.5 ms)
+
     con._args(args, 0, "no arguments")
     return "ok " + console.COMMANDS
-
-
-def _sonar(con, args):
-    con._args(args, 0, "no arguments")
-    r = con.runner
-    parts = ["ok"]
-    for k in range(len(r.distances)):
-        st = r.sonar_status[k]
-        d = r.distances[k]
-        parts.append(sensors.SENSOR_NAMES[k])
-        parts.append(format_fixed(d, 1) if st == sensors.OK and d >= 0 else "-")
-        parts.append(sensors.STATUS_NAMES[st] if 0 <= st < len(sensors.STATUS_NAMES) else "unknown")
-    return " ".join(parts)
 
 
 def _echo(con, args):
@@ -49,6 +34,8 @@ def _echo(con, args):
 def _faults(con, args):
     if len(args) > 1 or (args and args[0] != "clear"):
         raise ValueError("need clear or nothing (list), got %r" % (" ".join(args)[:20],))
+    import console
+
     log = con.runner.faultlog
     if args:
         log.clear()
@@ -58,7 +45,6 @@ def _faults(con, args):
 
 _COMMANDS = {
     "help": _help,
-    "sonar": _sonar,
     "echo": _echo,
     "faults": _faults,
 }

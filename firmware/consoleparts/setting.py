@@ -1,11 +1,9 @@
-"""The console's setting commands (`height`, `wall`, `pid`, `stream`): console.py hands them
-here (Console._part), as it hands the reporting ones to consoleparts/more.py, and loads and lets go
-this module the same way (two smaller compiles on CircuitPython than one; docs/flashing.md). The
-console names the command in an err reply; the replies are the console's as before.
+"""The console's setting commands (`height`, `pid`, `stream`; `wall` is consoleparts/wall.py's):
+console.py hands them here (Console._part), as it hands the reporting ones to consoleparts/more.py,
+and loads and lets go this module the same way (two smaller compiles on CircuitPython than one;
+docs/flashing.md). The console names the command in an err reply; the replies are the console's as
+before.
 """
-
-from hexapod import limits
-from hexapod.units import format_fixed
 
 
 def command(con, word, args):
@@ -24,28 +22,11 @@ def _height(con, args):
     return con._ok_late("height")
 
 
-def _wall(con, args):
-    if len(args) == 1 and args[0] == "off":
-        con.runner.follow_off()
-        return "ok wall off"
-    if len(args) != 3:
-        con._args(args, 2, "left|right CM [FORM], or off")
-    if args[0] not in limits.SIDES:
-        raise ValueError("side %r, allowed left, right or off" % (args[0][:20],))
-    cm = con._num("set point", args[1], 2, limits.SETPOINT_MIN, limits.SETPOINT_MAX, "cm")
-    form = args[2] if len(args) == 3 else "crab"
-    if form not in limits.FORMS:
-        raise ValueError("form %r, allowed %s" % (form[:20], ", ".join(limits.FORMS)))
-    con._battery_ok()
-    con._walking = False
-    code = con.runner.follow(args[0], cm, form=form)
-    if code:
-        return con._refused(code)
-    reply = "ok wall %s setpoint %s" % (args[0], format_fixed(cm, 2))
-    return reply + " form " + form if len(args) == 3 else reply
-
-
 def _pid(con, args):
+    import hexapod.units  # (`import a.b`, not `from a.b import c`: that allocates 32 B a call)
+
+    format_fixed = hexapod.units.format_fixed
+
     p = con.runner.follower.pid
     if args:
         con._args(args, 3, "KP KI KD (each 0..100, 3 decimals)")
@@ -65,7 +46,6 @@ def _stream(con, args):
 
 _COMMANDS = {
     "height": _height,
-    "wall": _wall,
     "pid": _pid,
     "stream": _stream,
 }

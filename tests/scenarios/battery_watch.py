@@ -54,7 +54,13 @@ def run(frames, typed, clock, frame, boot="stand"):
     start = console.start
 
     def start_here(runner, reader, os=None, opener=open, out=print, **kw):
-        return start(runner, reader, os, opener, reader.say, **kw)  # the console's lines kept
+        c = start(runner, reader, os, opener, reader.say, **kw)  # the console's lines kept
+        # The modules the typed lines' commands load on demand, loaded first: each line is answered
+        # in the frame it is typed, as the scenario's frames were worked out (a line that waits for
+        # its modules, a frame each, holds the lines after it too: console.Console._waiting).
+        for name in ("consoleparts", "hexapod.jog", console.JOINT, console.WALL, console.MORE):
+            console.load(name)
+        return c
 
     console.start = start_here
     try:

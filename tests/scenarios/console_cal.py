@@ -81,7 +81,8 @@ def version_1_files():
 
 
 def cal_module_session():
-    """consolecal in sys.modules through a jog session: after the boot's file load, after each of
+    """The jog session's modules (console.CALS: any of them) in sys.modules through a jog session:
+    after the boot's file load, after each of
     a few commands, 29.98 s and 30 s after the last one, standing and a command again, walking,
     with keep_cal, and with cal_until_walk 32 s after a command and then walking, then standing, a
     command, `wall off`, a command and `wall left 12`: [implementation name, [cal_source, loaded, (reply's
@@ -94,17 +95,17 @@ def cal_module_session():
     said = []
     c = console.start(r, None, fs, fs.open, out=said.append)
     r.console = c
-    seen = [c.cal_source, "consolecal" in sys.modules]
+    seen = [c.cal_source, any(m in sys.modules for m in console.CALS)]
 
     def frames(n):
         for _ in range(n):
             clock.advance_us(20000)
             r.step()
             c.poll()
-        return "consolecal" in sys.modules
+        return any(m in sys.modules for m in console.CALS)
 
     for line in ("trim 1 coxa 5", "trim 1 coxa 999", "foot 9 0 0 0", "get 1"):
-        seen += [c.do(line)[:3], "consolecal" in sys.modules]
+        seen += [c.do(line)[:3], any(m in sys.modules for m in console.CALS)]
     seen.append(frames(1499))  # 29.98 s after the last jog command: kept
     seen.append(frames(1))  # 30 s: let go
     seen += [c.do("stand")[:3], frames(150), c.do("cal 1 coxa")[:3], frames(1)]  # standing: kept again
@@ -116,7 +117,7 @@ def cal_module_session():
     seen += [c.do("cal 1 coxa")[:3], frames(1600), c.do("walk 100 0 0")[:3], frames(1), r.robot.mode]
     # and `wall` lets it go before its own module's compile (`wall off` too): standing again
     seen += [c.do("stop")[:3], frames(150), r.robot.mode, c.do("cal 1 coxa")[:3], c.do("wall off")[:3]]
-    seen += ["consolecal" in sys.modules, c.do("cal 1 coxa")[:3], c.do("wall left 12")[:3]]
-    seen += ["consolecal" in sys.modules, c.do("wall off")[:3]]
+    seen += [any(m in sys.modules for m in console.CALS), c.do("cal 1 coxa")[:3], c.do("wall left 12")[:3]]
+    seen += [any(m in sys.modules for m in console.CALS), c.do("wall off")[:3]]
     c.cal_until_walk = False
     return [sys.implementation.name, seen]

@@ -147,6 +147,11 @@ def wall_status(echo_mm10):
     """status, stand (120 frames), the two left sonars at echo_mm10 (None: no echo), `wall left
     12`, frames, status: [first status, stand, wall's reply, last status]."""
     b = Board()
+    # `wall`'s modules loaded (no frame run): it runs in the frame it is read, not after its
+    # modules' imports (a frame each, Console._waiting), so the sonars' phase is as it was.
+    import console
+
+    console.load(console.WALL)
     out = [b.say("status"), b.say("stand")] if echo_mm10 is None else [b.say("stand")]
     b.frames(120)
     for k in (1, 2):
@@ -191,3 +196,57 @@ def status_imports():
     b.say("help")
     out.append("consoleparts.more" in sys.modules)
     return out
+
+
+# The modules the console loads on demand (console.BEFORE), in no particular order.
+ON_DEMAND = (
+    "consoleparts",
+    "consoleparts.more",
+    "consoleparts.setting",
+    "consoleparts.wall",
+    "consoleparts.sonar",
+    "drivers._stream_viper",
+    "drivers.stream",
+    "calstore",
+    "consoleparts.caledit",
+    "consoleparts.calset",
+    "hexapod.jog",
+    "consoleparts.jog",
+    "consoleparts.joint",
+    "consolecal",
+)
+
+
+def deferred_imports(lines, frames=12):
+    """Each of lines (bytes) fed on a fresh standing board, then `frames` frames: per frame, the
+    on-demand modules it imported and the replies it sent, as [[names], [replies]] (frames with
+    neither left out but counted: None in their place). The same lines' replies through do() on a
+    second board that has every module loaded, and both boards' servo_state at the end."""
+    import sys
+
+    import console
+
+    def run(b, data):
+        out = []
+        for _ in range(frames):
+            before = [m for m in ON_DEMAND if m in sys.modules]
+            n = len(b.replies)
+            b.reader.feed(data)
+            data = b""
+            b.frame()
+            new = [m for m in ON_DEMAND if m in sys.modules and m not in before]
+            out.append([new, b.replies[n:]] if new or len(b.replies) > n else None)
+        return out
+
+    b = Board()
+    b.stand()
+    got = [run(b, data) for data in lines]
+    state = b.state()
+    c = Board()
+    c.stand()
+    for name in ON_DEMAND:
+        console.load(name)
+    direct = []
+    for data in lines:
+        direct += [c.con.do(line) for line in data.decode().split("\n") if line]
+    return [got, direct, state == c.state()]

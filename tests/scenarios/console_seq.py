@@ -35,10 +35,25 @@ HELD_FRAMES = POSTURE_FRAMES if POSTURE_FRAMES > WALK_FRAMES else WALK_FRAMES
 MODES = tick.MODE_NAMES
 
 
-class Board(console_rig.Board):
-    """The console bench (scenarios.console_rig.Board); a reply waited for at most 3 frames."""
+def _waits(name):
+    """The imports a line of module `name`'s commands may wait for: the consoleparts package, then
+    console.BEFORE's chain down from it (console.Console._waiting: one a frame)."""
+    n = 1
+    while name is not None:
+        n += 1
+        name = console.BEFORE.get(name)
+    return n
 
-    SAY_FRAMES = 3
+
+# A reply comes in its line's frame, or in the frame after its modules' imports (the line's frame,
+# one a module, then the command's): 3 frames allowed before the imports waited (2026-11-28).
+REPLY_FRAMES = 2 + max(_waits(m) for m in (console.JOINT, console.CALSET, console.CAL, console.MORE))
+
+
+class Board(console_rig.Board):
+    """The console bench (scenarios.console_rig.Board); a reply waited for at most REPLY_FRAMES."""
+
+    SAY_FRAMES = REPLY_FRAMES
 
 
 def sit_after_tibia_zero(frames=200):
@@ -271,7 +286,7 @@ class Run:
         b.reader.feed(line.encode() + b"\n")
         before = None
         reply = None
-        for _ in range(3):
+        for _ in range(REPLY_FRAMES):
             b.r.step()
             before = _snap(b)
             was = b.robot.mode

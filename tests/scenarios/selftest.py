@@ -221,6 +221,7 @@ def sweep_refused():
     while b.robot.mode != tick.SITTING:
         b.frame()
     p = b.robot.pulses[4]  # leg 2 femur
-    r1 = b.say("range 2 femur 600 %d" % (p + 50), "ok leg", 3)[0]
+    # `range` waits for its modules (the package, caledit, calset: a frame each) before it runs
+    r1 = b.say("range 2 femur 600 %d" % (p + 50), "ok leg", 5)[0]
     lines, frames = b.say("selftest servos 2", "ok selftest", 600)
     return [p, r1, lines, list(b.robot.pulses[3:6]), tick.MODE_NAMES[b.robot.mode]]
