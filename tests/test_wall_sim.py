@@ -446,3 +446,32 @@ def test_one_ctrl_c_stops_a_run_of_trials_cleanly():
     assert out == ""  # no table for half a run
     with pytest.raises(ProcessLookupError):  # nothing of the group is left: the workers are gone
         os.killpg(proc.pid, 0)
+
+
+def test_a_ctrl_c_while_the_pool_starts_is_not_lost(monkeypatch):
+    # main: the parent ignored SIGINT while the pool forked, so a Ctrl-C in that window was dropped
+    # and the run went on to its end (a loaded machine's CI). Now it is held and taken at once after.
+    import multiprocessing
+    import os
+    import signal
+
+    real = multiprocessing.get_context
+    workers = []
+
+    class Context:
+        def __init__(self, method):
+            self.ctx = real(method)
+
+        def Pool(self, *args, **kwargs):  # noqa: N802 (multiprocessing's name)
+            pool = self.ctx.Pool(*args, **kwargs)
+            workers.extend(p.pid for p in pool._pool)
+            os.kill(os.getpid(), signal.SIGINT)  # the parent's Ctrl-C, inside the pool's start
+            return pool
+
+    monkeypatch.setattr(multiprocessing, "get_context", Context)
+    with pytest.raises(KeyboardInterrupt):
+        sim_wall.run_trials("gap", [12], 4, 7, jobs=2)
+    assert len(workers) == 2
+    for pid in workers:  # the pool was ended, not left running its trials
+        with pytest.raises(ChildProcessError):
+            os.waitpid(pid, 0)

@@ -336,6 +336,14 @@ def run_trial(world, setpoint_cm, seed, **options):
     return trial.result()
 
 
+def _ignore_ctrl_c():
+    """A pool worker's start: Ctrl-C is the parent's (one pending since the fork is dropped here)."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+
+
 def _task(args):
     world_src, side, setpoint, seed, gains, runtime, record, form, mover = args
     world = load(world_src)
@@ -436,23 +444,25 @@ def run_trials(
 
         progress = tqdm(total=len(tasks), unit="trial", file=sys.stderr)
     results = []
-    if jobs == 1 or len(tasks) == 1:
-        it = map(_task, tasks)
-        pool = None
-    else:
-        import multiprocessing
-        import signal
-
-        # Ctrl-C reaches the whole process group: the workers are forked ignoring it (no traceback from
-        # each), the parent alone takes the KeyboardInterrupt and ends them below.
-        old = signal.signal(signal.SIGINT, signal.SIG_IGN)
-        try:
-            pool = multiprocessing.get_context("fork").Pool(min(jobs, len(tasks)))
-        finally:
-            signal.signal(signal.SIGINT, old)
-        it = pool.imap(_task, tasks)
+    pool = None
     done = False
     try:
+        if jobs == 1 or len(tasks) == 1:
+            it = map(_task, tasks)
+        else:
+            import multiprocessing
+            import signal
+
+            # Ctrl-C reaches the whole process group. It is held back (blocked, not ignored) while the
+            # pool forks: each worker starts with it blocked and then ignores it (no traceback from
+            # each), and the parent takes one pressed meanwhile once the pool is up, ending it below.
+            # Ignored in the parent during the fork, a Ctrl-C was lost (a loaded machine's test run).
+            signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+            try:
+                pool = multiprocessing.get_context("fork").Pool(min(jobs, len(tasks)), initializer=_ignore_ctrl_c)
+            finally:
+                signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+            it = pool.imap(_task, tasks)
         for r in it:
             results.append(r)
             if progress is not None:
