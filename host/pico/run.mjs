@@ -319,6 +319,10 @@ function step(n) {
   let executed = 0;
   for (let i = 0; i < n; i++) {
     if (core.waiting) {
+      // Asleep (WFI/WFE): only an alarm, or the host's bytes that pump() queues after this step,
+      // can wake the core. With no alarm set, the rest of the step's cycles pass at once: the same
+      // clock as ticking them one by one (nothing can happen in between), without the host's CPU.
+      if (!clk.nextAlarm) { clk.tick((n - i) * CYCLE_NS); break; }
       const dt = clk.nanosToNextAlarm;
       if (dt <= 0) { clk.tick(CYCLE_NS); continue; }
       clk.tick(dt); i += dt / CYCLE_NS;
