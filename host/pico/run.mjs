@@ -12,7 +12,8 @@
 // Board output goes to stdout, tracebacks to stderr; exit status 1 when a script raised.
 //
 // --serial: the board's USB CDC bridged raw to stdin/stdout (bytes both ways, nothing translated),
-// emulated time paced to wall time (never ahead of it), until stdin closes or SIGTERM/SIGINT;
+// emulated time paced to wall time (at most 2 ms ahead of it; bytes from the host end a pause at
+// once, and pacing starts again from there), until stdin closes or SIGTERM/SIGINT;
 // a watchdog reset (machine.reset(), mpremote reset) powers the chip up again with the flash it
 // has. --save-fs OUT writes the littlefs region (what the board wrote to its flash) at exit.
 //
@@ -396,7 +397,15 @@ async function serial() {
     if (trace) fs.closeSync(trace);
     process.exit(0);
   };
-  process.stdin.on('data', (b) => { for (const c of b) outgoing.push(c); pump(); });
+  let pause = null;                           // the timer of a paced pause, while one runs
+  process.stdin.on('data', (b) => {
+    for (const c of b) outgoing.push(c);
+    pump();
+    // Bytes from the host end a pause at once (the board answers now, not when the pause is
+    // over): its clock runs on from where it is, paced from now, up to 2 ms ahead of wall time
+    // more for each pause cut short.
+    if (pause !== null) { clearTimeout(pause); pause = null; wall0 = Date.now(); emu0 = clock.nanos; setImmediate(slice); }
+  });
   process.stdin.on('end', finish);
   process.on('SIGTERM', finish);
   process.on('SIGINT', finish);
@@ -404,9 +413,10 @@ async function serial() {
     if (done) return;
     const t0 = Date.now();
     while (Date.now() - t0 < 10) {
-      // Paced: emulated time never runs ahead of wall time (an idle board would race through hours).
+      // Paced: emulated time never runs ahead of wall time by more than 2 ms (an idle board would race
+      // through hours).
       const ahead = (clock.nanos - emu0) / 1e6 - (Date.now() - wall0);
-      if (ahead > 2) { setTimeout(slice, Math.min(ahead, 10)); return; }
+      if (ahead > 2) { pause = setTimeout(() => { pause = null; slice(); }, Math.min(ahead, 10)); return; }
       if (ahead < -100) { wall0 = Date.now(); emu0 = clock.nanos; }   // fell behind: no catching up
       step(20000);
       if (resetRequested) {                  // watchdog reset: power up again with the flash as written
