@@ -152,11 +152,24 @@ function writeRaw(b) {                                // stdout may be a non-blo
   }
 }
 
+// rp2040js finds a register block's model by indexing a sparse object (in dictionary mode) with
+// its address, on every 32-bit write too (RAM's among them, which it finds in no block): the same
+// lookup from a dense table, one entry per 16 KiB of the address space, the models the chip made.
+function fastPeripherals(chip) {
+  const table = new Array(1 << 18).fill(null);              // address >>> 14: 0 .. 2^18 - 1
+  for (const key of Object.keys(chip.peripherals)) {
+    const k = Number(key);
+    if (k % 4 === 0) table[k / 4] = chip.peripherals[key];  // (address >>> 14) << 2 is a multiple of 4
+  }
+  chip.findPeripheral = (address) => table[address >>> 14];
+}
+
 // Power-up: a fresh chip with the firmware and fsBytes (null: erased) in its flash, USB host side
 // reattached. Run again on a watchdog reset, with the flash the board has written.
 function powerOn(fsBytes) {
   clock = new SimulationClock(MHZ * 1e6);
   mcu = new RP2040(clock);
+  fastPeripherals(mcu);
   mcu.loadBootrom(ROM.bootrom);
   mcu.logger = new ConsoleLogger(process.env.RP2040_DEBUG ? LogLevel.Debug : LogLevel.Error);
   loadFirmware();
