@@ -27,6 +27,7 @@ class JogPanel:
         self.jog = j = jogger_for(driver)
         self.client = ui.context.client
         self.error = ""
+        self.picking = 0  # picks clicked and not yet taken by the jogger (refresh leaves the toggles be)
         self.widgets = []
         with ui.card().classes("w-[420px]"):
             ui.label("jog and calibrate").classes("font-bold")
@@ -79,8 +80,15 @@ class JogPanel:
         v = self.jog.view
         if self.jog.guide is not None or (self.leg.value, self.joint.value) == (v.leg, JOINTS[v.joint]):
             return  # the guide's redo pick, or the refresh setting the toggles to the shared state
-        leg, joint = self.leg.value, self.joint.value  # as clicked: a refresh may reset the toggles meanwhile
-        await self._do(lambda c: self.jog.pick(c, leg, joint))
+        leg, joint = self.leg.value, self.joint.value  # as clicked
+        # Until the jogger has it, the view still holds the old pick: a refresh in between (its
+        # timer) reset the toggles to it, and a second click (the joint after the leg) then took
+        # the old leg with it: the page sent `cal 1 tibia` for leg 2 on a loaded machine.
+        self.picking += 1
+        try:
+            await self._do(lambda c: self.jog.pick(c, leg, joint))
+        finally:
+            self.picking -= 1
 
     def _guide_buttons(self, phase):
         """The guided step's buttons (guided.ACTIONS), rebuilt when the phase changes."""
@@ -115,7 +123,8 @@ class JogPanel:
         if phase != self.phase:
             self._guide_buttons(phase)
         v = j.view
-        if guide is None and not j.busy.locked() and (self.leg.value, self.joint.value) != (v.leg, JOINTS[v.joint]):
+        moved = (self.leg.value, self.joint.value) != (v.leg, JOINTS[v.joint])
+        if guide is None and not self.picking and not j.busy.locked() and moved:
             self.leg.value, self.joint.value = v.leg, JOINTS[v.joint]  # another step (or the guide) moved them
         for w in self.widgets:
             w.set_enabled(owns and (guide is None or w in (self.leg, self.joint)))
