@@ -275,3 +275,25 @@ def test_ctrl_c_leaves_a_whole_recording(tmp_path):
     assert "hexapod view: %d snapshots recorded in %s" % (len(r), path) in out
     frames = [json.loads(d)["frame"] for d in r.data]
     assert frames == sorted(frames) and frames[0] == 0
+
+
+def test_a_ctrl_c_the_server_took_still_ends_in_keyboard_interrupt(monkeypatch):
+    # A CI run: SIGINT stopped `hexapod view --record` (the recording finished) but the command
+    # exited 0, not 130: uvicorn's own raise of the signal it took did not come out of its runner.
+    import signal as sig
+
+    from nicegui.server import Server
+
+    from hexapod_host.view import server
+
+    class Stopped:
+        _captured_signals = [sig.SIGINT]
+
+    class Served:
+        _captured_signals = []
+
+    monkeypatch.setattr(Server, "instance", Stopped(), raising=False)
+    with pytest.raises(KeyboardInterrupt):
+        server.interrupted()
+    monkeypatch.setattr(Server, "instance", Served(), raising=False)
+    server.interrupted()  # a server stopped otherwise (its page's shutdown) is no Ctrl-C

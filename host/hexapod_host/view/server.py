@@ -51,3 +51,18 @@ def serve(player, host, port, show, fps):
         uvicorn_logging_level="warning",
         reconnect_timeout=RECONNECT_S,
     )
+    interrupted()
+
+
+def interrupted():
+    """Raise KeyboardInterrupt if the server stopped for a Ctrl-C. Uvicorn takes SIGINT, shuts down
+    and raises it again on its way out, but that raise lands in asyncio's runner, and once in a CI
+    run (tests/test_view_record.py) the command then returned as if never interrupted (exit 0, not
+    the CLI's 130)."""
+    import signal
+
+    from nicegui.server import Server
+
+    server = getattr(Server, "instance", None)
+    if signal.SIGINT in getattr(server, "_captured_signals", ()):
+        raise KeyboardInterrupt
