@@ -414,6 +414,14 @@ def _children(pid):
         return [int(w) for w in f.read().split()]
 
 
+def _terminal_like():
+    """SIGINT as a shell's command gets it: the default action, not blocked."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+
+
 def test_one_ctrl_c_stops_a_run_of_trials_cleanly():
     # main: every worker printed a KeyboardInterrupt traceback, the pool replaced them and the
     # parent waited for all the trials left before it exited.
@@ -426,7 +434,16 @@ def test_one_ctrl_c_stops_a_run_of_trials_cleanly():
     exe = os.path.join(os.path.dirname(sys.executable), "hexapod")
     argv = [exe, "sim", "wall", "--setpoint", "12", "--trials", "20", "--jobs", "2", "--json"]
     # A session of its own: the signal goes to the whole group, as a terminal's Ctrl-C does.
-    proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+    # As a terminal starts a command: SIGINT at its default, not blocked. A pytest worker may carry
+    # another test's leftover (a fresh-clone CI run: this test and the next both saw Ctrl-C ignored).
+    proc = subprocess.Popen(
+        argv,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        start_new_session=True,
+        preexec_fn=_terminal_like,
+    )
     try:
         end = time.monotonic() + 120  # a generous bound on the workers starting, not a measurement
         workers = []
@@ -469,8 +486,15 @@ def test_a_ctrl_c_while_the_pool_starts_is_not_lost(monkeypatch):
             return pool
 
     monkeypatch.setattr(multiprocessing, "get_context", Context)
-    with pytest.raises(KeyboardInterrupt):
-        sim_wall.run_trials("gap", [12], 4, 7, jobs=2)
+    # Python's own Ctrl-C, not blocked, whatever an earlier test in this worker left (see above).
+    old = signal.signal(signal.SIGINT, signal.default_int_handler)
+    mask = signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            sim_wall.run_trials("gap", [12], 4, 7, jobs=2)
+    finally:
+        signal.signal(signal.SIGINT, old)
+        signal.pthread_sigmask(signal.SIG_SETMASK, mask)
     assert len(workers) == 2
     for pid in workers:  # the pool was ended, not left running its trials
         with pytest.raises(ChildProcessError):
