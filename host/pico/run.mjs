@@ -12,8 +12,7 @@
 // Board output goes to stdout, tracebacks to stderr; exit status 1 when a script raised.
 //
 // --serial: the board's USB CDC bridged raw to stdin/stdout (bytes both ways, nothing translated),
-// emulated time paced to wall time (at most 2 ms ahead of it; bytes from the host end a pause at
-// once, and pacing starts again from there), until stdin closes or SIGTERM/SIGINT;
+// emulated time paced to wall time (never ahead of it), until stdin closes or SIGTERM/SIGINT;
 // a watchdog reset (machine.reset(), mpremote reset) powers the chip up again with the flash it
 // has. --save-fs OUT writes the littlefs region (what the board wrote to its flash) at exit.
 //
@@ -152,24 +151,11 @@ function writeRaw(b) {                                // stdout may be a non-blo
   }
 }
 
-// rp2040js finds a register block's model by indexing a sparse object (in dictionary mode) with
-// its address, on every 32-bit write too (RAM's among them, which it finds in no block): the same
-// lookup from a dense table, one entry per 16 KiB of the address space, the models the chip made.
-function fastPeripherals(chip) {
-  const table = new Array(1 << 18).fill(null);              // address >>> 14: 0 .. 2^18 - 1
-  for (const key of Object.keys(chip.peripherals)) {
-    const k = Number(key);
-    if (k % 4 === 0) table[k / 4] = chip.peripherals[key];  // (address >>> 14) << 2 is a multiple of 4
-  }
-  chip.findPeripheral = (address) => table[address >>> 14];
-}
-
 // Power-up: a fresh chip with the firmware and fsBytes (null: erased) in its flash, USB host side
 // reattached. Run again on a watchdog reset, with the flash the board has written.
 function powerOn(fsBytes) {
   clock = new SimulationClock(MHZ * 1e6);
   mcu = new RP2040(clock);
-  fastPeripherals(mcu);
   mcu.loadBootrom(ROM.bootrom);
   mcu.logger = new ConsoleLogger(process.env.RP2040_DEBUG ? LogLevel.Debug : LogLevel.Error);
   loadFirmware();
@@ -333,10 +319,6 @@ function step(n) {
   let executed = 0;
   for (let i = 0; i < n; i++) {
     if (core.waiting) {
-      // Asleep (WFI/WFE): only an alarm, or the host's bytes that pump() queues after this step,
-      // can wake the core. With no alarm set, the rest of the step's cycles pass at once: the same
-      // clock as ticking them one by one (nothing can happen in between), without the host's CPU.
-      if (!clk.nextAlarm) { clk.tick((n - i) * CYCLE_NS); break; }
       const dt = clk.nanosToNextAlarm;
       if (dt <= 0) { clk.tick(CYCLE_NS); continue; }
       clk.tick(dt); i += dt / CYCLE_NS;
@@ -410,15 +392,7 @@ async function serial() {
     if (trace) fs.closeSync(trace);
     process.exit(0);
   };
-  let pause = null;                           // the timer of a paced pause, while one runs
-  process.stdin.on('data', (b) => {
-    for (const c of b) outgoing.push(c);
-    pump();
-    // Bytes from the host end a pause at once (the board answers now, not when the pause is
-    // over): its clock runs on from where it is, paced from now, up to 2 ms ahead of wall time
-    // more for each pause cut short.
-    if (pause !== null) { clearTimeout(pause); pause = null; wall0 = Date.now(); emu0 = clock.nanos; setImmediate(slice); }
-  });
+  process.stdin.on('data', (b) => { for (const c of b) outgoing.push(c); pump(); });
   process.stdin.on('end', finish);
   process.on('SIGTERM', finish);
   process.on('SIGINT', finish);
@@ -426,10 +400,9 @@ async function serial() {
     if (done) return;
     const t0 = Date.now();
     while (Date.now() - t0 < 10) {
-      // Paced: emulated time never runs ahead of wall time by more than 2 ms (an idle board would race
-      // through hours).
+      // Paced: emulated time never runs ahead of wall time (an idle board would race through hours).
       const ahead = (clock.nanos - emu0) / 1e6 - (Date.now() - wall0);
-      if (ahead > 2) { pause = setTimeout(() => { pause = null; slice(); }, Math.min(ahead, 10)); return; }
+      if (ahead > 2) { setTimeout(slice, Math.min(ahead, 10)); return; }
       if (ahead < -100) { wall0 = Date.now(); emu0 = clock.nanos; }   // fell behind: no catching up
       step(20000);
       if (resetRequested) {                  // watchdog reset: power up again with the flash as written
